@@ -1,0 +1,48 @@
+#include "common/file_util.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+#include <filesystem>
+
+namespace motif {
+
+Result<std::string> ReadFileToString(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return Status::NotFound(path + ": no such file");
+  if (std::filesystem::is_directory(path, error)) {
+    return Status::InvalidArgument(path + ": is a directory, not a file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status::IOError(path + ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) return Status::IOError(path + ": read failed");
+  return buffer.str();
+}
+
+std::string TemporaryPathFor(const std::string& path) {
+  static std::atomic<uint64_t> counter{0};
+  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+Status AtomicWriteFile(const std::string& path, std::string_view content,
+                       FileSystem* file_system) {
+  const std::string temp_path = TemporaryPathFor(path);
+  Status status = [&]() -> Status {
+    MOTIF_ASSIGN_OR_RETURN(auto file, file_system->OpenWritable(temp_path,
+                                                                OpenMode::kCreateExclusive));
+    MOTIF_RETURN_IF_ERROR(file->WriteAt(0, content.data(), content.size()));
+    MOTIF_RETURN_IF_ERROR(file->Sync());
+    MOTIF_RETURN_IF_ERROR(file->Close());
+    MOTIF_RETURN_IF_ERROR(file_system->Rename(temp_path, path));
+    return file_system->SyncParentDir(path);
+  }();
+  if (!status.ok()) file_system->Remove(temp_path);  // best effort: the error that matters is `status`
+  return status;
+}
+
+}  // namespace motif

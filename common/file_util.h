@@ -1,0 +1,25 @@
+// Whole-file helpers: read a file into memory, and replace a file atomically (write a temporary
+// file beside it, fsync, rename over the target, fsync the directory), so a reader sees either the
+// old content or the new one, never a half-written file.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "common/status.h"
+#include "common/writable_file.h"
+
+namespace motif {
+
+// Reads the whole file. NotFound if it does not exist, IOError otherwise.
+Result<std::string> ReadFileToString(const std::string& path);
+
+// A temporary path beside `path`, unique to this process and call: "<path>.tmp-<pid>-<n>".
+std::string TemporaryPathFor(const std::string& path);
+
+// Atomically replaces `path` with `content`. On any failure the old file (if any) is untouched and
+// the temporary file is removed. IOError / ResourceExhausted on failure.
+Status AtomicWriteFile(const std::string& path, std::string_view content,
+                       FileSystem* file_system = PosixFileSystem());
+
+}  // namespace motif

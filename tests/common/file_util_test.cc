@@ -1,0 +1,59 @@
+#include "common/file_util.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "tests/testing/fault_injection.h"
+#include "tests/testing/temp_dir.h"
+
+namespace motif {
+namespace {
+
+TEST(AtomicWriteFile, WritesAndReplaces) {
+  testing::TempDir dir;
+  const std::string path = dir.File("out.json");
+  ASSERT_TRUE(AtomicWriteFile(path, "first").ok());
+  ASSERT_TRUE(AtomicWriteFile(path, "second").ok());
+  EXPECT_EQ(ReadFileToString(path).value(), "second");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
+                          std::filesystem::directory_iterator()),
+            1);
+}
+
+TEST(AtomicWriteFile, FailureAtAnyStepKeepsTheOldContent) {
+  testing::TempDir dir;
+  const std::string path = dir.File("out.json");
+  ASSERT_TRUE(AtomicWriteFile(path, "old").ok());
+  testing::FaultInjectingFileSystem counting;
+  ASSERT_TRUE(AtomicWriteFile(path, "counted", &counting).ok());
+  ASSERT_TRUE(AtomicWriteFile(path, "old").ok());
+  const int64_t steps = counting.steps();
+  ASSERT_GE(steps, 5);
+  for (int64_t step = 0; step < steps; ++step) {
+    testing::FaultInjectingFileSystem file_system;
+    file_system.FailAt(step);
+    Status status = AtomicWriteFile(path, "new content", &file_system);
+    const std::string content = ReadFileToString(path).value();
+    if (status.ok()) {
+      EXPECT_EQ(content, "new content") << "step " << step;
+    } else {
+      // Up to the rename the old file stands; only a failed directory sync comes after it.
+      EXPECT_TRUE(content == "old" || content == "new content") << "step " << step;
+      if (content == "new content") {
+        ASSERT_TRUE(AtomicWriteFile(path, "old").ok());
+      }
+    }
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+      EXPECT_EQ(entry.path().filename(), "out.json") << "temporary file left at step " << step;
+    }
+  }
+}
+
+TEST(ReadFileToString, MissingFileIsNotFound) {
+  testing::TempDir dir;
+  EXPECT_TRUE(ReadFileToString(dir.File("absent")).status().IsNotFound());
+}
+
+}  // namespace
+}  // namespace motif

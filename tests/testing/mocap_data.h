@@ -1,0 +1,22 @@
+// Where the real CMU takes are (../shared/data/mocap beside the repository, or $MOTIF_MOCAP_DIR),
+// and a macro that skips a test with a clear message when they are absent.
+#pragma once
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace motif::testing {
+
+// The mocap folder; empty if it does not exist.
+std::string MocapDir();
+
+}  // namespace motif::testing
+
+#define MOTIF_REQUIRE_MOCAP_DATA()                                                          \
+  do {                                                                                      \
+    if (::motif::testing::MocapDir().empty()) {                                             \
+      GTEST_SKIP() << "real CMU takes not found (../shared/data/mocap or $MOTIF_MOCAP_DIR)" \
+                      ": skipping this test";                                               \
+    }                                                                                       \
+  } while (0)
