@@ -1,0 +1,85 @@
+// FrameFileReader: opens a motion archive (.mfs, docs/formats/frame_file.md) by memory-mapping it
+// with Boost.Interprocess, validates it from the footer (through the header's commit slots), and
+// hands out decoded frames: random access to any frame range, or a FrameStream that walks the
+// archive block by block with bounded memory. Every block's checksum is checked when it is
+// decoded; Verify() checks all of them.
+// Thread-safety: once open, const methods may be called from many threads at once.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "formats/motion/pose_frames.h"
+#include "formats/motion/skeleton.h"
+
+namespace motif {
+
+struct FrameFileSummary {
+  uint64_t file_bytes = 0;        // committed length
+  uint64_t block_count = 0;
+  uint64_t compressed_bytes = 0;  // sum of block sizes
+  uint32_t block_frames = 0;      // the writer's nominal block size
+  uint64_t generation = 0;        // commits so far (1 after creation)
+  uint32_t format_major = 0;
+  uint32_t format_minor = 0;
+};
+
+class FrameStream;
+
+class FrameFileReader {
+ public:
+  // Opens and validates. NotFound: no file. Corruption: bad magic, unknown major version, a
+  // checksum mismatch in the header slots, footer or metadata, an index pointing outside the
+  // file. IOError: cannot open or map. Messages name the file and the offset.
+  static Result<std::unique_ptr<FrameFileReader>> Open(const std::string& path);
+  ~FrameFileReader();
+
+  const std::string& path() const;
+  const Skeleton& skeleton() const;
+  double fps() const;
+  FrameLayout layout() const;
+  uint64_t frame_count() const;
+  const std::vector<ClipInfo>& clips() const;
+  // Index into clips() of the clip holding global frame `frame_idx` (frame_idx < frame_count()).
+  size_t ClipOfFrame(uint64_t frame_idx) const;
+  FrameFileSummary summary() const;
+
+  // Decodes frames [first_frame, first_frame + frame_count) into `rows` (resized to
+  // frame_count * layout().stride()). InvalidArgument if the range is outside the archive;
+  // Corruption if a block fails its checksum or does not decode.
+  Status ReadFrames(uint64_t first_frame, uint64_t frame_count, std::vector<float>* rows) const;
+
+  // A stream over frames [first_frame, end_frame) in order, one block at a time.
+  std::unique_ptr<FrameStream> Stream(uint64_t first_frame = 0,
+                                      uint64_t end_frame = UINT64_MAX) const;
+
+  // Checks every block's checksum and that it decodes. `progress(done, total)` is called after
+  // each block if given. Corruption naming the first bad block and its offset.
+  Status Verify(const std::function<void(uint64_t, uint64_t)>& progress = nullptr) const;
+
+ private:
+  class Impl;
+  explicit FrameFileReader(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+  friend class FrameStream;
+};
+
+// Frames in order, block by block. Holds one decoded block at a time and releases the pages of
+// blocks already read, so resident memory does not grow with the archive.
+class FrameStream {
+ public:
+  virtual ~FrameStream() = default;
+  // Advances to the next run of frames. Returns false at the end. On OK/true, first_frame(),
+  // frame_count() and rows() describe the run (rows: frame_count() * stride floats, valid until
+  // the next call).
+  virtual Result<bool> Next() = 0;
+  virtual uint64_t first_frame() const = 0;
+  virtual uint64_t frame_count() const = 0;
+  virtual const float* rows() const = 0;
+};
+
+}  // namespace motif

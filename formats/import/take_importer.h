@@ -1,0 +1,57 @@
+// Importing takes: finds BVH and ASF/AMC files under the paths a user gives, and turns each into a
+// Take (formats/motion/take.h) with its skeleton mapped to the canonical CMU joint set where it is
+// one (formats/motion/canonical_skeleton.h), rotations rest-aligned and relative to the parent.
+//
+// BVH: any hierarchy, channel order and rotation order, tabs or spaces, CRLF, any frame time.
+// ASF/AMC: ASF units, bone axes and DOF order; AMC stores no rate (ImportOptions::amc_fps). An AMC
+// file is paired with the ASF in its folder, or where a folder has several, the one whose name
+// shares its subject prefix (13_17.amc with 13.asf, 07_05-walk.amc with 07-walk.asf);
+// ImportOptions::asf_path names it outright.
+// Errors name the file, the line and the problem: "05_01.bvh:412: frame 3 has 95 values, the
+// hierarchy declares 96 channels".
+// Thread-safety: pure functions; takes may be imported from several threads at once.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "formats/motion/take.h"
+
+namespace motif {
+
+enum class FirstFramePolicy {
+  kAuto,  // drop frame 0 when it is a converter's T-pose: discontinuous with the rest of the take
+  kKeep,
+  kDrop,
+};
+
+struct ImportOptions {
+  double amc_fps = 120.0;        // AMC files store no rate; CMU captured at 120 Hz
+  double bvh_fps = 0;            // > 0 overrides every BVH file's Frame Time
+  std::string asf_path;          // if set, the skeleton for every AMC file
+  FirstFramePolicy first_frame = FirstFramePolicy::kAuto;
+};
+
+enum class TakeFormat { kBvh, kAmc };
+
+struct TakeSource {
+  TakeFormat format = TakeFormat::kBvh;
+  std::string path;      // the .bvh or .amc file
+  std::string asf_path;  // for kAmc: the paired skeleton
+};
+
+// Expands files and folders (recursively, sorted by path) into takes. A folder contributes its
+// .bvh and .amc files (case-insensitive extensions); .asf files are used only as skeletons.
+// NotFound for a missing path; InvalidArgument for a file that is not .bvh/.amc, or an AMC file
+// with no ASF to pair (the message says how to name one with --asf).
+Result<std::vector<TakeSource>> DiscoverTakes(const std::vector<std::string>& paths,
+                                              const ImportOptions& options);
+
+// Reads and converts one take. The take's name is the file stem, source_path its path as given,
+// fps/source_fps the file's rate, content_hash XXH3-64 of the file's bytes (for AMC: of the AMC
+// file's bytes). The skeleton is canonicalised (CanonicalizeSkeleton) and weights set.
+// InvalidArgument (malformed input, naming file and line), NotFound, IOError.
+Result<Take> ImportTake(const TakeSource& source, const ImportOptions& options);
+
+}  // namespace motif
