@@ -1,0 +1,60 @@
+// What every command of the `motifmine` tool shares: exit codes, error reporting, and parsing of
+// its options with Boost.Program_options.
+//
+// Exit codes (pinned; documented in docs/guide.md for cron users):
+//   0 success; 1 internal error; 2 usage error (unknown option, missing argument);
+//   10 + Status code for failures: 11 not found, 12 corruption, 13 invalid input,
+//   14 I/O error, 15 not supported, 16 resource exhausted (disk full).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+
+#include "common/status.h"
+#include "engine/cli/progress_reporter.h"
+
+namespace motif::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInternal = 1;
+inline constexpr int kExitUsage = 2;
+inline constexpr int kExitStatusBase = 10;
+
+// 10 + the status code for a failure, 0 for OK.
+int ExitCodeFor(const Status& status);
+
+// Prints "motifmine <command>: error: <message>" to stderr and returns ExitCodeFor(status).
+int ReportError(const std::string& command, const Status& status);
+
+// A parsed command line. `options` are the named options, `positional` names the positional
+// arguments in order (the last one may take any number of values).
+struct CommandSpec {
+  std::string name;        // "import"
+  std::string usage;       // "motifmine import ARCHIVE PATH... [options]"
+  std::string summary;     // one paragraph
+  boost::program_options::options_description options{"Options", 100};
+  std::vector<std::pair<std::string, int>> positional;  // name, count (-1: the rest)
+};
+
+// Parses args (without the command name). On --help prints the help and sets *exit_now = true
+// with exit code 0; on a usage error prints it and the usage and returns kExitUsage.
+// Returns -1 to go on.
+int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args,
+                 boost::program_options::variables_map* vm);
+
+// Adds --quiet and --progress=auto|json|quiet, and reads them back.
+void AddProgressOptions(CommandSpec& spec);
+ProgressMode ProgressModeFrom(const boost::program_options::variables_map& vm);
+
+// Thousands separators: 40346 -> "40,346".
+std::string WithCommas(uint64_t value);
+
+int RunImport(const std::vector<std::string>& args);
+int RunInfo(const std::vector<std::string>& args);
+int RunVerify(const std::vector<std::string>& args);
+int RunExport(const std::vector<std::string>& args);
+int RunSynth(const std::vector<std::string>& args);
+
+}  // namespace motif::cli

@@ -1,0 +1,106 @@
+// motifmine import ARCHIVE PATH...: creates or appends to an archive.
+#include <cstdio>
+
+#include "engine/cli/cli_common.h"
+#include "engine/ingest/archive_import.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+int RunImport(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "import";
+  spec.usage = "motifmine import ARCHIVE PATH... [options]";
+  spec.summary =
+      "Imports BVH files and ASF/AMC takes (files, or folders searched recursively) into ARCHIVE\n"
+      "(.mfs), creating it or appending to it. Existing clips are never rewritten; if anything\n"
+      "fails, the archive is left exactly as it was. A take already in the archive (same file\n"
+      "content) is skipped. An AMC file is paired with the ASF in its folder (or the one sharing\n"
+      "its subject prefix); --asf names it outright.";
+  spec.options.add_options()
+      ("fps", po::value<double>()->default_value(0),
+       "frame rate of a NEW archive (takes at other rates are resampled); default: the first "
+       "take's rate")
+      ("asf", po::value<std::string>()->default_value(""), "the ASF skeleton for every AMC file")
+      ("amc-fps", po::value<double>()->default_value(120.0),
+       "frame rate of AMC files (they store none)")
+      ("bvh-fps", po::value<double>()->default_value(0),
+       "override every BVH file's Frame Time with this rate")
+      ("first-frame", po::value<std::string>()->default_value("auto"),
+       "auto: drop a first frame that is a converter's T-pose (discontinuous with the take); "
+       "keep; drop")
+      ("skip-bad", "import the good takes and report the bad ones (default: all or nothing)")
+      ("block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")
+      ("threads", po::value<int>()->default_value(0), "parser threads (0: all cores)");
+  AddProgressOptions(spec);
+  spec.positional = {{"archive", 1}, {"paths", -1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  if (!vm.count("paths")) {
+    std::fprintf(stderr, "motifmine import: give at least one PATH to import\nusage: %s\n",
+                 spec.usage.c_str());
+    return kExitUsage;
+  }
+
+  ArchiveImportOptions options;
+  options.fps = vm["fps"].as<double>();
+  options.import.asf_path = vm["asf"].as<std::string>();
+  options.import.amc_fps = vm["amc-fps"].as<double>();
+  options.import.bvh_fps = vm["bvh-fps"].as<double>();
+  const std::string first_frame = vm["first-frame"].as<std::string>();
+  if (first_frame == "auto") {
+    options.import.first_frame = FirstFramePolicy::kAuto;
+  } else if (first_frame == "keep") {
+    options.import.first_frame = FirstFramePolicy::kKeep;
+  } else if (first_frame == "drop") {
+    options.import.first_frame = FirstFramePolicy::kDrop;
+  } else {
+    return ReportError("import", Status::InvalidArgument("--first-frame must be auto, keep or drop"));
+  }
+  if (options.fps < 0 || options.import.amc_fps <= 0 || options.import.bvh_fps < 0) {
+    return ReportError("import", Status::InvalidArgument("frame rates must be positive"));
+  }
+  options.skip_bad = vm.count("skip-bad") > 0;
+  options.block_frames = vm["block-frames"].as<uint32_t>();
+  if (options.block_frames == 0) {
+    return ReportError("import", Status::InvalidArgument("--block-frames must be at least 1"));
+  }
+  options.threads = vm["threads"].as<int>();
+
+  ProgressReporter progress(ProgressModeFrom(vm));
+  options.note = [&](const std::string& message) { progress.Note(message); };
+  bool stage_started = false;
+  options.progress = [&](uint64_t done, uint64_t total) {
+    if (!stage_started) {
+      progress.BeginStage("import", total, "takes");
+      stage_started = true;
+    }
+    progress.Update(done);
+  };
+  const std::string archive = vm["archive"].as<std::string>();
+  Result<ArchiveImportResult> result =
+      ImportIntoArchive(archive, vm["paths"].as<std::vector<std::string>>(), options);
+  if (stage_started) progress.EndStage();
+  if (!result.ok()) {
+    int code = ReportError("import", result.status());
+    std::fprintf(stderr, "motifmine import: nothing was imported; %s is unchanged\n",
+                 archive.c_str());
+    return code;
+  }
+  std::printf("%s %s: %s takes imported (%s frames)", result->created ? "created" : "appended to",
+              archive.c_str(), WithCommas(result->takes_imported).c_str(),
+              WithCommas(result->frames_added).c_str());
+  if (result->takes_already_present) {
+    std::printf(", %s already present", WithCommas(result->takes_already_present).c_str());
+  }
+  if (result->takes_failed) {
+    std::printf(", %s failed", WithCommas(result->takes_failed).c_str());
+  }
+  std::printf("; the archive now holds %s clips, %s frames at %g fps\n",
+              WithCommas(result->archive_clips).c_str(),
+              WithCommas(result->archive_frames).c_str(), result->fps);
+  return result->takes_failed ? ExitCodeFor(Status::InvalidArgument("")) : kExitOk;
+}
+
+}  // namespace motif::cli

@@ -1,0 +1,99 @@
+// motifmine info ARCHIVE [--json]: what an archive holds.
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/cli/cli_common.h"
+#include "formats/frame_file/frame_file_reader.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+int RunInfo(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "info";
+  spec.usage = "motifmine info ARCHIVE [--json] [--clips N]";
+  spec.summary = "Describes an archive: frame rate, skeleton, clips and frames, size on disk.";
+  spec.options.add_options()
+      ("json", "print everything as one JSON object (every clip included)")
+      ("clips", po::value<size_t>()->default_value(20), "clips listed in the text output (0: all)");
+  spec.positional = {{"archive", 1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const std::string path = vm["archive"].as<std::string>();
+  Result<std::unique_ptr<FrameFileReader>> opened = FrameFileReader::Open(path);
+  if (!opened.ok()) return ReportError("info", opened.status());
+  const FrameFileReader& reader = **opened;
+  const FrameFileSummary summary = reader.summary();
+  const Skeleton& skeleton = reader.skeleton();
+  const uint64_t raw_bytes = reader.frame_count() * reader.layout().stride() * sizeof(float);
+
+  if (vm.count("json")) {
+    nlohmann::json out;
+    out["archive"] = path;
+    out["format_version"] = std::to_string(summary.format_major) + "." +
+                            std::to_string(summary.format_minor);
+    out["generation"] = summary.generation;
+    out["fps"] = reader.fps();
+    out["frames"] = reader.frame_count();
+    out["seconds"] = reader.frame_count() / reader.fps();
+    out["file_bytes"] = summary.file_bytes;
+    out["compressed_bytes"] = summary.compressed_bytes;
+    out["raw_float32_bytes"] = raw_bytes;
+    out["blocks"] = summary.block_count;
+    out["block_frames"] = summary.block_frames;
+    nlohmann::json joints = nlohmann::json::array();
+    for (const Joint& joint : skeleton.joints()) {
+      joints.push_back({{"name", joint.name}, {"parent", joint.parent}, {"weight", joint.weight}});
+    }
+    out["skeleton"] = {{"family", skeleton.family()}, {"joints", joints}};
+    nlohmann::json clips = nlohmann::json::array();
+    for (const ClipInfo& clip : reader.clips()) {
+      clips.push_back({{"name", clip.name},
+                       {"source", clip.source_path},
+                       {"frames", clip.frame_count},
+                       {"fps", clip.fps},
+                       {"source_fps", clip.source_fps},
+                       {"first_frame", clip.first_frame}});
+    }
+    out["clips"] = clips;
+    std::printf("%s\n", out.dump(2).c_str());
+    return kExitOk;
+  }
+
+  std::printf("archive      %s (format %u.%u, generation %llu)\n", path.c_str(),
+              summary.format_major, summary.format_minor,
+              static_cast<unsigned long long>(summary.generation));
+  std::printf("frames       %s at %g fps (%.1f s)\n", WithCommas(reader.frame_count()).c_str(),
+              reader.fps(), reader.frame_count() / reader.fps());
+  std::printf("clips        %s\n", WithCommas(reader.clips().size()).c_str());
+  size_t weighted = 0;
+  for (const Joint& joint : skeleton.joints()) weighted += joint.weight > 0;
+  std::printf("skeleton     %s, %zu joints (%zu weighted in the pose distance)\n",
+              skeleton.family().c_str(), skeleton.joint_count(), weighted);
+  std::printf("size         %s bytes on disk, %s blocks of up to %u frames\n",
+              WithCommas(summary.file_bytes).c_str(), WithCommas(summary.block_count).c_str(),
+              summary.block_frames);
+  if (summary.compressed_bytes > 0) {
+    std::printf("compression  %.2fx against raw float32 (%s bytes)\n",
+                static_cast<double>(raw_bytes) / summary.compressed_bytes,
+                WithCommas(raw_bytes).c_str());
+  }
+  const size_t limit = vm["clips"].as<size_t>();
+  const auto& clips = reader.clips();
+  std::printf("\n  %-24s %10s %12s %8s  %s\n", "clip", "frames", "first frame", "fps", "source");
+  for (size_t clip_idx = 0; clip_idx < clips.size(); ++clip_idx) {
+    if (limit > 0 && clip_idx >= limit) {
+      std::printf("  ... %zu more (use --clips 0 to list all)\n", clips.size() - clip_idx);
+      break;
+    }
+    const ClipInfo& clip = clips[clip_idx];
+    std::printf("  %-24s %10s %12s %8g  %s\n", clip.name.c_str(),
+                WithCommas(clip.frame_count).c_str(), WithCommas(clip.first_frame).c_str(),
+                clip.fps, clip.source_path.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace motif::cli

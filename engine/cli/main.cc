@@ -1,0 +1,65 @@
+// motifmine: the command-line tool. Dispatches to one command per file in engine/cli/.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "engine/cli/cli_common.h"
+
+namespace {
+
+struct Command {
+  const char* name;
+  int (*run)(const std::vector<std::string>&);
+  const char* summary;
+};
+
+const Command kCommands[] = {
+    {"import", motif::cli::RunImport, "import BVH or ASF/AMC takes into an archive (creates or appends)"},
+    {"info", motif::cli::RunInfo, "describe an archive: clips, frames, skeleton, size"},
+    {"verify", motif::cli::RunVerify, "check every checksum of an archive"},
+    {"export", motif::cli::RunExport, "write a clip (or a frame range of it) as a BVH file"},
+    {"synth", motif::cli::RunSynth, "write a synthetic archive with planted motifs and its truth"},
+};
+
+void PrintUsage(FILE* out) {
+  std::fprintf(out,
+               "motifmine: mines recurring motion motifs from large motion-capture archives.\n\n"
+               "usage: motifmine COMMAND [ARGS...]   (motifmine COMMAND --help for details)\n\n"
+               "commands:\n");
+  for (const Command& command : kCommands) {
+    std::fprintf(out, "  %-8s %s\n", command.name, command.summary);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    PrintUsage(stderr);
+    return motif::cli::kExitUsage;
+  }
+  const std::string name = argv[1];
+  if (name == "--help" || name == "-h" || name == "help") {
+    PrintUsage(stdout);
+    return motif::cli::kExitOk;
+  }
+  if (name == "--version") {
+    std::printf("motifmine 0.1.0\n");
+    return motif::cli::kExitOk;
+  }
+  std::vector<std::string> args(argv + 2, argv + argc);
+  for (const Command& command : kCommands) {
+    if (name == command.name) {
+      try {
+        return command.run(args);
+      } catch (const std::exception& error) {
+        std::fprintf(stderr, "motifmine %s: internal error: %s\n", command.name, error.what());
+        return motif::cli::kExitInternal;
+      }
+    }
+  }
+  std::fprintf(stderr, "motifmine: unknown command '%s'\n\n", name.c_str());
+  PrintUsage(stderr);
+  return motif::cli::kExitUsage;
+}

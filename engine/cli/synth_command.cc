@@ -1,0 +1,157 @@
+// motifmine synth OUT.mfs --frames N --motifs M --seed S [--from PATH...]
+#include <cstdio>
+#include <filesystem>
+
+#include "common/file_util.h"
+#include "engine/cli/cli_common.h"
+#include "engine/synth/motion_synthesizer.h"
+#include "formats/frame_file/frame_file_writer.h"
+#include "formats/import/take_importer.h"
+#include "formats/motion/canonical_skeleton.h"
+#include "formats/motion/resample.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+// OUT.mfs -> OUT.truth.json
+std::string TruthPathFor(const std::string& archive_path) {
+  std::filesystem::path path(archive_path);
+  if (path.extension() == ".mfs") path.replace_extension("");
+  return path.string() + ".truth.json";
+}
+
+// Imports the real takes to re-sequence, all mapped to the first one's skeleton and at `fps`.
+Result<std::vector<Take>> LoadSourceTakes(const std::vector<std::string>& paths, double fps,
+                                          ProgressReporter* progress) {
+  ImportOptions options;
+  MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources, DiscoverTakes(paths, options));
+  if (sources.empty()) return Status::InvalidArgument("--from: no .bvh or .amc takes found");
+  std::vector<Take> takes;
+  progress->BeginStage("load takes", sources.size(), "takes");
+  for (const TakeSource& source : sources) {
+    MOTIF_ASSIGN_OR_RETURN(Take take, ImportTake(source, options));
+    if (!takes.empty()) {
+      Status status = ConformToSkeleton(takes.front().skeleton, &take);
+      if (!status.ok()) {
+        progress->Note("skipped " + source.path + ": " + status.message());
+        continue;
+      }
+    }
+    takes.push_back(ResampleTake(take, fps));
+    progress->Update(takes.size());
+  }
+  progress->EndStage();
+  return takes;
+}
+
+}  // namespace
+
+int RunSynth(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "synth";
+  spec.usage = "motifmine synth OUT.mfs --frames N --motifs M --seed S [--from PATH...] [options]";
+  spec.summary =
+      "Writes a synthetic archive of plausible skeletal motion (canonical CMU skeleton) in which\n"
+      "M motifs of 0.5 to 5 s are planted several times each with time warps and noise, and\n"
+      "OUT.truth.json listing every planted instance. Streams: any number of frames in bounded\n"
+      "memory. With --from, re-sequences real takes instead (realistic neighbour density).";
+  SynthOptions defaults;
+  spec.options.add_options()
+      ("frames", po::value<uint64_t>()->required(), "total frames")
+      ("motifs", po::value<uint32_t>()->default_value(defaults.motifs), "planted motifs")
+      ("seed", po::value<uint64_t>()->default_value(defaults.seed), "random seed")
+      ("fps", po::value<double>()->default_value(defaults.fps), "frame rate")
+      ("from", po::value<std::vector<std::string>>()->multitoken(),
+       "re-sequence these real takes (BVH/ASF/AMC files or folders)")
+      ("clip-seconds-min", po::value<double>()->default_value(defaults.clip_seconds_min), "")
+      ("clip-seconds-max", po::value<double>()->default_value(defaults.clip_seconds_max),
+       "clip lengths are drawn from [min, max] seconds")
+      ("motif-seconds-min", po::value<double>()->default_value(defaults.motif_seconds_min), "")
+      ("motif-seconds-max", po::value<double>()->default_value(defaults.motif_seconds_max),
+       "motif lengths are drawn from [min, max] seconds")
+      ("instances-min", po::value<uint32_t>()->default_value(defaults.instances_min), "")
+      ("instances-max", po::value<uint32_t>()->default_value(defaults.instances_max),
+       "planted instances per motif")
+      ("noise-degrees", po::value<double>()->default_value(defaults.noise_degrees),
+       "noise added to each planted instance (degrees, std dev)")
+      ("block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")
+      ("force", "replace OUT.mfs if it exists");
+  AddProgressOptions(spec);
+  spec.positional = {{"out", 1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+
+  SynthOptions options;
+  options.frames = vm["frames"].as<uint64_t>();
+  options.motifs = vm["motifs"].as<uint32_t>();
+  options.seed = vm["seed"].as<uint64_t>();
+  options.fps = vm["fps"].as<double>();
+  options.clip_seconds_min = vm["clip-seconds-min"].as<double>();
+  options.clip_seconds_max = vm["clip-seconds-max"].as<double>();
+  options.motif_seconds_min = vm["motif-seconds-min"].as<double>();
+  options.motif_seconds_max = vm["motif-seconds-max"].as<double>();
+  options.instances_min = vm["instances-min"].as<uint32_t>();
+  options.instances_max = vm["instances-max"].as<uint32_t>();
+  options.noise_degrees = vm["noise-degrees"].as<double>();
+  const std::string out = vm["out"].as<std::string>();
+  const bool force = vm.count("force") > 0;
+  std::error_code error;
+  if (!force && std::filesystem::exists(out, error)) {
+    return ReportError("synth", Status::InvalidArgument(out + ": exists already (use --force to "
+                                                              "replace it)"));
+  }
+
+  ProgressReporter progress(ProgressModeFrom(vm));
+  std::unique_ptr<MotionSynthesizer> synthesizer;
+  if (vm.count("from")) {
+    Result<std::vector<Take>> takes =
+        LoadSourceTakes(vm["from"].as<std::vector<std::string>>(), options.fps, &progress);
+    if (!takes.ok()) return ReportError("synth", takes.status());
+    Result<std::unique_ptr<MotionSynthesizer>> created =
+        MotionSynthesizer::CreateFromTakes(options, std::move(takes.value()));
+    if (!created.ok()) return ReportError("synth", created.status());
+    synthesizer = std::move(created.value());
+  } else {
+    Result<std::unique_ptr<MotionSynthesizer>> created = MotionSynthesizer::Create(options);
+    if (!created.ok()) return ReportError("synth", created.status());
+    synthesizer = std::move(created.value());
+  }
+
+  // Written beside OUT and renamed over it only when complete, so --force never leaves OUT half
+  // written.
+  const std::string staging = force ? TemporaryPathFor(out) : out;
+  FrameFileWriterOptions writer_options;
+  writer_options.block_frames = vm["block-frames"].as<uint32_t>();
+  Result<std::unique_ptr<FrameFileWriter>> writer =
+      FrameFileWriter::Create(staging, synthesizer->skeleton(), options.fps, writer_options);
+  if (!writer.ok()) return ReportError("synth", writer.status());
+  progress.BeginStage("synth", options.frames, "frames");
+  uint64_t frames_done = 0;
+  Status status = synthesizer->Run([&](const ClipFrames& clip) {
+    MOTIF_RETURN_IF_ERROR((*writer)->AppendClip(clip));
+    frames_done += clip.info.frame_count;
+    progress.Update(frames_done);
+    return Status::Ok();
+  });
+  if (status.ok()) status = (*writer)->Commit();
+  progress.EndStage();
+  if (status.ok() && force) status = PosixFileSystem()->Rename(staging, out);
+  if (!status.ok()) {
+    if (force) PosixFileSystem()->Remove(staging);
+    return ReportError("synth", status);
+  }
+  const std::string truth_path = TruthPathFor(out);
+  status = WriteTruthJson(truth_path, out, frames_done, options, synthesizer->truth());
+  if (!status.ok()) return ReportError("synth", status);
+  std::printf("wrote %s: %s frames in %s clips at %g fps, %u motifs planted as %zu instances\n",
+              out.c_str(), WithCommas(frames_done).c_str(),
+              WithCommas(synthesizer->clip_count()).c_str(), options.fps, options.motifs,
+              synthesizer->truth().size());
+  std::printf("wrote %s: the planted instances (ground truth)\n", truth_path.c_str());
+  return kExitOk;
+}
+
+}  // namespace motif::cli

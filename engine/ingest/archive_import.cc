@@ -1,0 +1,164 @@
+#include "engine/ingest/archive_import.h"
+
+#include <atomic>
+#include <filesystem>
+#include <optional>
+#include <unordered_set>
+
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include "formats/frame_file/frame_file_writer.h"
+#include "formats/motion/canonical_skeleton.h"
+#include "formats/motion/resample.h"
+
+namespace motif {
+namespace {
+
+// One take on its way through the pipeline.
+struct TakeInFlight {
+  size_t index = 0;
+  Status status;
+  std::optional<ClipFrames> clip;
+};
+
+// Parses one take and converts it to the archive's skeleton and rate.
+TakeInFlight PrepareTake(const TakeSource& source, size_t index, const Skeleton& skeleton,
+                         double fps, const ImportOptions& options) {
+  TakeInFlight item;
+  item.index = index;
+  Result<Take> take = ImportTake(source, options);
+  if (!take.ok()) {
+    item.status = take.status();
+    return item;
+  }
+  item.status = ConformToSkeleton(skeleton, &take.value());
+  if (!item.status.ok()) return item;
+  if (take->frame_count() == 0) {
+    item.status = Status::InvalidArgument(source.path + ": the take has no frames");
+    return item;
+  }
+  item.clip = TakeToClipFrames(ResampleTake(*take, fps));
+  return item;
+}
+
+}  // namespace
+
+Result<ArchiveImportResult> ImportIntoArchive(const std::string& archive_path,
+                                              const std::vector<std::string>& inputs,
+                                              const ArchiveImportOptions& options) {
+  ArchiveImportResult result;
+  MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources, DiscoverTakes(inputs, options.import));
+  result.takes_found = sources.size();
+  if (sources.empty()) {
+    return Status::InvalidArgument("no .bvh or .amc takes found under the given paths");
+  }
+  auto note = [&](const std::string& message) {
+    if (options.note) message.empty() ? void() : options.note(message);
+  };
+
+  FrameFileWriterOptions writer_options;
+  writer_options.block_frames = options.block_frames;
+  writer_options.file_system = options.file_system;
+  std::unique_ptr<FrameFileWriter> writer;
+  std::error_code error;
+  if (std::filesystem::exists(archive_path, error)) {
+    MOTIF_ASSIGN_OR_RETURN(writer, FrameFileWriter::OpenForAppend(archive_path, writer_options));
+  } else {
+    // The first take decides the skeleton and, unless given, the rate.
+    MOTIF_ASSIGN_OR_RETURN(Take first, ImportTake(sources[0], options.import));
+    const double fps = options.fps > 0 ? options.fps : first.fps;
+    MOTIF_ASSIGN_OR_RETURN(writer, FrameFileWriter::Create(archive_path, first.skeleton, fps,
+                                                           writer_options));
+    result.created = true;
+    note("creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
+         std::to_string(first.skeleton.joint_count()) + " joints), " + std::to_string(fps) +
+         " fps");
+  }
+  const Skeleton skeleton = writer->skeleton();
+  const double fps = writer->fps();
+  result.fps = fps;
+
+  std::unordered_set<uint64_t> known_hashes;
+  std::unordered_set<std::string> known_names;
+  for (const ClipInfo& clip : writer->clips()) {
+    if (clip.content_hash != 0) known_hashes.insert(clip.content_hash);
+    known_names.insert(clip.name);
+  }
+
+  Status first_error;
+  std::atomic<bool> stop{false};
+  size_t next_source = 0;
+  uint64_t done = 0;
+  tbb::task_arena arena(options.threads > 0 ? options.threads
+                                            : tbb::task_arena::automatic);
+  const size_t max_in_flight = 2 * static_cast<size_t>(arena.max_concurrency());
+  arena.execute([&] {
+    tbb::parallel_pipeline(
+        max_in_flight,
+        tbb::make_filter<void, size_t>(
+            tbb::filter_mode::serial_in_order,
+            [&](tbb::flow_control& control) -> size_t {
+              if (next_source >= sources.size() || stop.load()) {
+                control.stop();
+                return 0;
+              }
+              return next_source++;
+            }) &
+            tbb::make_filter<size_t, TakeInFlight>(
+                tbb::filter_mode::parallel,
+                [&](size_t index) {
+                  if (stop.load()) return TakeInFlight{index, Status::Ok(), std::nullopt};
+                  return PrepareTake(sources[index], index, skeleton, fps, options.import);
+                }) &
+            tbb::make_filter<TakeInFlight, void>(
+                tbb::filter_mode::serial_in_order, [&](TakeInFlight item) {
+                  if (stop.load()) return;
+                  ++done;
+                  if (options.progress) options.progress(done, sources.size());
+                  if (!item.status.ok()) {
+                    ++result.takes_failed;
+                    result.failures.push_back(item.status.message());
+                    if (!options.skip_bad) {
+                      first_error = item.status;
+                      stop.store(true);
+                    } else {
+                      note("skipped: " + item.status.message());
+                    }
+                    return;
+                  }
+                  ClipFrames& clip = *item.clip;
+                  if (known_hashes.count(clip.info.content_hash)) {
+                    ++result.takes_already_present;
+                    note(clip.info.source_path + ": already in the archive, skipped");
+                    return;
+                  }
+                  std::string name = clip.info.name;
+                  for (int suffix = 2; known_names.count(name); ++suffix) {
+                    name = clip.info.name + "~" + std::to_string(suffix);
+                  }
+                  if (name != clip.info.name) {
+                    note(clip.info.source_path + ": a clip named '" + clip.info.name +
+                         "' exists already; stored as '" + name + "'");
+                    clip.info.name = name;
+                  }
+                  Status status = writer->AppendClip(clip);
+                  if (!status.ok()) {
+                    first_error = status;
+                    stop.store(true);
+                    return;
+                  }
+                  known_hashes.insert(clip.info.content_hash);
+                  known_names.insert(name);
+                  ++result.takes_imported;
+                  result.frames_added += clip.info.frame_count;
+                }));
+  });
+  if (!first_error.ok()) return first_error;  // the writer's destructor abandons the append
+  MOTIF_RETURN_IF_ERROR(writer->Commit());
+  result.archive_clips = writer->clips().size();
+  result.archive_frames = writer->frame_count();
+  return result;
+}
+
+}  // namespace motif

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian packages motifmine builds on, if any is missing. Safe to run repeatedly.
+# Why each: Boost (iostreams, interprocess mmap, program_options for the CLI), Eigen (pose math),
+# oneTBB (parallel import and LSH shards), zstd (block compression), xxHash (XXH3 block
+# checksums), nlohmann-json (motifs.json, truth files, --json output), Google Benchmark and
+# GoogleTest/GoogleMock (bench/ and tests/).
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libboost-dev libboost-iostreams-dev libboost-program-options-dev
+  libeigen3-dev libtbb-dev libzstd-dev libxxhash-dev nlohmann-json3-dev
+  libbenchmark-dev libgtest-dev libgmock-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "installing: ${missing[*]}" >&2
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then sudo_cmd=(sudo); else
+    echo "error: missing packages (${missing[*]}) and not root; install them and re-run" >&2
+    exit 1
+  fi
+fi
+"${sudo_cmd[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
+  "${missing[@]}" >&2
