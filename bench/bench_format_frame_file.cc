@@ -1,0 +1,156 @@
+// Frame file (.mfs) throughput: writing column blocks (quantise, delta, shuffle, zstd, checksum),
+// sequential decode through a FrameStream, and random access to short frame ranges. The archives
+// are synthetic (MotionSynthesizer, fixed seed), made once per size outside the timed loops and
+// kept in the page cache, so these numbers leave out cold-disk I/O. Counters: frames per second,
+// compressed bytes per frame, and peak resident memory of the timed part (it must not grow with
+// the number of frames when streaming).
+#include <filesystem>
+#include <map>
+#include <random>
+
+#include <benchmark/benchmark.h>
+
+#include "bench/bench_util.h"
+#include "engine/synth/motion_synthesizer.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/frame_file/frame_file_writer.h"
+
+namespace motif {
+namespace {
+
+std::string BenchDir() {
+  static const std::string dir = [] {
+    std::string path = std::filesystem::temp_directory_path().string() + "/motifmine-bench-" +
+                       std::to_string(::getpid());
+    std::filesystem::create_directories(path);
+    return path;
+  }();
+  return dir;
+}
+
+struct CleanUp {
+  ~CleanUp() {
+    std::error_code error;
+    std::filesystem::remove_all(BenchDir(), error);
+  }
+} clean_up;
+
+// A synthetic archive of `frames` frames, written once per size.
+const std::string& ArchiveOf(uint64_t frames) {
+  static std::map<uint64_t, std::string> archives;
+  auto it = archives.find(frames);
+  if (it != archives.end()) return it->second;
+  const std::string path = BenchDir() + "/synth-" + std::to_string(frames) + ".mfs";
+  SynthOptions options;
+  options.frames = frames;
+  options.motifs = frames >= 120 * 60 ? 4 : 0;
+  options.seed = 7;
+  auto synthesizer = MotionSynthesizer::Create(options);
+  if (!synthesizer.ok()) std::abort();
+  auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
+  if (!writer.ok()) std::abort();
+  Status status = (*synthesizer)->Run([&](const ClipFrames& clip) {
+    return (*writer)->AppendClip(clip);
+  });
+  if (!status.ok() || !(*writer)->Commit().ok()) std::abort();
+  return archives[frames] = path;
+}
+
+void BM_FrameFileSequentialRead(benchmark::State& state) {
+  const uint64_t frames = static_cast<uint64_t>(state.range(0));
+  const std::string& path = ArchiveOf(frames);
+  auto reader = FrameFileReader::Open(path);
+  if (!reader.ok()) {
+    state.SkipWithError(reader.status().ToString().c_str());
+    return;
+  }
+  bench::ResetPeakRss();
+  const double rss_before = bench::PeakRssBytes();
+  for (auto _ : state) {
+    auto stream = (*reader)->Stream();
+    double checksum = 0;
+    while (true) {
+      Result<bool> more = stream->Next();
+      if (!more.ok() || !*more) break;
+      checksum += stream->rows()[0];
+    }
+    benchmark::DoNotOptimize(checksum);
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * frames));
+  state.counters["bytes_per_frame"] =
+      static_cast<double>((*reader)->summary().compressed_bytes) / frames;
+  state.counters["peak_rss_growth_MB"] = (bench::PeakRssBytes() - rss_before) / 1e6;
+  state.SetComplexityN(static_cast<int64_t>(frames));
+}
+BENCHMARK(BM_FrameFileSequentialRead)
+    ->Name("FrameFile/SequentialRead")
+    ->RangeMultiplier(4)
+    ->Range(1 << 14, 1 << 20)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity(benchmark::oN);
+
+void BM_FrameFileRandomRead(benchmark::State& state) {
+  const uint64_t frames = 1 << 20;
+  const uint64_t range_frames = static_cast<uint64_t>(state.range(0));
+  auto reader = FrameFileReader::Open(ArchiveOf(frames));
+  if (!reader.ok()) {
+    state.SkipWithError(reader.status().ToString().c_str());
+    return;
+  }
+  std::mt19937_64 rng(3);
+  std::vector<float> rows;
+  for (auto _ : state) {
+    const uint64_t first = rng() % (frames - range_frames);
+    Status status = (*reader)->ReadFrames(first, range_frames, &rows);
+    benchmark::DoNotOptimize(rows.data());
+    if (!status.ok()) state.SkipWithError(status.ToString().c_str());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * range_frames));
+}
+BENCHMARK(BM_FrameFileRandomRead)
+    ->Name("FrameFile/RandomRead/frames:1M")
+    ->Arg(120)
+    ->Arg(4096)
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_FrameFileWrite(benchmark::State& state) {
+  const uint64_t frames = static_cast<uint64_t>(state.range(0));
+  // Generate the clips once; the timed loop only writes them.
+  SynthOptions options;
+  options.frames = frames;
+  options.motifs = 0;
+  options.seed = 11;
+  auto synthesizer = MotionSynthesizer::Create(options);
+  std::vector<ClipFrames> clips;
+  Status generated = (*synthesizer)->Run([&](const ClipFrames& clip) {
+    clips.push_back(clip);
+    return Status::Ok();
+  });
+  if (!generated.ok()) std::abort();
+  const std::string path = BenchDir() + "/write.mfs";
+  uint64_t bytes = 0;
+  for (auto _ : state) {
+    std::filesystem::remove(path);
+    auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
+    for (const ClipFrames& clip : clips) {
+      if (!(*writer)->AppendClip(clip).ok()) std::abort();
+    }
+    if (!(*writer)->Commit().ok()) std::abort();
+    bytes = std::filesystem::file_size(path);
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * frames));
+  state.counters["bytes_per_frame"] = static_cast<double>(bytes) / frames;
+  state.counters["ratio_vs_float32"] =
+      static_cast<double>(frames * (*synthesizer)->skeleton().joint_count() * 4 * 4 + frames * 16) /
+      bytes;
+}
+BENCHMARK(BM_FrameFileWrite)
+    ->Name("FrameFile/Write")
+    ->Arg(1 << 16)
+    ->Arg(1 << 18)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace motif
+
+BENCHMARK_MAIN();

@@ -1,0 +1,427 @@
+#include "formats/import/bvh_parser.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "formats/import/text_scanner.h"
+#include "formats/motion/quaternion_math.h"
+
+namespace motif {
+namespace {
+
+using import_internal::EqualsIgnoreCase;
+using import_internal::IsBlank;
+using import_internal::LineCursor;
+using import_internal::ParseDouble;
+using import_internal::ParseInt64;
+using import_internal::Printable;
+using import_internal::Token;
+using import_internal::Tokenizer;
+
+// Where a joint's channels sit in a frame line, precomputed so the frame loop does no lookups.
+struct JointLayout {
+  int rotation_count = 0;
+  std::array<Axis, 3> rotation_axes{};
+  std::array<int, 3> rotation_channel{};  // index into the frame's values
+};
+
+// State of a joint while its braces are open.
+struct OpenJoint {
+  int joint_idx = 0;
+  int open_line = 0;
+  bool has_offset = false;
+  bool has_channels = false;
+};
+
+bool IsRotation(ChannelType type) {
+  return type == ChannelType::kXRotation || type == ChannelType::kYRotation ||
+         type == ChannelType::kZRotation;
+}
+
+Axis AxisOf(ChannelType type) {
+  switch (type) {
+    case ChannelType::kXPosition:
+    case ChannelType::kXRotation: return Axis::kX;
+    case ChannelType::kYPosition:
+    case ChannelType::kYRotation: return Axis::kY;
+    case ChannelType::kZPosition:
+    case ChannelType::kZRotation: return Axis::kZ;
+  }
+  return Axis::kX;
+}
+
+// Matches "<word0> <word1> ... :" at the start of `line` (case-insensitive, blanks allowed
+// around the words and the colon); on success `*value` is the trimmed text after the colon.
+bool MatchLabel(std::string_view line, std::initializer_list<std::string_view> words,
+                std::string_view* value) {
+  size_t pos = 0;
+  auto skip_blanks = [&] {
+    while (pos < line.size() && IsBlank(line[pos])) ++pos;
+  };
+  for (std::string_view word : words) {
+    skip_blanks();
+    if (line.size() - pos < word.size() || !EqualsIgnoreCase(line.substr(pos, word.size()), word)) {
+      return false;
+    }
+    pos += word.size();
+  }
+  skip_blanks();
+  if (pos >= line.size() || line[pos] != ':') return false;
+  ++pos;
+  skip_blanks();
+  size_t end = line.size();
+  while (end > pos && IsBlank(line[end - 1])) --end;
+  *value = line.substr(pos, end - pos);
+  return true;
+}
+
+bool IsBlankLine(std::string_view line) {
+  return std::all_of(line.begin(), line.end(), [](char c) { return IsBlank(c); });
+}
+
+class BvhParser {
+ public:
+  BvhParser(std::string_view text, const std::string& file_name)
+      : tokenizer_(text), file_name_(file_name) {}
+
+  Result<Take> Parse(double fps_override) {
+    MOTIF_RETURN_IF_ERROR(ParseHierarchy());
+    Take take;
+    take.source_path = file_name_;
+    take.skeleton = Skeleton("custom", joints_);
+    Status valid = take.skeleton.Validate();
+    if (!valid.ok()) return Error(joint_lines_.empty() ? 1 : joint_lines_[0], valid.message());
+    MOTIF_RETURN_IF_ERROR(ParseMotion(fps_override, &take));
+    return take;
+  }
+
+ private:
+  Status Error(int line, const std::string& problem) const {
+    return Status::InvalidArgument(file_name_ + ":" + std::to_string(line) + ": " + problem);
+  }
+
+  std::string Quoted(std::string_view text) const { return "'" + Printable(text) + "'"; }
+
+  // The joint name after ROOT/JOINT: the tokens on the keyword's line up to an optional '{'.
+  Status ReadJointName(const Token& keyword, std::string* name) {
+    Token token;
+    name->clear();
+    while (tokenizer_.Peek(&token) && token.line == keyword.line && token.text != "{") {
+      tokenizer_.Next(&token);
+      if (!name->empty()) name->push_back(' ');
+      name->append(token.text);
+    }
+    if (name->empty()) return Error(keyword.line, std::string(keyword.text) + " without a name");
+    return Status::Ok();
+  }
+
+  Status Expect(std::string_view wanted, const std::string& context) {
+    Token token;
+    if (!tokenizer_.Next(&token)) {
+      return Error(tokenizer_.line(), "file ends where " + std::string(wanted) + " was expected " +
+                                          context + " (truncated file?)");
+    }
+    if (!EqualsIgnoreCase(token.text, wanted)) {
+      return Error(token.line, "expected '" + std::string(wanted) + "' " + context + ", found " +
+                                   Quoted(token.text));
+    }
+    return Status::Ok();
+  }
+
+  Status ReadOffset(const std::string& owner, std::array<double, 3>* offset) {
+    for (int axis = 0; axis < 3; ++axis) {
+      Token token;
+      if (!tokenizer_.Next(&token)) {
+        return Error(tokenizer_.line(), "file ends inside the OFFSET of " + owner);
+      }
+      if (!ParseDouble(token.text, &(*offset)[axis])) {
+        return Error(token.line, "OFFSET of " + owner + " needs 3 finite numbers, found " +
+                                     Quoted(token.text));
+      }
+    }
+    return Status::Ok();
+  }
+
+  Status ReadChannels(const Token& keyword, OpenJoint* open) {
+    Joint& joint = joints_[open->joint_idx];
+    const std::string owner = "joint '" + Printable(joint.name) + "'";
+    if (open->has_channels) return Error(keyword.line, owner + " has two CHANNELS lines");
+    open->has_channels = true;
+    Token token;
+    int64_t count = 0;
+    if (!tokenizer_.Next(&token)) return Error(keyword.line, "file ends inside CHANNELS");
+    if (!ParseInt64(token.text, &count) || count < 0 || count > 6) {
+      return Error(token.line, "CHANNELS of " + owner + " must start with a count from 0 to 6, found " +
+                                   Quoted(token.text));
+    }
+    for (int64_t channel_idx = 0; channel_idx < count; ++channel_idx) {
+      if (!tokenizer_.Next(&token)) return Error(keyword.line, "file ends inside CHANNELS");
+      ChannelType type;
+      if (!ParseChannelType(std::string(token.text), &type)) {
+        return Error(token.line, "CHANNELS of " + owner + " declares " + std::to_string(count) +
+                                     " channels, but " + Quoted(token.text) + " (channel " +
+                                     std::to_string(channel_idx + 1) + ") is not a channel name");
+      }
+      if (std::find(joint.channels.begin(), joint.channels.end(), type) != joint.channels.end()) {
+        return Error(token.line, "CHANNELS of " + owner + " lists " + ChannelTypeName(type) + " twice");
+      }
+      joint.channels.push_back(type);
+    }
+    return Status::Ok();
+  }
+
+  Status ReadEndSite(const Token& keyword, OpenJoint* open) {
+    Joint& joint = joints_[open->joint_idx];
+    Token token;
+    if (!tokenizer_.Next(&token) || !EqualsIgnoreCase(token.text, "Site")) {
+      return Error(keyword.line, "expected 'End Site'");
+    }
+    if (joint.has_end_site) {
+      return Error(keyword.line, "joint '" + Printable(joint.name) + "' has a second End Site");
+    }
+    const std::string context = "in the End Site of joint '" + Printable(joint.name) + "'";
+    MOTIF_RETURN_IF_ERROR(Expect("{", context));
+    MOTIF_RETURN_IF_ERROR(Expect("OFFSET", context));
+    MOTIF_RETURN_IF_ERROR(
+        ReadOffset("the End Site of joint '" + Printable(joint.name) + "'", &joint.end_site));
+    MOTIF_RETURN_IF_ERROR(Expect("}", context));
+    joint.has_end_site = true;
+    return Status::Ok();
+  }
+
+  Status OpenNewJoint(const Token& keyword, int parent) {
+    Joint joint;
+    joint.parent = parent;
+    MOTIF_RETURN_IF_ERROR(ReadJointName(keyword, &joint.name));
+    for (size_t joint_idx = 0; joint_idx < joints_.size(); ++joint_idx) {
+      if (joints_[joint_idx].name == joint.name) {
+        return Error(keyword.line, "joint name '" + Printable(joint.name) +
+                                       "' is used twice (first at line " +
+                                       std::to_string(joint_lines_[joint_idx]) + ")");
+      }
+    }
+    MOTIF_RETURN_IF_ERROR(
+        Expect("{", "after " + std::string(keyword.text) + " " + Printable(joint.name)));
+    stack_.push_back({static_cast<int>(joints_.size()), keyword.line, false, false});
+    joints_.push_back(std::move(joint));
+    joint_lines_.push_back(keyword.line);
+    return Status::Ok();
+  }
+
+  Status ParseHierarchy() {
+    Token token;
+    if (!tokenizer_.Next(&token)) return Error(1, "empty file: expected HIERARCHY");
+    if (!EqualsIgnoreCase(token.text, "HIERARCHY")) {
+      return Error(token.line, "expected HIERARCHY, found " + Quoted(token.text) +
+                                   " (not a BVH file?)");
+    }
+    if (!tokenizer_.Next(&token)) return Error(token.line, "file ends after HIERARCHY");
+    if (!EqualsIgnoreCase(token.text, "ROOT")) {
+      return Error(token.line, "expected ROOT, found " + Quoted(token.text));
+    }
+    MOTIF_RETURN_IF_ERROR(OpenNewJoint(token, -1));
+    while (!stack_.empty()) {
+      OpenJoint& open = stack_.back();
+      const std::string owner = "joint '" + Printable(joints_[open.joint_idx].name) + "'";
+      if (!tokenizer_.Next(&token)) {
+        return Error(tokenizer_.line(), "file ends inside " + owner + " (opened at line " +
+                                            std::to_string(open.open_line) +
+                                            "): unbalanced braces or truncated file");
+      }
+      if (EqualsIgnoreCase(token.text, "OFFSET")) {
+        if (open.has_offset) return Error(token.line, owner + " has two OFFSETs");
+        open.has_offset = true;
+        MOTIF_RETURN_IF_ERROR(ReadOffset(owner, &joints_[open.joint_idx].offset));
+      } else if (EqualsIgnoreCase(token.text, "CHANNELS")) {
+        MOTIF_RETURN_IF_ERROR(ReadChannels(token, &open));
+      } else if (EqualsIgnoreCase(token.text, "JOINT")) {
+        MOTIF_RETURN_IF_ERROR(OpenNewJoint(token, open.joint_idx));
+      } else if (EqualsIgnoreCase(token.text, "End")) {
+        MOTIF_RETURN_IF_ERROR(ReadEndSite(token, &open));
+      } else if (token.text == "}") {
+        if (!open.has_offset) return Error(token.line, owner + " has no OFFSET");
+        stack_.pop_back();
+      } else if (EqualsIgnoreCase(token.text, "MOTION") || EqualsIgnoreCase(token.text, "ROOT")) {
+        return Error(token.line, std::string(token.text) + " inside " + owner + " (opened at line " +
+                                     std::to_string(open.open_line) +
+                                     "): unbalanced braces, a '}' is missing");
+      } else {
+        return Error(token.line, "unexpected " + Quoted(token.text) + " in " + owner);
+      }
+    }
+    if (!tokenizer_.Next(&token)) {
+      return Error(tokenizer_.line(), "missing MOTION section after the hierarchy");
+    }
+    if (EqualsIgnoreCase(token.text, "ROOT")) {
+      return Error(token.line, "a second ROOT: files with several hierarchies are not supported");
+    }
+    if (token.text == "}") {
+      return Error(token.line, "unbalanced braces: '}' after the root joint was closed");
+    }
+    if (!EqualsIgnoreCase(token.text, "MOTION")) {
+      return Error(token.line, "expected MOTION after the hierarchy, found " + Quoted(token.text));
+    }
+    motion_line_ = token.line;
+    return Status::Ok();
+  }
+
+  // Reads the next non-blank line; false at the end of the text.
+  static bool NextNonBlank(LineCursor* lines, std::string_view* line) {
+    while (lines->Next(line)) {
+      if (!IsBlankLine(*line)) return true;
+    }
+    return false;
+  }
+
+  Status ParseMotion(double fps_override, Take* take) {
+    // Precompute the frame layout.
+    std::vector<JointLayout> layouts(joints_.size());
+    std::array<int, 3> root_position_channel = {-1, -1, -1};
+    int channel_count = 0;
+    for (size_t joint_idx = 0; joint_idx < joints_.size(); ++joint_idx) {
+      for (ChannelType type : joints_[joint_idx].channels) {
+        if (IsRotation(type)) {
+          JointLayout& layout = layouts[joint_idx];
+          layout.rotation_axes[layout.rotation_count] = AxisOf(type);
+          layout.rotation_channel[layout.rotation_count] = channel_count;
+          ++layout.rotation_count;
+        } else if (joint_idx == 0) {
+          root_position_channel[static_cast<int>(AxisOf(type))] = channel_count;
+        }
+        ++channel_count;
+      }
+    }
+    if (channel_count == 0) return Error(motion_line_, "the hierarchy declares no channels");
+
+    LineCursor lines(tokenizer_.Rest(), motion_line_);
+    std::string_view line;
+    lines.Next(&line);  // the rest of the MOTION line
+    if (!IsBlankLine(line)) {
+      return Error(motion_line_, "unexpected " + Quoted(line) + " after MOTION");
+    }
+    std::string_view value;
+    if (!NextNonBlank(&lines, &line)) {
+      return Error(lines.line_number(), "file ends after MOTION: expected 'Frames:'");
+    }
+    int64_t frame_count = 0;
+    if (!MatchLabel(line, {"Frames"}, &value)) {
+      return Error(lines.line_number(), "expected 'Frames: <count>', found " + Quoted(line));
+    }
+    if (!ParseInt64(value, &frame_count) || frame_count < 0) {
+      return Error(lines.line_number(), "'Frames:' needs a non-negative integer, found " +
+                                            Quoted(value));
+    }
+    if (frame_count == 0) return Error(lines.line_number(), "'Frames: 0': the take has no frames");
+    const int frames_line = lines.line_number();
+    if (!NextNonBlank(&lines, &line)) {
+      return Error(lines.line_number(), "file ends after 'Frames:': expected 'Frame Time:'");
+    }
+    double frame_time = 0;
+    if (!MatchLabel(line, {"Frame", "Time"}, &value)) {
+      return Error(lines.line_number(), "expected 'Frame Time: <seconds>', found " + Quoted(line));
+    }
+    if (!ParseDouble(value, &frame_time)) {
+      return Error(lines.line_number(), "'Frame Time:' needs a finite number, found " + Quoted(value));
+    }
+    if (frame_time <= 0) {
+      return Error(lines.line_number(), "'Frame Time: " + Printable(value) + "': must be > 0");
+    }
+    double fps = 1.0 / frame_time;
+    const double rounded = std::round(fps);
+    if (rounded >= 1 && std::abs(fps - rounded) <= 1e-4 * fps) fps = rounded;
+    if (fps_override > 0) fps = fps_override;
+    take->fps = fps;
+    take->source_fps = fps;
+
+    // Never trust the declared count for memory: a damaged header may claim billions.
+    const size_t joint_count = joints_.size();
+    const size_t max_plausible = tokenizer_.Rest().size() / (2 * channel_count) + 1;
+    const size_t reserve_frames = std::min<size_t>(static_cast<size_t>(frame_count), max_plausible);
+    take->root_positions.reserve(reserve_frames);
+    take->rotations.reserve(reserve_frames * joint_count);
+
+    std::vector<double> values(channel_count);
+    const std::array<double, 3>& root_offset = joints_[0].offset;
+    for (int64_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
+      if (!NextNonBlank(&lines, &line)) {
+        return Error(lines.line_number(),
+                     "file ends after " + std::to_string(frame_idx) + " of the " +
+                         std::to_string(frame_count) + " frames declared at line " +
+                         std::to_string(frames_line) + " (truncated file?)");
+      }
+      MOTIF_RETURN_IF_ERROR(ParseFrameLine(line, lines.line_number(), frame_idx, &values));
+      Eigen::Vector3d position;
+      for (int axis = 0; axis < 3; ++axis) {
+        const int channel = root_position_channel[axis];
+        position[axis] = channel >= 0 ? values[channel] : root_offset[axis];
+      }
+      take->root_positions.push_back(position);
+      for (size_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
+        const JointLayout& layout = layouts[joint_idx];
+        Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+        for (int rotation_idx = 0; rotation_idx < layout.rotation_count; ++rotation_idx) {
+          rotation = rotation *
+                     AxisRotation(layout.rotation_axes[rotation_idx],
+                                  DegreesToRadians(values[layout.rotation_channel[rotation_idx]]));
+        }
+        take->rotations.push_back(rotation);
+      }
+    }
+    if (NextNonBlank(&lines, &line)) {
+      return Error(lines.line_number(), "more frame lines than the " + std::to_string(frame_count) +
+                                            " declared by 'Frames:' at line " +
+                                            std::to_string(frames_line));
+    }
+    return Status::Ok();
+  }
+
+  Status ParseFrameLine(std::string_view line, int line_number, int64_t frame_idx,
+                        std::vector<double>* values) const {
+    const size_t channel_count = values->size();
+    const char* pos = line.data();
+    const char* end = pos + line.size();
+    size_t count = 0;
+    while (true) {
+      while (pos < end && IsBlank(*pos)) ++pos;
+      if (pos == end) break;
+      const char* start = pos;
+      while (pos < end && !IsBlank(*pos)) ++pos;
+      if (count >= channel_count) {
+        ++count;
+        continue;  // count the extra values for the message
+      }
+      const std::string_view token(start, pos - start);
+      if (!ParseDouble(token, &(*values)[count])) {
+        return Error(line_number, "frame " + std::to_string(frame_idx) + ", value " +
+                                      std::to_string(count + 1) + ": " + Quoted(token) +
+                                      " is not a finite number");
+      }
+      ++count;
+    }
+    if (count != channel_count) {
+      return Error(line_number, "frame " + std::to_string(frame_idx) + " has " +
+                                    std::to_string(count) + " values, the hierarchy declares " +
+                                    std::to_string(channel_count) + " channels");
+    }
+    return Status::Ok();
+  }
+
+  Tokenizer tokenizer_;
+  const std::string& file_name_;
+  std::vector<Joint> joints_;
+  std::vector<int> joint_lines_;
+  std::vector<OpenJoint> stack_;
+  int motion_line_ = 0;
+};
+
+}  // namespace
+
+Result<Take> ParseBvh(std::string_view text, const std::string& file_name, double fps_override) {
+  BvhParser parser(text, file_name);
+  return parser.Parse(fps_override);
+}
+
+}  // namespace motif

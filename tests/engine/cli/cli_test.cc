@@ -1,0 +1,156 @@
+// End-to-end tests of the motifmine tool: runs the built binary as a user would.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/file_util.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/import/take_importer.h"
+#include "formats/motion/quaternion_math.h"
+#include "tests/testing/mocap_data.h"
+#include "tests/testing/temp_dir.h"
+
+namespace motif {
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+RunResult Run(const std::string& arguments) {
+  RunResult result;
+  const std::string command = std::string(MOTIF_TOOL) + " " + arguments + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  size_t read = 0;
+  while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, read);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+TEST(MotifmineTool, HelpForEveryCommand) {
+  for (const char* command : {"import", "info", "verify", "export", "synth"}) {
+    RunResult result = Run(std::string(command) + " --help");
+    EXPECT_EQ(result.exit_code, 0) << command << ": " << result.output;
+    EXPECT_NE(result.output.find("usage: motifmine " + std::string(command)), std::string::npos);
+  }
+  EXPECT_EQ(Run("frobnicate").exit_code, 2);
+  EXPECT_EQ(Run("info").exit_code, 2);  // missing ARCHIVE
+  EXPECT_EQ(Run("synth x.mfs --frames").exit_code, 2);
+}
+
+TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("s.mfs");
+  RunResult synth = Run("synth " + archive + " --frames 30000 --motifs 3 --seed 5 --quiet");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  ASSERT_TRUE(std::filesystem::exists(dir.File("s.truth.json")));
+  auto truth = nlohmann::json::parse(ReadFileToString(dir.File("s.truth.json")).value());
+  EXPECT_EQ(truth["frames"], 30000);
+  EXPECT_GE(truth["instances"].size(), 9u);
+
+  RunResult info = Run("info " + archive + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  auto json = nlohmann::json::parse(info.output);
+  EXPECT_EQ(json["frames"], 30000);
+  EXPECT_EQ(json["skeleton"]["family"], "cmu31");
+  uint64_t clip_frames = 0;
+  for (const auto& clip : json["clips"]) clip_frames += clip["frames"].get<uint64_t>();
+  EXPECT_EQ(clip_frames, 30000u);
+
+  RunResult verify = Run("verify " + archive + " --quiet");
+  EXPECT_EQ(verify.exit_code, 0) << verify.output;
+  EXPECT_NE(verify.output.find("OK"), std::string::npos);
+
+  // Refuses to overwrite without --force.
+  EXPECT_EQ(Run("synth " + archive + " --frames 100 --quiet").exit_code, 13);
+
+  // Flip one byte in the middle of the data: verify exits 12 (corruption) and names the file.
+  {
+    std::fstream file(archive, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(static_cast<std::streamoff>(std::filesystem::file_size(archive) / 3));
+    char byte = 0;
+    file.read(&byte, 1);
+    file.seekp(static_cast<std::streamoff>(std::filesystem::file_size(archive) / 3));
+    byte = static_cast<char>(byte ^ 0x20);
+    file.write(&byte, 1);
+  }
+  RunResult damaged = Run("verify " + archive + " --quiet");
+  EXPECT_EQ(damaged.exit_code, 12) << damaged.output;
+  EXPECT_NE(damaged.output.find("s.mfs"), std::string::npos) << damaged.output;
+
+  RunResult missing = Run("info " + dir.File("absent.mfs"));
+  EXPECT_EQ(missing.exit_code, 11) << missing.output;
+}
+
+TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
+  MOTIF_REQUIRE_MOCAP_DATA();
+  const std::string source = testing::MocapDir() + "/bvh/05_01.bvh";
+  testing::TempDir dir;
+  const std::string archive = dir.File("r.mfs");
+  RunResult imported = Run("import " + archive + " " + source + " --quiet");
+  ASSERT_EQ(imported.exit_code, 0) << imported.output;
+  const std::string exported = dir.File("out.bvh");
+  RunResult exported_run = Run("export " + archive + " --clip 05_01 --out " + exported);
+  ASSERT_EQ(exported_run.exit_code, 0) << exported_run.output;
+
+  ImportOptions options;
+  auto original = ImportTake({TakeFormat::kBvh, source, ""}, options);
+  ASSERT_TRUE(original.ok()) << original.status().ToString();
+  options.first_frame = FirstFramePolicy::kKeep;
+  auto round_trip = ImportTake({TakeFormat::kBvh, exported, ""}, options);
+  ASSERT_TRUE(round_trip.ok()) << round_trip.status().ToString();
+  ASSERT_EQ(round_trip->frame_count(), original->frame_count());
+  // Documented bound (docs/formats/frame_file.md): rotation angle error <= 4 * 2^-15 rad.
+  const double bound = 4.0 / 32768.0 + 1e-6;
+  double worst = 0;
+  for (size_t frame_idx = 0; frame_idx < original->frame_count(); ++frame_idx) {
+    for (size_t joint_idx = 0; joint_idx < original->joint_count(); ++joint_idx) {
+      worst = std::max(worst, RotationAngleBetween(original->rotation(frame_idx, joint_idx),
+                                                   round_trip->rotation(frame_idx, joint_idx)));
+    }
+    EXPECT_LT((original->root_positions[frame_idx] - round_trip->root_positions[frame_idx]).norm(),
+              0.01)
+        << "frame " << frame_idx;
+  }
+  EXPECT_LE(worst, bound);
+
+  // A frame range, and a range outside the clip.
+  RunResult range = Run("export " + archive + " --clip 05_01 --start 100 --end 220 --out " +
+                        dir.File("range.bvh"));
+  ASSERT_EQ(range.exit_code, 0) << range.output;
+  auto ranged = ImportTake({TakeFormat::kBvh, dir.File("range.bvh"), ""}, options);
+  ASSERT_TRUE(ranged.ok());
+  EXPECT_EQ(ranged->frame_count(), 120u);
+  EXPECT_LE(RotationAngleBetween(ranged->rotation(0, 2), original->rotation(100, 2)), bound);
+  EXPECT_EQ(Run("export " + archive + " --clip 05_01 --start 10 --end 100000 --out " +
+                dir.File("x.bvh")).exit_code, 13);
+  EXPECT_EQ(Run("export " + archive + " --clip nope --out " + dir.File("x.bvh")).exit_code, 11);
+}
+
+TEST(MotifmineTool, ImportOfMalformedFileNamesFileAndLeavesArchiveUnchanged) {
+  MOTIF_REQUIRE_MOCAP_DATA();
+  testing::TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  ASSERT_EQ(Run("import " + archive + " " + testing::MocapDir() + "/bvh/02_01.bvh --quiet").exit_code, 0);
+  const std::string before = ReadFileToString(archive).value();
+  const std::string bad = dir.File("broken.bvh");
+  std::string text = ReadFileToString(testing::MocapDir() + "/bvh/02_02.bvh").value();
+  text.resize(text.size() / 2);  // truncated mid-frame
+  ASSERT_TRUE(AtomicWriteFile(bad, text).ok());
+  RunResult result = Run("import " + archive + " " + bad + " --quiet");
+  EXPECT_EQ(result.exit_code, 13) << result.output;
+  EXPECT_NE(result.output.find("broken.bvh"), std::string::npos) << result.output;
+  EXPECT_EQ(ReadFileToString(archive).value(), before);
+}
+
+}  // namespace
+}  // namespace motif

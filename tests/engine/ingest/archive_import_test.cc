@@ -1,0 +1,168 @@
+#include "engine/ingest/archive_import.h"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "common/file_util.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "tests/testing/mocap_data.h"
+#include "tests/testing/temp_dir.h"
+
+namespace motif {
+namespace {
+
+// INDEX.tsv: file -> frames (the BVH counts include the converter's T-pose frame).
+std::map<std::string, uint64_t> IndexFrames(const std::string& mocap) {
+  std::map<std::string, uint64_t> frames;
+  std::ifstream index(mocap + "/INDEX.tsv");
+  std::string line;
+  std::getline(index, line);  // header
+  while (std::getline(index, line)) {
+    std::istringstream fields(line);
+    std::string file, format, subject, trial, count;
+    std::getline(fields, file, '\t');
+    std::getline(fields, format, '\t');
+    std::getline(fields, subject, '\t');
+    std::getline(fields, trial, '\t');
+    std::getline(fields, count, '\t');
+    if (!count.empty()) frames[file] = std::stoull(count);
+  }
+  return frames;
+}
+
+// Expected stored frames for the INDEX entries under `prefix` ("bvh/", "asfamc/").
+std::pair<uint64_t, uint64_t> ExpectedClipsAndFrames(const std::string& mocap,
+                                                     const std::string& prefix) {
+  uint64_t clips = 0;
+  uint64_t frames = 0;
+  for (const auto& [file, count] : IndexFrames(mocap)) {
+    if (file.rfind(prefix, 0) != 0) continue;
+    const bool is_bvh = file.size() > 4 && file.substr(file.size() - 4) == ".bvh";
+    ++clips;
+    frames += is_bvh ? count - 1 : count;  // cgspeed BVH: the T-pose frame is dropped
+  }
+  return {clips, frames};
+}
+
+TEST(ImportIntoArchive, RealBvhAndAsfAmcArchivesHaveTheIndexedClipsAndFrames) {
+  MOTIF_REQUIRE_MOCAP_DATA();
+  const std::string mocap = testing::MocapDir();
+  testing::TempDir dir;
+  struct Case {
+    std::vector<std::string> folders;
+    std::vector<std::string> prefixes;
+    std::string family;
+  };
+  const Case cases[] = {
+      {{mocap + "/bvh"}, {"bvh/"}, "cmu31"},
+      {{mocap + "/asfamc"}, {"asfamc/"}, "cmu31"},
+      {{mocap + "/bvh", mocap + "/asfamc"}, {"bvh/", "asfamc/"}, "cmu31"},
+      {{mocap + "/bvh_daz"}, {"bvh_daz/"}, "custom"},
+  };
+  int case_idx = 0;
+  for (const Case& test_case : cases) {
+    const std::string archive = dir.File("case" + std::to_string(case_idx++) + ".mfs");
+    auto result = ImportIntoArchive(archive, test_case.folders, {});
+    ASSERT_TRUE(result.ok()) << result.status().ToString();
+    uint64_t clips = 0;
+    uint64_t frames = 0;
+    for (const std::string& prefix : test_case.prefixes) {
+      auto [prefix_clips, prefix_frames] = ExpectedClipsAndFrames(mocap, prefix);
+      clips += prefix_clips;
+      frames += prefix_frames;
+    }
+    auto reader = FrameFileReader::Open(archive);
+    ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+    EXPECT_EQ((*reader)->clips().size(), clips) << archive;
+    EXPECT_EQ((*reader)->frame_count(), frames) << archive;
+    EXPECT_EQ((*reader)->skeleton().family(), test_case.family);
+    EXPECT_EQ((*reader)->fps(), 120.0);
+    EXPECT_TRUE((*reader)->Verify().ok());
+  }
+}
+
+TEST(ImportIntoArchive, MixedSkeletonsAreRefusedAndNothingIsStored) {
+  MOTIF_REQUIRE_MOCAP_DATA();
+  const std::string mocap = testing::MocapDir();
+  testing::TempDir dir;
+  const std::string archive = dir.File("walks.mfs");
+  ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/bvh/02_01.bvh"}, {}).ok());
+  const std::string before = ReadFileToString(archive).value();
+  auto result = ImportIntoArchive(archive, {mocap + "/bvh/02_02.bvh", mocap + "/bvh_daz/02_01.bvh"}, {});
+  ASSERT_FALSE(result.ok());
+  EXPECT_TRUE(result.status().IsInvalidArgument()) << result.status().ToString();
+  EXPECT_NE(result.status().message().find("bvh_daz/02_01.bvh"), std::string::npos)
+      << result.status().message();
+  EXPECT_EQ(ReadFileToString(archive).value(), before) << "the archive was changed";
+}
+
+TEST(ImportIntoArchive, ReimportSkipsKnownTakesAndRenamesClashingStems) {
+  MOTIF_REQUIRE_MOCAP_DATA();
+  const std::string mocap = testing::MocapDir();
+  testing::TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/bvh/05_01.bvh"}, {}).ok());
+  auto again = ImportIntoArchive(archive, {mocap + "/bvh/05_01.bvh"}, {});
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again->takes_imported, 0u);
+  EXPECT_EQ(again->takes_already_present, 1u);
+  // The AMC of the same take has the same stem and other bytes: stored under another name.
+  auto amc = ImportIntoArchive(archive, {mocap + "/asfamc/05/05_01.amc"}, {});
+  ASSERT_TRUE(amc.ok()) << amc.status().ToString();
+  EXPECT_EQ(amc->takes_imported, 1u);
+  auto reader = FrameFileReader::Open(archive);
+  ASSERT_TRUE(reader.ok());
+  ASSERT_EQ((*reader)->clips().size(), 2u);
+  EXPECT_EQ((*reader)->clips()[0].name, "05_01");
+  EXPECT_EQ((*reader)->clips()[1].name, "05_01~2");
+}
+
+TEST(ImportIntoArchive, AMalformedTakeStopsTheImportUnlessSkipped) {
+  testing::TempDir dir;
+  const std::string good = dir.File("good.bvh");
+  const std::string bad = dir.File("bad.bvh");
+  const std::string header =
+      "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition "
+      "Zrotation Yrotation Xrotation\n JOINT Leg\n {\n  OFFSET 0 -1 0\n  CHANNELS 3 Zrotation "
+      "Xrotation Yrotation\n  End Site\n  {\n   OFFSET 0 -1 0\n  }\n }\n}\nMOTION\n";
+  std::string good_text = header + "Frames: 3\nFrame Time: 0.0333333\n";
+  for (int frame = 0; frame < 3; ++frame) good_text += "0 1 0 0 0 0 10 0 0\n";
+  ASSERT_TRUE(AtomicWriteFile(good, good_text).ok());
+  ASSERT_TRUE(AtomicWriteFile(bad, header + "Frames: 2\nFrame Time: 0.0333333\n0 1 0 0 0 0 10 0\n"
+                                            "0 1 0 0 0 0 10 0 0\n").ok());
+  ArchiveImportOptions options;
+  options.import.first_frame = FirstFramePolicy::kKeep;
+  const std::string archive = dir.File("x.mfs");
+  auto failed = ImportIntoArchive(archive, {dir.path()}, options);
+  ASSERT_FALSE(failed.ok());
+  EXPECT_NE(failed.status().message().find("bad.bvh"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(archive));
+  options.skip_bad = true;
+  auto skipped = ImportIntoArchive(archive, {dir.path()}, options);
+  ASSERT_TRUE(skipped.ok()) << skipped.status().ToString();
+  EXPECT_EQ(skipped->takes_imported, 1u);
+  EXPECT_EQ(skipped->takes_failed, 1u);
+  EXPECT_EQ(skipped->archive_frames, 3u);
+}
+
+TEST(ImportIntoArchive, SameArchiveBytesWithOneOrTwoThreads) {
+  MOTIF_REQUIRE_MOCAP_DATA();
+  const std::string mocap = testing::MocapDir();
+  testing::TempDir dir;
+  std::string bytes[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    ArchiveImportOptions options;
+    options.threads = threads;
+    const std::string archive = dir.File("t" + std::to_string(threads) + ".mfs");
+    ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/asfamc/60", mocap + "/asfamc/61"}, options).ok());
+    bytes[threads - 1] = ReadFileToString(archive).value();
+  }
+  EXPECT_EQ(bytes[0], bytes[1]);
+}
+
+}  // namespace
+}  // namespace motif
