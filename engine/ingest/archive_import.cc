@@ -65,8 +65,14 @@ Result<ArchiveImportResult> ImportIntoArchive(const std::string& archive_path,
   if (std::filesystem::exists(archive_path, error)) {
     MOTIF_ASSIGN_OR_RETURN(writer, FrameFileWriter::OpenForAppend(archive_path, writer_options));
   } else {
-    // The first take decides the skeleton and, unless given, the rate.
-    MOTIF_ASSIGN_OR_RETURN(Take first, ImportTake(sources[0], options.import));
+    // The first take that imports decides the skeleton and, unless given, the rate.
+    Result<Take> first_take = Status::NotFound("no take");
+    for (const TakeSource& source : sources) {
+      first_take = ImportTake(source, options.import);
+      if (first_take.ok() || !options.skip_bad) break;
+    }
+    if (!first_take.ok()) return first_take.status();
+    const Take& first = *first_take;
     const double fps = options.fps > 0 ? options.fps : first.fps;
     MOTIF_ASSIGN_OR_RETURN(writer, FrameFileWriter::Create(archive_path, first.skeleton, fps,
                                                            writer_options));

@@ -36,6 +36,17 @@ struct SynthOptions {
   double warp_min = 0.7;
   double warp_max = 1.4;
   double noise_degrees = 1.0;    // std dev of the smooth noise added to each instance
+  // Beyond the options (defaults are the intended behaviour):
+  double crossfade_seconds = 0.5;   // an instance blends into the background over this, before
+                                    // its start and after its end (outside the truth range)
+  double gap_seconds = 0.5;         // at least this much untouched background between instances
+  uint32_t activities = 16;         // procedural: size of the activity library
+  double segment_seconds_min = 1;   // background segments: a perturbed activity (procedural) or
+  double segment_seconds_max = 10;  // a piece of a source take (re-sequencing)
+  double source_warp_min = 0.8;     // re-sequencing: uniform speed factor of background segments
+  double source_warp_max = 1.25;
+  // Clips generated in parallel (0: all cores); the output does not depend on it.
+  uint32_t threads = 0;
 };
 
 struct PlantedInstance {

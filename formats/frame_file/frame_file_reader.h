@@ -26,6 +26,10 @@ struct FrameFileSummary {
   uint64_t generation = 0;        // commits so far (1 after creation)
   uint32_t format_major = 0;
   uint32_t format_minor = 0;
+  uint64_t uncommitted_bytes = 0;  // bytes after the committed length (an interrupted append)
+  // Non-empty if the newest commit slot did not validate and the previous version was opened
+  // instead (Verify() then returns Corruption with this reason).
+  std::string fallback_reason;
 };
 
 class FrameStream;
@@ -53,12 +57,15 @@ class FrameFileReader {
   // Corruption if a block fails its checksum or does not decode.
   Status ReadFrames(uint64_t first_frame, uint64_t frame_count, std::vector<float>* rows) const;
 
-  // A stream over frames [first_frame, end_frame) in order, one block at a time.
+  // A stream over frames [first_frame, end_frame) in order, one block at a time (end_frame is
+  // clamped to frame_count(); an empty range gives a stream that ends at once). The reader must
+  // outlive the stream.
   std::unique_ptr<FrameStream> Stream(uint64_t first_frame = 0,
                                       uint64_t end_frame = UINT64_MAX) const;
 
   // Checks every block's checksum and that it decodes. `progress(done, total)` is called after
-  // each block if given. Corruption naming the first bad block and its offset.
+  // each block if given. Corruption naming the first bad block and its offset, or the reason
+  // the newest commit was passed over (summary().fallback_reason).
   Status Verify(const std::function<void(uint64_t, uint64_t)>& progress = nullptr) const;
 
  private:

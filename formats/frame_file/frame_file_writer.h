@@ -30,6 +30,17 @@ struct FrameFileWriterOptions {
   uint32_t block_frames = 4096;  // frames per column block (the last block may be shorter)
   int zstd_level = 3;
   FileSystem* file_system = PosixFileSystem();  // tests inject failures here
+
+  // Column encodings of a new archive (Create only; appends keep the archive's own, recorded in
+  // its column table). Each column is quantised with its step (error <= step / 2 per value;
+  // quaternions are renormalised on decode, rotation error <= 4 * quaternion_step), then delta
+  // coded along time (order 2; order 1 for the root velocity), zigzag, byte shuffle and zstd.
+  // With `lossless`, the float32 bits are kept exactly instead.
+  double quaternion_step = 1.0 / 32768;  // 2^-15
+  double height_step = 1e-4;             // length units
+  double velocity_step = 1e-3;           // length units per second
+  double heading_step = 1e-5;            // radians
+  bool lossless = false;
 };
 
 class FrameFileWriter {

@@ -18,6 +18,7 @@ using import_internal::LineCursor;
 using import_internal::ParseDouble;
 using import_internal::ParseInt64;
 using import_internal::Printable;
+using import_internal::Quoted;
 using import_internal::Token;
 using import_internal::Tokenizer;
 
@@ -44,11 +45,14 @@ bool IsRotation(ChannelType type) {
 Axis AxisOf(ChannelType type) {
   switch (type) {
     case ChannelType::kXPosition:
-    case ChannelType::kXRotation: return Axis::kX;
+    case ChannelType::kXRotation:
+      return Axis::kX;
     case ChannelType::kYPosition:
-    case ChannelType::kYRotation: return Axis::kY;
+    case ChannelType::kYRotation:
+      return Axis::kY;
     case ChannelType::kZPosition:
-    case ChannelType::kZRotation: return Axis::kZ;
+    case ChannelType::kZRotation:
+      return Axis::kZ;
   }
   return Axis::kX;
 }
@@ -103,8 +107,6 @@ class BvhParser {
     return Status::InvalidArgument(file_name_ + ":" + std::to_string(line) + ": " + problem);
   }
 
-  std::string Quoted(std::string_view text) const { return "'" + Printable(text) + "'"; }
-
   // The joint name after ROOT/JOINT: the tokens on the keyword's line up to an optional '{'.
   Status ReadJointName(const Token& keyword, std::string* name) {
     Token token;
@@ -121,8 +123,9 @@ class BvhParser {
   Status Expect(std::string_view wanted, const std::string& context) {
     Token token;
     if (!tokenizer_.Next(&token)) {
-      return Error(tokenizer_.line(), "file ends where " + std::string(wanted) + " was expected " +
-                                          context + " (truncated file?)");
+      return Error(tokenizer_.last_token_line(), "file ends where " + std::string(wanted) +
+                                                     " was expected " + context +
+                                                     " (truncated file?)");
     }
     if (!EqualsIgnoreCase(token.text, wanted)) {
       return Error(token.line, "expected '" + std::string(wanted) + "' " + context + ", found " +
@@ -135,11 +138,11 @@ class BvhParser {
     for (int axis = 0; axis < 3; ++axis) {
       Token token;
       if (!tokenizer_.Next(&token)) {
-        return Error(tokenizer_.line(), "file ends inside the OFFSET of " + owner);
+        return Error(tokenizer_.last_token_line(), "file ends inside the OFFSET of " + owner);
       }
       if (!ParseDouble(token.text, &(*offset)[axis])) {
-        return Error(token.line, "OFFSET of " + owner + " needs 3 finite numbers, found " +
-                                     Quoted(token.text));
+        return Error(token.line,
+                     "OFFSET of " + owner + " needs 3 finite numbers, found " + Quoted(token.text));
       }
     }
     return Status::Ok();
@@ -154,7 +157,8 @@ class BvhParser {
     int64_t count = 0;
     if (!tokenizer_.Next(&token)) return Error(keyword.line, "file ends inside CHANNELS");
     if (!ParseInt64(token.text, &count) || count < 0 || count > 6) {
-      return Error(token.line, "CHANNELS of " + owner + " must start with a count from 0 to 6, found " +
+      return Error(token.line, "CHANNELS of " + owner +
+                                   " must start with a count from 0 to 6, found " +
                                    Quoted(token.text));
     }
     for (int64_t channel_idx = 0; channel_idx < count; ++channel_idx) {
@@ -166,7 +170,8 @@ class BvhParser {
                                      std::to_string(channel_idx + 1) + ") is not a channel name");
       }
       if (std::find(joint.channels.begin(), joint.channels.end(), type) != joint.channels.end()) {
-        return Error(token.line, "CHANNELS of " + owner + " lists " + ChannelTypeName(type) + " twice");
+        return Error(token.line,
+                     "CHANNELS of " + owner + " lists " + ChannelTypeName(type) + " twice");
       }
       joint.channels.push_back(type);
     }
@@ -215,8 +220,8 @@ class BvhParser {
     Token token;
     if (!tokenizer_.Next(&token)) return Error(1, "empty file: expected HIERARCHY");
     if (!EqualsIgnoreCase(token.text, "HIERARCHY")) {
-      return Error(token.line, "expected HIERARCHY, found " + Quoted(token.text) +
-                                   " (not a BVH file?)");
+      return Error(token.line,
+                   "expected HIERARCHY, found " + Quoted(token.text) + " (not a BVH file?)");
     }
     if (!tokenizer_.Next(&token)) return Error(token.line, "file ends after HIERARCHY");
     if (!EqualsIgnoreCase(token.text, "ROOT")) {
@@ -227,9 +232,9 @@ class BvhParser {
       OpenJoint& open = stack_.back();
       const std::string owner = "joint '" + Printable(joints_[open.joint_idx].name) + "'";
       if (!tokenizer_.Next(&token)) {
-        return Error(tokenizer_.line(), "file ends inside " + owner + " (opened at line " +
-                                            std::to_string(open.open_line) +
-                                            "): unbalanced braces or truncated file");
+        return Error(tokenizer_.last_token_line(),
+                     "file ends inside " + owner + " (opened at line " +
+                         std::to_string(open.open_line) + "): unbalanced braces or truncated file");
       }
       if (EqualsIgnoreCase(token.text, "OFFSET")) {
         if (open.has_offset) return Error(token.line, owner + " has two OFFSETs");
@@ -245,15 +250,15 @@ class BvhParser {
         if (!open.has_offset) return Error(token.line, owner + " has no OFFSET");
         stack_.pop_back();
       } else if (EqualsIgnoreCase(token.text, "MOTION") || EqualsIgnoreCase(token.text, "ROOT")) {
-        return Error(token.line, std::string(token.text) + " inside " + owner + " (opened at line " +
-                                     std::to_string(open.open_line) +
+        return Error(token.line, std::string(token.text) + " inside " + owner +
+                                     " (opened at line " + std::to_string(open.open_line) +
                                      "): unbalanced braces, a '}' is missing");
       } else {
         return Error(token.line, "unexpected " + Quoted(token.text) + " in " + owner);
       }
     }
     if (!tokenizer_.Next(&token)) {
-      return Error(tokenizer_.line(), "missing MOTION section after the hierarchy");
+      return Error(tokenizer_.last_token_line(), "missing MOTION section after the hierarchy");
     }
     if (EqualsIgnoreCase(token.text, "ROOT")) {
       return Error(token.line, "a second ROOT: files with several hierarchies are not supported");
@@ -311,8 +316,8 @@ class BvhParser {
       return Error(lines.line_number(), "expected 'Frames: <count>', found " + Quoted(line));
     }
     if (!ParseInt64(value, &frame_count) || frame_count < 0) {
-      return Error(lines.line_number(), "'Frames:' needs a non-negative integer, found " +
-                                            Quoted(value));
+      return Error(lines.line_number(),
+                   "'Frames:' needs a non-negative integer, found " + Quoted(value));
     }
     if (frame_count == 0) return Error(lines.line_number(), "'Frames: 0': the take has no frames");
     const int frames_line = lines.line_number();
@@ -324,7 +329,8 @@ class BvhParser {
       return Error(lines.line_number(), "expected 'Frame Time: <seconds>', found " + Quoted(line));
     }
     if (!ParseDouble(value, &frame_time)) {
-      return Error(lines.line_number(), "'Frame Time:' needs a finite number, found " + Quoted(value));
+      return Error(lines.line_number(),
+                   "'Frame Time:' needs a finite number, found " + Quoted(value));
     }
     if (frame_time <= 0) {
       return Error(lines.line_number(), "'Frame Time: " + Printable(value) + "': must be > 0");
@@ -347,10 +353,10 @@ class BvhParser {
     const std::array<double, 3>& root_offset = joints_[0].offset;
     for (int64_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
       if (!NextNonBlank(&lines, &line)) {
-        return Error(lines.line_number(),
-                     "file ends after " + std::to_string(frame_idx) + " of the " +
-                         std::to_string(frame_count) + " frames declared at line " +
-                         std::to_string(frames_line) + " (truncated file?)");
+        return Error(lines.line_number(), "file ends after " + std::to_string(frame_idx) +
+                                              " of the " + std::to_string(frame_count) +
+                                              " frames declared at line " +
+                                              std::to_string(frames_line) + " (truncated file?)");
       }
       MOTIF_RETURN_IF_ERROR(ParseFrameLine(line, lines.line_number(), frame_idx, &values));
       Eigen::Vector3d position;

@@ -41,7 +41,6 @@ namespace motif {
 // Parses `text`, the content of the file `file_name` (used in messages and as
 // Take::source_path). The take's name, content_hash and meters_per_unit are left unset; its
 // skeleton has family "custom". InvalidArgument on malformed input.
-Result<Take> ParseBvh(std::string_view text, const std::string& file_name,
-                      double fps_override = 0);
+Result<Take> ParseBvh(std::string_view text, const std::string& file_name, double fps_override = 0);
 
 }  // namespace motif

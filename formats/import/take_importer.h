@@ -6,7 +6,16 @@
 // ASF/AMC: ASF units, bone axes and DOF order; AMC stores no rate (ImportOptions::amc_fps). An AMC
 // file is paired with the ASF in its folder, or where a folder has several, the one whose name
 // shares its subject prefix (13_17.amc with 13.asf, 07_05-walk.amc with 07-walk.asf);
-// ImportOptions::asf_path names it outright.
+// ImportOptions::asf_path names it outright. The pairing rule, for an AMC stem S whose subject
+// P is the part of S before its first '_' (or '-'), and whose suffix X is the part from the first
+// '-' after P (e.g. S = "07_05-walk": P = "07", X = "-walk"): the folder's only .asf if it has
+// one; else the .asf whose stem is P + X, else the one whose stem is P (compared
+// case-insensitively); else the only .asf whose stem before its first '-' is P. Anything else is
+// InvalidArgument listing the folder's .asf files and suggesting --asf.
+// Parsing details and accepted variants: bvh_parser.h, asf_parser.h, amc_parser.h. The T-pose a
+// converter puts in front of a take (cgspeed BVH) is found by discontinuity: first_frame.h.
+// Cross-format: a BVH take and the AMC take it was converted from import to the same rotations
+// (to the BVH text's precision; tests/formats/import/cross_format_test.cc).
 // Errors name the file, the line and the problem: "05_01.bvh:412: frame 3 has 95 values, the
 // hierarchy declares 96 channels".
 // Thread-safety: pure functions; takes may be imported from several threads at once.
@@ -43,6 +52,7 @@ struct TakeSource {
 
 // Expands files and folders (recursively, sorted by path) into takes. A folder contributes its
 // .bvh and .amc files (case-insensitive extensions); .asf files are used only as skeletons.
+// Arguments keep their order; a file reached twice is listed once.
 // NotFound for a missing path; InvalidArgument for a file that is not .bvh/.amc, or an AMC file
 // with no ASF to pair (the message says how to name one with --asf).
 Result<std::vector<TakeSource>> DiscoverTakes(const std::vector<std::string>& paths,
@@ -51,6 +61,7 @@ Result<std::vector<TakeSource>> DiscoverTakes(const std::vector<std::string>& pa
 // Reads and converts one take. The take's name is the file stem, source_path its path as given,
 // fps/source_fps the file's rate, content_hash XXH3-64 of the file's bytes (for AMC: of the AMC
 // file's bytes). The skeleton is canonicalised (CanonicalizeSkeleton) and weights set.
+// options.first_frame is applied before canonicalisation (kDrop on a one-frame take is an error).
 // InvalidArgument (malformed input, naming file and line), NotFound, IOError.
 Result<Take> ImportTake(const TakeSource& source, const ImportOptions& options);
 

@@ -58,6 +58,14 @@ std::string Printable(std::string_view text) {
   return out;
 }
 
+std::string Quoted(std::string_view text) {
+  // Appended piecewise: GCC 12 warns (-Wrestrict, a false positive) on "'" + std::string&&.
+  std::string quoted(1, '\'');
+  quoted += Printable(text);
+  quoted.push_back('\'');
+  return quoted;
+}
+
 bool NextWord(std::string_view* rest, std::string_view* word) {
   size_t pos = 0;
   while (pos < rest->size() && IsBlank((*rest)[pos])) ++pos;
@@ -98,15 +106,18 @@ bool Tokenizer::Next(Token* token) {
   while (pos_ < text_.size() && !IsBlank(text_[pos_])) ++pos_;
   token->text = text_.substr(start, pos_ - start);
   token->line = line_;
+  last_token_line_ = line_;
   return true;
 }
 
 bool Tokenizer::Peek(Token* token) {
   const size_t saved_pos = pos_;
   const int saved_line = line_;
+  const int saved_last_token_line = last_token_line_;
   const bool found = Next(token);
   pos_ = saved_pos;
   line_ = saved_line;
+  last_token_line_ = saved_last_token_line;
   return found;
 }
 

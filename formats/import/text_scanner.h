@@ -30,6 +30,9 @@ bool EqualsIgnoreCase(std::string_view a, std::string_view b);
 // `text` made safe to quote in a message: at most 40 characters, non-printable bytes as \xNN.
 std::string Printable(std::string_view text);
 
+// Printable(text) in single quotes.
+std::string Quoted(std::string_view text);
+
 // Splits off the next whitespace-separated token of `*rest` (consuming it). False when none.
 bool NextWord(std::string_view* rest, std::string_view* word);
 
@@ -68,6 +71,8 @@ class Tokenizer {
   // number that text starts on.
   std::string_view Rest() const { return text_.substr(pos_); }
   int line() const { return line_; }
+  // Line of the last token returned by Next() (1 before any): where "file ends" errors point.
+  int last_token_line() const { return last_token_line_; }
 
  private:
   void SkipBlanks();
@@ -75,6 +80,7 @@ class Tokenizer {
   std::string_view text_;
   size_t pos_ = 0;
   int line_ = 1;
+  int last_token_line_ = 1;
 };
 
 }  // namespace motif::import_internal

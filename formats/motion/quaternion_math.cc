@@ -12,10 +12,12 @@ std::array<double, 3> QuaternionToEuler(const Eigen::Quaterniond& q, const std::
   const int j = static_cast<int>(axes[1]);
   const int k = static_cast<int>(axes[2]);
   const double s = ((j - i + 3) % 3 == 1) ? 1.0 : -1.0;
-  const double sin_b = std::clamp(s * m(i, k), -1.0, 1.0);
+  // b from atan2 with cos(b) = |(M(j,k), M(k,k))| stays accurate near +-90 degrees, where
+  // asin loses precision; the lock branch is needed only when cos(b) vanishes.
+  const double cos_b = std::hypot(m(j, k), m(k, k));
   std::array<double, 3> first;
-  first[1] = std::asin(sin_b);
-  if (std::abs(sin_b) < 1.0 - 1e-12) {
+  first[1] = std::atan2(s * m(i, k), cos_b);
+  if (cos_b > 1e-7) {
     first[0] = std::atan2(-s * m(j, k), m(k, k));
     first[2] = std::atan2(-s * m(i, j), m(i, i));
   } else {

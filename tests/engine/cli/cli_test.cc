@@ -23,7 +23,7 @@ struct RunResult {
   std::string output;  // stdout and stderr
 };
 
-RunResult Run(const std::string& arguments) {
+RunResult RunTool(const std::string& arguments) {
   RunResult result;
   const std::string command = std::string(MOTIF_TOOL) + " " + arguments + " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
@@ -38,26 +38,26 @@ RunResult Run(const std::string& arguments) {
 
 TEST(MotifmineTool, HelpForEveryCommand) {
   for (const char* command : {"import", "info", "verify", "export", "synth"}) {
-    RunResult result = Run(std::string(command) + " --help");
+    RunResult result = RunTool(std::string(command) + " --help");
     EXPECT_EQ(result.exit_code, 0) << command << ": " << result.output;
     EXPECT_NE(result.output.find("usage: motifmine " + std::string(command)), std::string::npos);
   }
-  EXPECT_EQ(Run("frobnicate").exit_code, 2);
-  EXPECT_EQ(Run("info").exit_code, 2);  // missing ARCHIVE
-  EXPECT_EQ(Run("synth x.mfs --frames").exit_code, 2);
+  EXPECT_EQ(RunTool("frobnicate").exit_code, 2);
+  EXPECT_EQ(RunTool("info").exit_code, 2);  // missing ARCHIVE
+  EXPECT_EQ(RunTool("synth x.mfs --frames").exit_code, 2);
 }
 
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
   testing::TempDir dir;
   const std::string archive = dir.File("s.mfs");
-  RunResult synth = Run("synth " + archive + " --frames 30000 --motifs 3 --seed 5 --quiet");
+  RunResult synth = RunTool("synth " + archive + " --frames 30000 --motifs 3 --seed 5 --quiet");
   ASSERT_EQ(synth.exit_code, 0) << synth.output;
   ASSERT_TRUE(std::filesystem::exists(dir.File("s.truth.json")));
   auto truth = nlohmann::json::parse(ReadFileToString(dir.File("s.truth.json")).value());
   EXPECT_EQ(truth["frames"], 30000);
   EXPECT_GE(truth["instances"].size(), 9u);
 
-  RunResult info = Run("info " + archive + " --json");
+  RunResult info = RunTool("info " + archive + " --json");
   ASSERT_EQ(info.exit_code, 0) << info.output;
   auto json = nlohmann::json::parse(info.output);
   EXPECT_EQ(json["frames"], 30000);
@@ -66,12 +66,12 @@ TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
   for (const auto& clip : json["clips"]) clip_frames += clip["frames"].get<uint64_t>();
   EXPECT_EQ(clip_frames, 30000u);
 
-  RunResult verify = Run("verify " + archive + " --quiet");
+  RunResult verify = RunTool("verify " + archive + " --quiet");
   EXPECT_EQ(verify.exit_code, 0) << verify.output;
   EXPECT_NE(verify.output.find("OK"), std::string::npos);
 
   // Refuses to overwrite without --force.
-  EXPECT_EQ(Run("synth " + archive + " --frames 100 --quiet").exit_code, 13);
+  EXPECT_EQ(RunTool("synth " + archive + " --frames 100 --quiet").exit_code, 13);
 
   // Flip one byte in the middle of the data: verify exits 12 (corruption) and names the file.
   {
@@ -83,11 +83,11 @@ TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
     byte = static_cast<char>(byte ^ 0x20);
     file.write(&byte, 1);
   }
-  RunResult damaged = Run("verify " + archive + " --quiet");
+  RunResult damaged = RunTool("verify " + archive + " --quiet");
   EXPECT_EQ(damaged.exit_code, 12) << damaged.output;
   EXPECT_NE(damaged.output.find("s.mfs"), std::string::npos) << damaged.output;
 
-  RunResult missing = Run("info " + dir.File("absent.mfs"));
+  RunResult missing = RunTool("info " + dir.File("absent.mfs"));
   EXPECT_EQ(missing.exit_code, 11) << missing.output;
 }
 
@@ -96,10 +96,10 @@ TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   const std::string source = testing::MocapDir() + "/bvh/05_01.bvh";
   testing::TempDir dir;
   const std::string archive = dir.File("r.mfs");
-  RunResult imported = Run("import " + archive + " " + source + " --quiet");
+  RunResult imported = RunTool("import " + archive + " " + source + " --quiet");
   ASSERT_EQ(imported.exit_code, 0) << imported.output;
   const std::string exported = dir.File("out.bvh");
-  RunResult exported_run = Run("export " + archive + " --clip 05_01 --out " + exported);
+  RunResult exported_run = RunTool("export " + archive + " --clip 05_01 --out " + exported);
   ASSERT_EQ(exported_run.exit_code, 0) << exported_run.output;
 
   ImportOptions options;
@@ -124,29 +124,29 @@ TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   EXPECT_LE(worst, bound);
 
   // A frame range, and a range outside the clip.
-  RunResult range = Run("export " + archive + " --clip 05_01 --start 100 --end 220 --out " +
+  RunResult range = RunTool("export " + archive + " --clip 05_01 --start 100 --end 220 --out " +
                         dir.File("range.bvh"));
   ASSERT_EQ(range.exit_code, 0) << range.output;
   auto ranged = ImportTake({TakeFormat::kBvh, dir.File("range.bvh"), ""}, options);
   ASSERT_TRUE(ranged.ok());
   EXPECT_EQ(ranged->frame_count(), 120u);
   EXPECT_LE(RotationAngleBetween(ranged->rotation(0, 2), original->rotation(100, 2)), bound);
-  EXPECT_EQ(Run("export " + archive + " --clip 05_01 --start 10 --end 100000 --out " +
+  EXPECT_EQ(RunTool("export " + archive + " --clip 05_01 --start 10 --end 100000 --out " +
                 dir.File("x.bvh")).exit_code, 13);
-  EXPECT_EQ(Run("export " + archive + " --clip nope --out " + dir.File("x.bvh")).exit_code, 11);
+  EXPECT_EQ(RunTool("export " + archive + " --clip nope --out " + dir.File("x.bvh")).exit_code, 11);
 }
 
 TEST(MotifmineTool, ImportOfMalformedFileNamesFileAndLeavesArchiveUnchanged) {
   MOTIF_REQUIRE_MOCAP_DATA();
   testing::TempDir dir;
   const std::string archive = dir.File("a.mfs");
-  ASSERT_EQ(Run("import " + archive + " " + testing::MocapDir() + "/bvh/02_01.bvh --quiet").exit_code, 0);
+  ASSERT_EQ(RunTool("import " + archive + " " + testing::MocapDir() + "/bvh/02_01.bvh --quiet").exit_code, 0);
   const std::string before = ReadFileToString(archive).value();
   const std::string bad = dir.File("broken.bvh");
   std::string text = ReadFileToString(testing::MocapDir() + "/bvh/02_02.bvh").value();
   text.resize(text.size() / 2);  // truncated mid-frame
   ASSERT_TRUE(AtomicWriteFile(bad, text).ok());
-  RunResult result = Run("import " + archive + " " + bad + " --quiet");
+  RunResult result = RunTool("import " + archive + " " + bad + " --quiet");
   EXPECT_EQ(result.exit_code, 13) << result.output;
   EXPECT_NE(result.output.find("broken.bvh"), std::string::npos) << result.output;
   EXPECT_EQ(ReadFileToString(archive).value(), before);

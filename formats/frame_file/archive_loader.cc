@@ -1,0 +1,105 @@
+#include "formats/frame_file/archive_loader.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace motif::frame_file {
+namespace {
+
+// Validates the commit a slot points at: committed length, footer, metadata.
+Status LoadCommit(const uint8_t* data, uint64_t size, int slot_idx, const CommitSlot& slot,
+                  LoadedArchive* archive) {
+  const std::string where = "commit slot " + std::to_string(slot_idx) + " (generation " +
+                            std::to_string(slot.generation) + ")";
+  if (slot.committed_length > size) {
+    return Status::Corruption("truncated: " + where + " says " +
+                              std::to_string(slot.committed_length) +
+                              " bytes are committed, the file has " + std::to_string(size));
+  }
+  if (slot.committed_length < kHeaderBytes + kFooterBytes ||
+      slot.footer_offset != slot.committed_length - kFooterBytes) {
+    return Status::Corruption(where + ": footer offset " + Hex(slot.footer_offset) +
+                              " does not end the committed length " +
+                              std::to_string(slot.committed_length));
+  }
+  Footer footer;
+  Status status = Footer::DecodeFrom(data + slot.footer_offset, &footer);
+  if (!status.ok()) return status.WithContext("footer at offset " + Hex(slot.footer_offset));
+  if (footer.generation != slot.generation) {
+    return Status::Corruption("footer at offset " + Hex(slot.footer_offset) + ": generation " +
+                              std::to_string(footer.generation) + ", " + where);
+  }
+  if (footer.metadata_offset < kHeaderBytes || footer.metadata_offset > slot.footer_offset ||
+      footer.metadata_bytes != slot.footer_offset - footer.metadata_offset) {
+    return Status::Corruption("footer at offset " + Hex(slot.footer_offset) + ": metadata at " +
+                              Hex(footer.metadata_offset) + " (" +
+                              std::to_string(footer.metadata_bytes) +
+                              " bytes) does not end at the footer");
+  }
+  const uint8_t* metadata_bytes = data + footer.metadata_offset;
+  if (Checksum64(metadata_bytes, footer.metadata_bytes) != footer.metadata_checksum) {
+    return Status::Corruption("metadata at offset " + Hex(footer.metadata_offset) +
+                              ": checksum mismatch");
+  }
+  ArchiveMetadata metadata;
+  MOTIF_RETURN_IF_ERROR(ArchiveMetadata::DecodeFrom(metadata_bytes, footer.metadata_bytes,
+                                                    footer.metadata_offset, &metadata));
+  archive->active_slot = slot_idx;
+  archive->slot = slot;
+  archive->footer = footer;
+  archive->metadata = std::move(metadata);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, uint64_t size) {
+  if (size == 0) return Status::Corruption(path + ": empty file, not a motion archive (.mfs)");
+  LoadedArchive archive;
+  archive.file_bytes = size;
+  Status status = FileHeader::DecodeFixedFrom(data, size, &archive.header);
+  if (!status.ok()) return status.WithContext(path);
+
+  struct Candidate {
+    int slot_idx;
+    CommitSlot slot;
+  };
+  std::vector<Candidate> candidates;
+  std::string slot_errors;
+  for (int slot_idx = 0; slot_idx < 2; ++slot_idx) {
+    CommitSlot slot;
+    bool is_empty = false;
+    Status decoded = CommitSlot::DecodeFrom(data + kSlotOffsets[slot_idx], &slot, &is_empty);
+    if (!decoded.ok()) {
+      // A torn slot write (an interrupted commit) looks like this: the other slot holds the
+      // previous version.
+      slot_errors += "; commit slot " + std::to_string(slot_idx) + " at offset " +
+                     Hex(kSlotOffsets[slot_idx]) + ": " + decoded.message();
+      continue;
+    }
+    if (is_empty) continue;
+    archive.header.slots[slot_idx] = slot;
+    candidates.push_back({slot_idx, slot});
+    archive.max_generation = std::max(archive.max_generation, slot.generation);
+  }
+  if (candidates.empty()) {
+    return Status::Corruption(path + ": no committed version (both commit slots are empty or " +
+                              "damaged" + slot_errors + ")");
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) {
+                     return a.slot.generation > b.slot.generation;
+                   });
+  Status newest_error;
+  for (const Candidate& candidate : candidates) {
+    Status loaded = LoadCommit(data, size, candidate.slot_idx, candidate.slot, &archive);
+    if (loaded.ok()) {
+      if (!newest_error.ok()) archive.fallback_reason = path + ": " + newest_error.message();
+      return archive;
+    }
+    if (newest_error.ok()) newest_error = loaded;
+  }
+  return newest_error.WithContext(path);
+}
+
+}  // namespace motif::frame_file
