@@ -4,6 +4,7 @@
 // kept in the page cache, so these numbers leave out cold-disk I/O. Counters: frames per second,
 // compressed bytes per frame, and peak resident memory of the timed part (it must not grow with
 // the number of frames when streaming).
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -35,6 +36,11 @@ struct CleanUp {
   }
 } clean_up;
 
+[[noreturn]] void Die(const Status& status) {
+  std::fprintf(stderr, "bench_format_frame_file: %s\n", status.ToString().c_str());
+  std::exit(1);
+}
+
 // A synthetic archive of `frames` frames, written once per size.
 const std::string& ArchiveOf(uint64_t frames) {
   static std::map<uint64_t, std::string> archives;
@@ -43,16 +49,17 @@ const std::string& ArchiveOf(uint64_t frames) {
   const std::string path = BenchDir() + "/synth-" + std::to_string(frames) + ".mfs";
   SynthOptions options;
   options.frames = frames;
-  options.motifs = frames >= 120 * 60 ? 4 : 0;
+  options.motifs = frames >= (1 << 17) ? 4 : 0;  // planting needs room
   options.seed = 7;
   auto synthesizer = MotionSynthesizer::Create(options);
-  if (!synthesizer.ok()) std::abort();
+  if (!synthesizer.ok()) Die(synthesizer.status());
   auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
-  if (!writer.ok()) std::abort();
+  if (!writer.ok()) Die(writer.status());
   Status status = (*synthesizer)->Run([&](const ClipFrames& clip) {
     return (*writer)->AppendClip(clip);
   });
-  if (!status.ok() || !(*writer)->Commit().ok()) std::abort();
+  if (status.ok()) status = (*writer)->Commit();
+  if (!status.ok()) Die(status);
   return archives[frames] = path;
 }
 
@@ -126,16 +133,18 @@ void BM_FrameFileWrite(benchmark::State& state) {
     clips.push_back(clip);
     return Status::Ok();
   });
-  if (!generated.ok()) std::abort();
+  if (!generated.ok()) Die(generated);
   const std::string path = BenchDir() + "/write.mfs";
   uint64_t bytes = 0;
   for (auto _ : state) {
     std::filesystem::remove(path);
     auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
     for (const ClipFrames& clip : clips) {
-      if (!(*writer)->AppendClip(clip).ok()) std::abort();
+      Status appended = (*writer)->AppendClip(clip);
+      if (!appended.ok()) Die(appended);
     }
-    if (!(*writer)->Commit().ok()) std::abort();
+    Status committed = (*writer)->Commit();
+    if (!committed.ok()) Die(committed);
     bytes = std::filesystem::file_size(path);
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * frames));

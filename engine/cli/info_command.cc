@@ -43,6 +43,8 @@ int RunInfo(const std::vector<std::string>& args) {
     out["raw_float32_bytes"] = raw_bytes;
     out["blocks"] = summary.block_count;
     out["block_frames"] = summary.block_frames;
+    out["uncommitted_bytes"] = summary.uncommitted_bytes;
+    out["fallback_reason"] = summary.fallback_reason;
     nlohmann::json joints = nlohmann::json::array();
     for (const Joint& joint : skeleton.joints()) {
       joints.push_back({{"name", joint.name}, {"parent", joint.parent}, {"weight", joint.weight}});
@@ -79,6 +81,16 @@ int RunInfo(const std::vector<std::string>& args) {
     std::printf("compression  %.2fx against raw float32 (%s bytes)\n",
                 static_cast<double>(raw_bytes) / summary.compressed_bytes,
                 WithCommas(raw_bytes).c_str());
+  }
+  if (summary.uncommitted_bytes > 0) {
+    std::printf("note         %s bytes after the last commit (an interrupted import); the next "
+                "import discards them\n",
+                WithCommas(summary.uncommitted_bytes).c_str());
+  }
+  if (!summary.fallback_reason.empty()) {
+    std::printf("WARNING      the newest commit did not validate (%s); showing the previous "
+                "version. Run motifmine verify.\n",
+                summary.fallback_reason.c_str());
   }
   const size_t limit = vm["clips"].as<size_t>();
   const auto& clips = reader.clips();

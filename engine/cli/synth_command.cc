@@ -77,6 +77,10 @@ int RunSynth(const std::vector<std::string>& args) {
        "planted instances per motif")
       ("noise-degrees", po::value<double>()->default_value(defaults.noise_degrees),
        "noise added to each planted instance (degrees, std dev)")
+      ("gap-seconds", po::value<double>()->default_value(defaults.gap_seconds),
+       "least untouched background between planted instances")
+      ("threads", po::value<uint32_t>()->default_value(0),
+       "generator threads (0: all cores); the output is the same for any count")
       ("block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")
       ("force", "replace OUT.mfs if it exists");
   AddProgressOptions(spec);
@@ -96,6 +100,8 @@ int RunSynth(const std::vector<std::string>& args) {
   options.instances_min = vm["instances-min"].as<uint32_t>();
   options.instances_max = vm["instances-max"].as<uint32_t>();
   options.noise_degrees = vm["noise-degrees"].as<double>();
+  options.gap_seconds = vm["gap-seconds"].as<double>();
+  options.threads = vm["threads"].as<uint32_t>();
   const std::string out = vm["out"].as<std::string>();
   const bool force = vm.count("force") > 0;
   std::error_code error;

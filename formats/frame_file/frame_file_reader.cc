@@ -214,9 +214,15 @@ Status FrameFileReader::Verify(const std::function<void(uint64_t, uint64_t)>& pr
                               " from the other commit slot instead)");
   }
   std::vector<float> rows;
-  const size_t block_count = impl_->metadata().blocks.size();
+  const auto& blocks = impl_->metadata().blocks;
+  const size_t block_count = blocks.size();
+  // Blocks lie in file order: release each one's pages once checked, as a FrameStream does, so
+  // verifying a large archive does not make it resident.
+  uint64_t released_until = block_count > 0 ? blocks[0].offset : 0;
   for (size_t block_idx = 0; block_idx < block_count; ++block_idx) {
     MOTIF_RETURN_IF_ERROR(impl_->DecodeBlock(block_idx, &rows));
+    released_until =
+        impl_->ReleasePages(released_until, blocks[block_idx].offset + blocks[block_idx].bytes);
     if (progress) progress(block_idx + 1, block_count);
   }
   return Status::Ok();
