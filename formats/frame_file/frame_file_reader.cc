@@ -168,6 +168,7 @@ FrameFileSummary FrameFileReader::summary() const {
   summary.generation = archive.slot.generation;
   summary.format_major = archive.header.format_major;
   summary.format_minor = archive.header.format_minor;
+  summary.identity = archive.footer.metadata_checksum;
   summary.uncommitted_bytes = archive.file_bytes - archive.slot.committed_length;
   summary.fallback_reason = archive.fallback_reason;
   return summary;

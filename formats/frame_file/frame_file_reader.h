@@ -26,6 +26,10 @@ struct FrameFileSummary {
   uint64_t generation = 0;        // commits so far (1 after creation)
   uint32_t format_major = 0;
   uint32_t format_minor = 0;
+  // Identifies this version of the archive (its metadata checksum: the clip table and block
+  // index with their block checksums): results derived from the archive record it, and are
+  // rebuilt when it changes (an append, another archive).
+  uint64_t identity = 0;
   uint64_t uncommitted_bytes = 0;  // bytes after the committed length (an interrupted append)
   // Non-empty if the newest commit slot did not validate and the previous version was opened
   // instead (Verify() then returns Corruption with this reason).
