@@ -56,5 +56,7 @@ int RunInfo(const std::vector<std::string>& args);
 int RunVerify(const std::vector<std::string>& args);
 int RunExport(const std::vector<std::string>& args);
 int RunSynth(const std::vector<std::string>& args);
+int RunTrellis(const std::vector<std::string>& args);
+int RunInspectTrellis(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

@@ -22,6 +22,8 @@ const Command kCommands[] = {
     {"verify", motif::cli::RunVerify, "check every checksum of an archive"},
     {"export", motif::cli::RunExport, "write a clip (or a frame range of it) as a BVH file"},
     {"synth", motif::cli::RunSynth, "write a synthetic archive with planted motifs and its truth"},
+    {"trellis", motif::cli::RunTrellis, "build the matching trellis (LSH eps-NN) of an archive, or audit it"},
+    {"inspect-trellis", motif::cli::RunInspectTrellis, "print one column of a trellis"},
 };
 
 void PrintUsage(FILE* out) {
@@ -30,7 +32,7 @@ void PrintUsage(FILE* out) {
                "usage: motifmine COMMAND [ARGS...]   (motifmine COMMAND --help for details)\n\n"
                "commands:\n");
   for (const Command& command : kCommands) {
-    std::fprintf(out, "  %-8s %s\n", command.name, command.summary);
+    std::fprintf(out, "  %-16s %s\n", command.name, command.summary);
   }
 }
 

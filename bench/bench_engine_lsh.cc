@@ -1,0 +1,366 @@
+// LSH eps-neighbour search (engine/lsh, docs/design/lsh.md) over archives of N = 2^14 .. 2^20
+// frames, with 1 and 2 threads (the thread count goes to the search's own task_arena):
+//   LshBuild/<data>          LshSearch::Create: parameters from the data, hashing in shards,
+//                            the merge. Items: frames per second.
+//   LshQuery/<data>          SearchColumns over a block of 4096 consecutive columns (all of them
+//                            below 4096 frames) from the middle of the archive. Items: columns
+//                            per second.
+//   LshQuery/heavy           2^18 synthetic frames plus 2^14 frames of one static T-pose (a
+//                            heavy bucket in every table); the block starts in the T-pose.
+// <data> is "synth" (MotionSynthesizer, procedural, seed 7) or "resequenced" (real CMU BVH takes
+// re-sequenced by MotionSynthesizer::CreateFromTakes; skipped when ../shared/data/mocap or
+// $MOTIF_MOCAP_DIR is absent). eps = mu - 2 sigma of 20,000 sampled pairs, a 30-frame exclusion
+// radius, k_max = 256.
+// Counters (query): evaluations_per_column (exact D computations), entries_per_column (bucket
+// entries read), recall (share of the exact k_max-nearest found, 64 sampled columns, exact by
+// ExactSearch), speedup_vs_exact (columns per second against ExactSearch's on the same
+// archive and thread count, measured on 256 columns), index_bytes_per_frame, and
+// rss_bytes_per_frame: the growth of the resident set from before LshSearch::Create to the end
+// of the queries, i.e. index + search scratch, over N (PoseFeatures' 96 bytes a frame are held
+// before and not included: add them for the total). Build: peak_rss_bytes_per_frame likewise.
+// Left out: reading the archive and writing the trellis. Archives are made once per size,
+// outside the timed loops; the memory figures come from the first run of each benchmark.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <malloc.h>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "bench/bench_util.h"
+#include "engine/distance/exact_search.h"
+#include "engine/lsh/lsh_search.h"
+#include "engine/synth/motion_synthesizer.h"
+#include "formats/import/take_importer.h"
+#include "formats/motion/canonical_skeleton.h"
+#include "formats/motion/resample.h"
+
+namespace motif {
+namespace {
+
+constexpr uint64_t kQueryBlock = 4096;
+
+// Resident set size now (VmRSS), bytes, after handing freed heap memory back to the system (so
+// that what an earlier archive left in the allocator does not hide the growth we measure).
+double RssBytes() {
+  malloc_trim(0);
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmRSS:") {
+      double kilobytes = 0;
+      status >> kilobytes;
+      return kilobytes * 1024.0;
+    }
+    std::getline(status, key);
+  }
+  return 0;
+}
+
+struct Archive {
+  std::unique_ptr<PoseFeatures> features;
+  NeighbourRules rules;
+  std::string error;  // non-empty: skip
+};
+
+PoseFeatures FeaturesFromClips(const Skeleton& skeleton, const std::vector<ClipFrames>& clips,
+                               uint64_t static_frames) {
+  const FrameLayout layout{static_cast<uint32_t>(skeleton.joint_count())};
+  std::vector<float> rows;
+  std::vector<uint64_t> clip_first_frames;
+  uint64_t frames = 0;
+  for (const ClipFrames& clip : clips) {
+    clip_first_frames.push_back(frames);
+    rows.insert(rows.end(), clip.rows.begin(), clip.rows.end());
+    frames += clip.rows.size() / layout.stride();
+  }
+  if (static_frames > 0) {  // one more clip: a T-pose (identity rotations) held still
+    clip_first_frames.push_back(frames);
+    const size_t first = rows.size();
+    rows.resize(first + static_frames * layout.stride(), 0.0f);
+    for (uint64_t frame_idx = 0; frame_idx < static_frames; ++frame_idx) {
+      for (uint32_t joint_idx = 0; joint_idx < layout.joint_count; ++joint_idx) {
+        rows[first + frame_idx * layout.stride() + 4 * joint_idx] = 1.0f;
+      }
+    }
+    frames += static_frames;
+  }
+  std::vector<float> weights;
+  for (size_t joint_idx = 0; joint_idx < skeleton.joint_count(); ++joint_idx) {
+    weights.push_back(skeleton.joint(joint_idx).weight);
+  }
+  return PoseFeatures::FromRows(rows.data(), frames, layout.joint_count, weights,
+                                clip_first_frames);
+}
+
+// eps = mu - 2 sigma of 20,000 random allowed pairs among frames [0, sample_frames).
+NeighbourRules RulesFor(const PoseFeatures& features, uint64_t sample_frames) {
+  NeighbourRules rules;
+  rules.k_max = 256;
+  rules.exclusion_frames = 30;
+  rules.clip_first_frames = features.clip_first_frames();
+  uint64_t state = 3;
+  double sum = 0;
+  double squares = 0;
+  uint32_t taken = 0;
+  while (taken < 20000) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const uint64_t a = (state >> 17) % sample_frames;
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    const uint64_t b = (state >> 17) % sample_frames;
+    if (rules.Excluded(a, b, features.ClipOf(a), features.ClipOf(b))) continue;
+    const double distance = PoseDistance(features, a, b);
+    sum += distance;
+    squares += distance * distance;
+    ++taken;
+  }
+  const double mean = sum / taken;
+  rules.eps = static_cast<float>(mean - 2 * std::sqrt(std::max(0.0, squares / taken - mean * mean)));
+  return rules;
+}
+
+std::vector<Take> RealTakes(std::string* error) {
+  static std::vector<Take> takes;
+  static std::string load_error;
+  static bool loaded = false;
+  if (!loaded) {
+    loaded = true;
+    const std::string mocap = bench::MocapDir();
+    if (mocap.empty()) {
+      load_error = "real CMU takes not found: set MOTIF_MOCAP_DIR";
+    } else {
+      auto sources = DiscoverTakes({mocap + "/bvh"}, ImportOptions());
+      if (!sources.ok()) load_error = sources.status().ToString();
+      for (size_t idx = 0; sources.ok() && idx < sources->size(); ++idx) {
+        Result<Take> take = ImportTake((*sources)[idx], ImportOptions());
+        if (!take.ok()) {
+          load_error = take.status().ToString();
+          break;
+        }
+        if (!takes.empty()) {
+          Status conformed = ConformToSkeleton(takes[0].skeleton, &*take);
+          if (!conformed.ok()) continue;
+        }
+        takes.push_back(ResampleTake(*take, 120.0));
+      }
+    }
+  }
+  *error = load_error;
+  return takes;
+}
+
+// One archive at a time is kept (the largest is 100 MB of features): made on first use.
+const Archive& ArchiveOf(const std::string& data, uint64_t frames) {
+  static std::string cached_key;
+  static Archive cached;
+  const std::string key = data + "/" + std::to_string(frames);
+  if (key == cached_key) return cached;
+  cached = Archive();
+  cached_key = key;
+  SynthOptions options;
+  options.frames = frames;
+  options.seed = 7;
+  options.motifs = static_cast<uint32_t>(std::clamp<uint64_t>(frames / 10000, 1, 8));
+  options.motif_seconds_max = frames < 20000 ? 2.0 : 5.0;
+  Result<std::unique_ptr<MotionSynthesizer>> synthesizer = Status::NotFound("unset");
+  uint64_t static_frames = 0;
+  if (data == "resequenced") {
+    std::vector<Take> takes = RealTakes(&cached.error);
+    if (!cached.error.empty()) return cached;
+    synthesizer = MotionSynthesizer::CreateFromTakes(options, std::move(takes));
+  } else {
+    if (data == "heavy") static_frames = frames / 16;
+    options.frames = frames - static_frames;
+    synthesizer = MotionSynthesizer::Create(options);
+  }
+  if (!synthesizer.ok()) {
+    cached.error = synthesizer.status().ToString();
+    return cached;
+  }
+  std::vector<ClipFrames> clips;
+  Status status = (*synthesizer)->Run([&](const ClipFrames& clip) {
+    clips.push_back(clip);
+    return Status::Ok();
+  });
+  if (!status.ok()) {
+    cached.error = status.ToString();
+    return cached;
+  }
+  cached.features = std::make_unique<PoseFeatures>(
+      FeaturesFromClips((*synthesizer)->skeleton(), clips, static_frames));
+  clips = {};
+  // eps from the moving frames only (the T-pose clip is the last; it would pull mu and sigma).
+  cached.rules = RulesFor(*cached.features, cached.features->frame_count() - static_frames);
+  return cached;
+}
+
+LshOptions OptionsFor(uint32_t threads) {
+  LshOptions options;
+  options.threads = static_cast<int>(threads);
+  return options;
+}
+
+void BM_LshBuild(benchmark::State& state, std::string data) {
+  const uint64_t frames = static_cast<uint64_t>(state.range(0));
+  const uint32_t threads = static_cast<uint32_t>(state.range(1));
+  const Archive& archive = ArchiveOf(data, frames);
+  if (!archive.error.empty()) {
+    state.SkipWithError(archive.error.c_str());
+    return;
+  }
+  double rss_growth = -1;
+  uint64_t index_bytes = 0;
+  for (auto _ : state) {
+    const double before = RssBytes();
+    bench::ResetPeakRss();
+    auto search = LshSearch::Create(*archive.features, archive.rules, OptionsFor(threads));
+    if (!search.ok()) {
+      state.SkipWithError(search.status().ToString().c_str());
+      return;
+    }
+    if (rss_growth < 0) rss_growth = bench::PeakRssBytes() - before;
+    index_bytes = (*search)->index().memory_bytes();
+    benchmark::DoNotOptimize(search->get());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * frames));
+  state.SetComplexityN(static_cast<int64_t>(frames));
+  state.counters["index_bytes_per_frame"] = static_cast<double>(index_bytes) / frames;
+  state.counters["peak_rss_bytes_per_frame"] = rss_growth / frames;
+}
+
+void BM_LshQuery(benchmark::State& state, std::string data) {
+  const uint64_t frames = static_cast<uint64_t>(state.range(0));
+  const uint32_t threads = static_cast<uint32_t>(state.range(1));
+  const Archive& archive = ArchiveOf(data, frames);
+  if (!archive.error.empty()) {
+    state.SkipWithError(archive.error.c_str());
+    return;
+  }
+  const PoseFeatures& features = *archive.features;
+  const double before = RssBytes();
+  bench::ResetPeakRss();
+  auto created = LshSearch::Create(features, archive.rules, OptionsFor(threads));
+  if (!created.ok()) {
+    state.SkipWithError(created.status().ToString().c_str());
+    return;
+  }
+  const LshSearch& search = **created;
+  const uint64_t count = std::min(frames, kQueryBlock);
+  // The heavy archive's T-pose clip is its last: start the block inside it.
+  const uint64_t first = data == "heavy" ? features.clip_first_frames().back() - count / 2
+                                         : (frames - count) / 2;
+  std::vector<std::vector<Neighbour>> columns;
+  SearchStats stats;
+  LshQueryStats lsh_stats;
+  for (auto _ : state) {
+    stats = SearchStats();
+    lsh_stats = LshQueryStats();
+    Status status = search.SearchColumns(first, count, &columns, &stats, &lsh_stats);
+    if (!status.ok()) {
+      state.SkipWithError(status.ToString().c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(columns.data());
+  }
+  const double rss_growth = bench::PeakRssBytes() - before;
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * count));
+  state.SetComplexityN(static_cast<int64_t>(frames));
+  state.counters["evaluations_per_column"] =
+      static_cast<double>(stats.distance_evaluations) / count;
+  state.counters["entries_per_column"] = static_cast<double>(lsh_stats.entries_examined) / count;
+  state.counters["neighbours_per_column"] = static_cast<double>(stats.neighbours) / count;
+  state.counters["index_bytes_per_frame"] =
+      static_cast<double>(search.index().memory_bytes()) / frames;
+  state.counters["rss_bytes_per_frame"] = rss_growth / frames;
+
+  // After the timed loop: recall on 64 sampled columns, and the exact search's speed.
+  ExactSearchOptions exact_options;
+  exact_options.threads = threads;
+  const ExactSearch exact(features, archive.rules, exact_options);
+  uint64_t exact_total = 0;
+  uint64_t found = 0;
+  uint64_t state_bits = 11;
+  for (int sample = 0; sample < 64; ++sample) {
+    state_bits = state_bits * 6364136223846793005ull + 1442695040888963407ull;
+    const uint64_t column = (state_bits >> 17) % frames;
+    std::vector<std::vector<Neighbour>> exact_column;
+    std::vector<std::vector<Neighbour>> lsh_column;
+    SearchStats ignored;
+    if (!exact.SearchColumns(column, 1, &exact_column, &ignored).ok() ||
+        !search.SearchColumns(column, 1, &lsh_column, &ignored).ok()) {
+      state.SkipWithError("sampled column failed");
+      return;
+    }
+    for (const Neighbour& neighbour : exact_column[0]) {
+      for (const Neighbour& candidate : lsh_column[0]) found += candidate.frame == neighbour.frame;
+    }
+    exact_total += exact_column[0].size();
+  }
+  const uint64_t exact_count = std::min<uint64_t>(frames, 256);
+  std::vector<std::vector<Neighbour>> exact_columns;
+  SearchStats exact_stats;
+  const auto exact_start = std::chrono::steady_clock::now();
+  if (!exact.SearchColumns(first, exact_count, &exact_columns, &exact_stats).ok()) {
+    state.SkipWithError("exact search failed");
+    return;
+  }
+  const double exact_seconds_per_column =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - exact_start).count() /
+      exact_count;
+  const auto lsh_start = std::chrono::steady_clock::now();
+  if (!search.SearchColumns(first, count, &columns, &stats).ok()) {
+    state.SkipWithError("lsh search failed");
+    return;
+  }
+  const double lsh_seconds_per_column =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - lsh_start).count() / count;
+  state.counters["recall"] = exact_total ? static_cast<double>(found) / exact_total : 1.0;
+  state.counters["speedup_vs_exact"] = exact_seconds_per_column / lsh_seconds_per_column;
+  state.counters["eps"] = archive.rules.eps;
+  state.SetLabel(search.DescribeParams());
+}
+
+// Sizes outer, threads inner, so each archive is made once per benchmark family.
+void Sizes(benchmark::internal::Benchmark* benchmark) {
+  for (int64_t frames = 1 << 14; frames <= (1 << 20); frames *= 4) {
+    for (int64_t threads : {1, 2}) benchmark->Args({frames, threads});
+  }
+}
+
+const bool registered = [] {
+  for (const std::string data : {"synth", "resequenced"}) {
+    benchmark::RegisterBenchmark(("LshBuild/" + data).c_str(), BM_LshBuild, data)
+        ->ArgNames({"frames", "threads"})
+        ->Apply(Sizes)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(1)
+        ->Complexity(benchmark::oNLogN);
+    benchmark::RegisterBenchmark(("LshQuery/" + data).c_str(), BM_LshQuery, data)
+        ->ArgNames({"frames", "threads"})
+        ->Apply(Sizes)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(1)
+        ->Complexity(benchmark::oAuto);
+  }
+  benchmark::RegisterBenchmark("LshQuery/heavy", BM_LshQuery, std::string("heavy"))
+      ->ArgNames({"frames", "threads"})
+      ->Args({1 << 18, 2})
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(1);
+  return true;
+}();
+
+}  // namespace
+}  // namespace motif
+
+BENCHMARK_MAIN();

@@ -1,0 +1,73 @@
+// LshIndex: the merged hash tables of an archive. Build() hashes the archive in shards (one TBB
+// task per shard of LshOptions::shard_frames frames, inside a task_arena of the requested thread
+// count; LshShardBuilder), then merges the shards table by table in shard order. Every table is
+// sorted by (bucket key, sort value, frame), a total order, so the index is identical, byte for
+// byte, for any thread count and shard size.
+//
+// Memory per frame and table: 4 bytes of frame id, 4 of bucket key, 2 of sort value, plus a
+// directory of 4-byte offsets over the top bits of the key (about N / 16 slots per table), i.e.
+// ~10.3 bytes; the default 8 tables take ~83 bytes per frame. A heavy bucket costs nothing extra:
+// each frame is stored once per table whatever its bucket holds.
+// Thread-safety: immutable once built; const methods are safe from many threads.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "common/status.h"
+#include "engine/distance/pose_features.h"
+#include "engine/lsh/hash_family.h"
+#include "engine/lsh/lsh_shard_builder.h"
+
+namespace motif {
+
+// Sizes of one table's buckets.
+struct LshBucketStats {
+  uint64_t buckets = 0;         // distinct keys
+  uint64_t largest_bucket = 0;  // entries in the fullest bucket
+  double mean_entries_per_frame_bucket = 0;  // average over frames of the size of their bucket
+};
+
+class LshIndex {
+ public:
+  // Hashes all frames of `features` with `family` in shards of `shard_frames` (> 0) frames on
+  // `threads` threads (0: all cores). InvalidArgument for an archive of 2^32 frames or more.
+  static Result<LshIndex> Build(const PoseFeatures& features, const HashFamily& family,
+                                uint32_t shard_frames, int threads);
+  // Merges shards (ascending, contiguous frame ranges starting at 0) into one index; each table
+  // is merged independently on `threads` threads. Consumes the shards' tables.
+  static LshIndex Merge(std::vector<LshShard> shards, uint32_t table_count, int threads);
+
+  uint32_t table_count() const { return static_cast<uint32_t>(tables_.size()); }
+  uint64_t frame_count() const { return frame_count_; }
+  const LshTableEntries& table(uint32_t table_idx) const { return tables_[table_idx]; }
+
+  // The entries [begin, end) of table `table_idx` whose bucket key is `key` (empty if none).
+  std::pair<uint32_t, uint32_t> FindBucket(uint32_t table_idx, uint32_t key) const;
+
+  // Cache hints for a coming FindBucket(table_idx, key): first the directory slot, then (once
+  // the slot has arrived) the start of the slot's keys. Lookups of a column's probes overlap
+  // their memory latency this way.
+  void PrefetchDirectory(uint32_t table_idx, uint32_t key) const {
+    __builtin_prefetch(&directories_[table_idx][key >> directory_shift_]);
+  }
+  void PrefetchKeys(uint32_t table_idx, uint32_t key) const {
+    __builtin_prefetch(&tables_[table_idx].keys[directories_[table_idx][key >> directory_shift_]]);
+  }
+
+  LshBucketStats BucketStats(uint32_t table_idx) const;
+  // Bytes held by the tables and directories.
+  uint64_t memory_bytes() const;
+
+ private:
+  void BuildDirectory(uint32_t table_idx);
+
+  uint64_t frame_count_ = 0;
+  uint32_t directory_shift_ = 32;
+  std::vector<LshTableEntries> tables_;
+  // Per table: directory[slot] is the first entry whose key >> directory_shift_ >= slot.
+  std::vector<std::vector<uint32_t>> directories_;
+};
+
+}  // namespace motif

@@ -1,0 +1,57 @@
+// LshOptions: every parameter of the LSH eps-neighbour search (docs/design/lsh.md), with the
+// defaults measured on the real CMU takes and the synthetic archives, and DescribeLshOptions(),
+// the one-line text the trellis file keeps as its search_params.
+//
+// The scheme (Datar et al. 2004, "Locality-sensitive hashing scheme based on p-stable
+// distributions"; multi-probe after Lv et al. 2007, "Multi-probe LSH"): each frame's weighted
+// joint quaternions are embedded sign-invariantly (HashFamily), projected on `hashes_per_table`
+// orthonormal random directions per table and cut into cells of `bucket_width`; a bucket is a
+// cell. A query visits the buckets of all tables nearest first and verifies every candidate with
+// the exact pose distance D.
+// Thread-safety: a value type.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace motif {
+
+struct LshOptions {
+  // L: independent hash tables. Each costs 10 bytes per frame (frame id, bucket key, sort value).
+  uint32_t tables = 8;
+  // m: projections per table (the cell is m-dimensional). 0: from the archive size
+  // (DefaultHashesPerTable in lsh_tuning.h: 13 at 40k frames, 16 at 1M, 18 at 10M).
+  uint32_t hashes_per_table = 0;
+  // w: cell width along each projection, in embedding units (|e_i - e_j| <= D). 0: chosen from
+  // the data, width_per_hash * m * the 90th percentile of the embedding distance of a column's
+  // neighbours (ResolveLshOptions in lsh_tuning.h).
+  float bucket_width = 0;
+  float width_per_hash = 0.03f;
+  // Buckets visited per table, nearest first (multi-probe); 1 visits only the query's own.
+  uint32_t probes_per_table = 8;
+  // Work bounds per column: exact distance evaluations, and entries examined in one bucket
+  // (heavy buckets: a static pose repeated thousands of times falls into one bucket).
+  uint32_t max_candidates = 4096;
+  uint32_t max_bucket_scan = 2048;
+  // Buckets are scanned breadth first: all probed buckets to this depth, then 4x deeper, ...
+  // up to max_bucket_scan.
+  uint32_t first_round_scan = 64;
+  // Sparse columns (not full when their probes are used up, or full with a k_max-th neighbour
+  // farther than sparse_radius_factor times the archive's typical one) probe further: up to
+  // this many stages of 4x more probes per table, within the same max_candidates.
+  uint32_t extension_stages = 2;
+  float sparse_radius_factor = 2.0f;
+  // Random projections and offsets are drawn from this seed; the same seed gives the same index
+  // and the same columns for any thread count.
+  uint64_t seed = 0x6d6f746966ull;
+  // Frames hashed per build shard (one TBB task each).
+  uint32_t shard_frames = 1u << 14;
+  // Worker threads of the build and of the queries (0: all cores).
+  int threads = 0;
+};
+
+// "lsh embedding=qqT tables=8 hashes=16 width=0.0567 ... seed=..." (call it on the options as
+// used, i.e. after ResolveLshOptions, so the text names the width actually used).
+std::string DescribeLshOptions(const LshOptions& options);
+
+}  // namespace motif

@@ -1,0 +1,565 @@
+#include "engine/lsh/lsh_search.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <queue>
+
+#include "engine/lsh/lsh_tuning.h"
+#include "engine/lsh/query_distance.h"
+
+namespace motif {
+namespace {
+
+// Lower bounds are computed from float projections of quantised quaternions (|q|^2 = 1 +- 1e-4)
+// and int16 sort values; this slack keeps them below the true D.
+constexpr float kBoundSlack = 1e-3f;
+
+// One bucket to visit: table, bucket key and lower bound (squared, embedding units).
+struct Probe {
+  float score = 0;
+  uint32_t table_idx = 0;
+  uint32_t rank = 0;  // order within its table (0: the query's own bucket)
+  uint32_t key = 0;
+};
+
+bool ProbeBefore(const Probe& a, const Probe& b) {
+  if (a.score != b.score) return a.score < b.score;
+  if (a.table_idx != b.table_idx) return a.table_idx < b.table_idx;
+  return a.rank < b.rank;
+}
+
+struct Nearer {
+  bool operator()(const Neighbour& a, const Neighbour& b) const {
+    return a.distance < b.distance || (a.distance == b.distance && a.frame < b.frame);
+  }
+};
+
+// Frames already verified in this column: open addressing with a generation stamp, so clearing
+// is O(1) and the size is bounded by the evaluation budget, not by N.
+class VisitedSet {
+ public:
+  explicit VisitedSet(uint32_t max_entries) {
+    const uint32_t capacity = std::bit_ceil(std::max<uint32_t>(64, 2 * max_entries + 2));
+    slots_.assign(capacity, Slot{});
+    shift_ = 32 - static_cast<uint32_t>(std::countr_zero(capacity));
+    mask_ = capacity - 1;
+  }
+  void Clear() {
+    if (++stamp_ == 0) {  // wrapped: really clear once every 2^32 columns
+      std::fill(slots_.begin(), slots_.end(), Slot{});
+      stamp_ = 1;
+    }
+  }
+  // True if `frame` was not in the set (and adds it).
+  bool Insert(uint32_t frame) {
+    uint32_t slot = (frame * 0x9e3779b1u) >> shift_;  // Fibonacci hashing: the high bits
+    while (slots_[slot].stamp == stamp_) {
+      if (slots_[slot].frame == frame) return false;
+      slot = (slot + 1) & mask_;
+    }
+    slots_[slot] = Slot{frame, stamp_};
+    return true;
+  }
+
+ private:
+  struct Slot {  // frame and stamp side by side: one cache line per probe of the set
+    uint32_t frame = 0;
+    uint32_t stamp = 0;
+  };
+  std::vector<Slot> slots_;
+  uint32_t shift_ = 0;
+  uint32_t mask_ = 0;
+  uint32_t stamp_ = 1;
+};
+
+}  // namespace
+
+// Scratch of one worker: reused across the columns of a range.
+class LshSearch::Query {
+ public:
+  explicit Query(const LshSearch& search)
+      : search_(search),
+        visited_(search.options_.max_candidates),
+        embedding_(search.family_.embedding_dims()),
+        projections_(static_cast<size_t>(search.family_.table_count()) *
+                     (search.family_.hashes_per_table() + 1)),
+        distance_(search.features_) {}
+
+  void Run(uint64_t column, std::vector<Neighbour>* out, SearchStats* stats,
+           LshQueryStats* lsh_stats);
+  // Hashes the column and lists its probes (sorted) in probes_.
+  void Prepare(uint64_t column);
+  // Appends the probes of rank [skip, wanted) of every table, sorted among themselves.
+  void AddProbes(uint32_t wanted, uint32_t skip);
+  const std::vector<Probe>& probes() const { return probes_; }
+
+ private:
+  // Appends the probes of rank [skip, wanted) of one table to probes_.
+  void ListProbes(uint32_t table_idx, const float* coordinates, uint32_t wanted, uint32_t skip);
+
+  // Scan state of one probed bucket: entries [begin, end) of its table, the next positions
+  // outward from the query's sort value (up: ascending, down: descending, exclusive).
+  struct Cursor {
+    uint32_t begin = 0;
+    uint32_t end = 0;
+    uint32_t up = 0;
+    uint32_t down = 0;
+    uint32_t examined = 0;
+    uint32_t scan_limit = 0;
+    int16_t query_sort_value = 0;
+    bool done = true;
+    bool linear = false;  // a small bucket: read in stored order, all of it in the first round
+  };
+  Cursor OpenBucket(const Probe& probe) const;
+
+  const LshSearch& search_;
+  std::vector<Cursor> cursors_;
+  VisitedSet visited_;
+  std::vector<float> embedding_;
+  std::vector<float> projections_;
+  std::vector<Probe> probes_;
+  std::vector<Neighbour> best_;  // max-heap by Nearer: the worst kept neighbour on top
+  QueryDistance distance_;
+};
+
+// Multi-probe sequence of one table (Lv et al. 2007, query-directed probing): the 2m boundaries
+// of the query's cell sorted by squared distance; perturbation sets are generated in increasing
+// score by a heap with the "shift" and "expand" moves, skipping sets that move one coordinate
+// both ways.
+void LshSearch::Query::ListProbes(uint32_t table_idx, const float* coordinates, uint32_t wanted,
+                                  uint32_t skip) {
+  const HashFamily& family = search_.family_;
+  const uint32_t hashes = family.hashes_per_table();
+  const float width = family.bucket_width();
+  int32_t cells[HashFamily::kMaxHashesPerTable];
+  struct Boundary {
+    float squared = 0;  // squared distance in cells
+    uint32_t coordinate = 0;
+    int32_t step = 0;  // -1 or +1
+  };
+  Boundary boundaries[2 * HashFamily::kMaxHashesPerTable];
+  for (uint32_t idx = 0; idx < hashes; ++idx) {
+    const float floor_value = std::floor(coordinates[idx]);
+    cells[idx] = static_cast<int32_t>(floor_value);
+    const float below = coordinates[idx] - floor_value;
+    const float above = 1.0f - below;
+    boundaries[2 * idx] = {below * below, idx, -1};
+    boundaries[2 * idx + 1] = {above * above, idx, +1};
+  }
+  const uint32_t boundary_count = 2 * hashes;
+  std::sort(boundaries, boundaries + boundary_count, [](const Boundary& a, const Boundary& b) {
+    if (a.squared != b.squared) return a.squared < b.squared;
+    return a.coordinate < b.coordinate || (a.coordinate == b.coordinate && a.step < b.step);
+  });
+  if (skip == 0) probes_.push_back({0.0f, table_idx, 0, HashFamily::BucketKey(cells, hashes)});
+  if (wanted <= 1) return;
+
+  // A set is a bit mask over sorted boundaries (at most 64) and its largest member.
+  struct Set {
+    float score;
+    uint64_t members;
+    uint32_t largest;
+  };
+  auto greater = [](const Set& a, const Set& b) {
+    if (a.score != b.score) return a.score > b.score;
+    return a.members > b.members;
+  };
+  std::priority_queue<Set, std::vector<Set>, decltype(greater)> heap(greater);
+  heap.push({boundaries[0].squared, 1, 0});
+  uint32_t emitted = 1;
+  const float width_squared = width * width;
+  // Each pop pushes at most two sets; bounding pops bounds the work when most sets are invalid.
+  for (uint32_t pops = 0; emitted < wanted && !heap.empty() && pops < 8 * wanted; ++pops) {
+    const Set set = heap.top();
+    heap.pop();
+    if (set.largest + 1 < boundary_count) {
+      const uint32_t next = set.largest + 1;
+      const float next_squared = boundaries[next].squared;
+      // shift: replace the largest member by the next boundary
+      heap.push({set.score - boundaries[set.largest].squared + next_squared,
+                 (set.members & ~(uint64_t{1} << set.largest)) | (uint64_t{1} << next), next});
+      // expand: add the next boundary
+      heap.push({set.score + next_squared, set.members | (uint64_t{1} << next), next});
+    }
+    uint32_t used = 0;
+    bool valid = true;
+    int32_t perturbed[HashFamily::kMaxHashesPerTable];
+    std::copy(cells, cells + hashes, perturbed);
+    for (uint64_t members = set.members; members != 0; members &= members - 1) {
+      const Boundary& boundary = boundaries[std::countr_zero(members)];
+      if (used & (1u << boundary.coordinate)) {
+        valid = false;
+        break;
+      }
+      used |= 1u << boundary.coordinate;
+      perturbed[boundary.coordinate] += boundary.step;
+    }
+    if (!valid) continue;
+    if (emitted >= skip) {
+      probes_.push_back({set.score * width_squared, table_idx, emitted,
+                         HashFamily::BucketKey(perturbed, hashes)});
+    }
+    ++emitted;
+  }
+}
+
+LshSearch::Query::Cursor LshSearch::Query::OpenBucket(const Probe& probe) const {
+  Cursor cursor;
+  const auto [begin, end] = search_.index_.FindBucket(probe.table_idx, probe.key);
+  if (begin == end) return cursor;
+  const HashFamily& family = search_.family_;
+  const uint32_t rows_per_table = family.hashes_per_table() + 1;
+  cursor.query_sort_value = family.QuantiseSortValue(
+      projections_[static_cast<size_t>(probe.table_idx) * rows_per_table + rows_per_table - 1]);
+  const int16_t* sort_values = search_.index_.table(probe.table_idx).sort_values.data();
+  cursor.begin = begin;
+  cursor.end = end;
+  if (end - begin <= search_.options_.first_round_scan) {
+    // Read whole in the first round anyway: the order does not matter, skip the search.
+    cursor.linear = true;
+    cursor.up = begin;
+  } else {
+    cursor.up = static_cast<uint32_t>(
+        std::lower_bound(sort_values + begin, sort_values + end, cursor.query_sort_value) -
+        sort_values);
+  }
+  cursor.down = cursor.up;
+  __builtin_prefetch(search_.index_.table(probe.table_idx).frames.data() + cursor.up);
+  cursor.scan_limit = std::min<uint32_t>(search_.options_.max_bucket_scan, end - begin);
+  cursor.done = false;
+  return cursor;
+}
+
+void LshSearch::Query::Prepare(uint64_t column) {
+  const HashFamily& family = search_.family_;
+  family.Embed(search_.features_.frame(column), embedding_.data());
+  family.Project(embedding_.data(), projections_.data());
+  probes_.clear();
+  AddProbes(search_.options_.probes_per_table, 0);
+}
+
+void LshSearch::Query::AddProbes(uint32_t wanted, uint32_t skip) {
+  const HashFamily& family = search_.family_;
+  const uint32_t rows_per_table = family.hashes_per_table() + 1;
+  const size_t first = probes_.size();
+  for (uint32_t table_idx = 0; table_idx < family.table_count(); ++table_idx) {
+    ListProbes(table_idx, &projections_[static_cast<size_t>(table_idx) * rows_per_table], wanted,
+               skip);
+  }
+  std::sort(probes_.begin() + first, probes_.end(), ProbeBefore);
+  // The buckets are looked up in this order later: start fetching their directory slots and
+  // keys now, so that the lookups' cache misses overlap.
+  const LshIndex& index = search_.index_;
+  for (size_t idx = first; idx < probes_.size(); ++idx) {
+    index.PrefetchDirectory(probes_[idx].table_idx, probes_[idx].key);
+  }
+  for (size_t idx = first; idx < probes_.size(); ++idx) {
+    index.PrefetchKeys(probes_[idx].table_idx, probes_[idx].key);
+  }
+}
+
+std::vector<LshSearch::ProbeInfo> LshSearch::ProbeSequence(uint64_t column) const {
+  Query query(*this);
+  query.Prepare(column);
+  std::vector<ProbeInfo> sequence;
+  for (const Probe& probe : query.probes()) {
+    sequence.push_back({probe.table_idx, probe.key, std::sqrt(probe.score)});
+  }
+  return sequence;
+}
+
+void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchStats* stats,
+                           LshQueryStats* lsh_stats) {
+  const HashFamily& family = search_.family_;
+  const LshIndex& index = search_.index_;
+  const PoseFeatures& features = search_.features_;
+  const NeighbourRules& rules = search_.rules_;
+  const LshOptions& options = search_.options_;
+  const uint32_t k_max = rules.k_max;
+  const float eps = rules.eps;
+  const float sort_step = family.sort_value_step();
+
+  Prepare(column);
+
+  visited_.Clear();
+  best_.clear();
+  const uint32_t clip_of_column = features.ClipOf(column);
+  uint64_t evaluations = 0;
+  uint64_t within_eps = 0;
+  float bound = eps;  // nothing farther than this can enter the column
+  bool budget_spent = false;
+  bool bound_stopped = false;
+  LshQueryStats local;
+
+  distance_.SetQuery(column);
+  // Candidates are verified in small batches whose features are prefetched one batch ahead: a
+  // candidate's 96 bytes are a random access into the archive, and overlapping those misses is
+  // most of the speed of the verification.
+  constexpr uint32_t kBatch = 16;
+  uint32_t batch[kBatch];
+  uint32_t pending[kBatch];
+  uint32_t pending_size = 0;
+  auto verify = [&](const uint32_t* candidates, uint32_t batch_size) {
+    for (uint32_t idx = 0; idx < batch_size; ++idx) {
+      const uint32_t frame = candidates[idx];
+      const float distance = distance_.To(frame, bound);
+      ++evaluations;
+      // A value above the bound may be a partial sum: it only says D > bound. capped_columns
+      // counts a column when more than k_max candidates came out at or below eps this way.
+      if (distance <= eps) ++within_eps;
+      if (distance > bound) continue;  // cannot enter the column (bound <= eps)
+      const Neighbour candidate{frame, distance};
+      if (best_.size() < k_max) {
+        best_.push_back(candidate);
+        std::push_heap(best_.begin(), best_.end(), Nearer());
+      } else if (Nearer()(candidate, best_.front())) {
+        std::pop_heap(best_.begin(), best_.end(), Nearer());
+        best_.back() = candidate;
+        std::push_heap(best_.begin(), best_.end(), Nearer());
+      }
+      if (best_.size() == k_max) bound = std::min(eps, best_.front().distance);
+    }
+  };
+
+  // Breadth first: every probed bucket is scanned outward from the query's sort value in rounds
+  // of growing depth, so the budget goes to the entries nearest the query in all tables before
+  // the far ends of the first buckets. Probes are in increasing lower bound; a probe whose bound
+  // exceeds the current radius ends the column's probing (nothing left can enter).
+  auto scan = [&](size_t first_probe) {
+  cursors_.clear();
+  uint32_t depth = options.first_round_scan;
+  size_t probe_limit = probes_.size();
+  while (!budget_spent) {
+    bool more = false;  // some bucket still has entries within the radius
+    for (size_t probe_idx = first_probe; probe_idx < probe_limit && !budget_spent; ++probe_idx) {
+      const Probe& probe = probes_[probe_idx];
+      if (probe.score > (bound + kBoundSlack) * (bound + kBoundSlack)) {
+        probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
+        bound_stopped = true;
+        break;
+      }
+      if (probe_idx - first_probe == cursors_.size()) {
+        ++local.probes;
+        cursors_.push_back(OpenBucket(probe));
+      }
+      Cursor& cursor = cursors_[probe_idx - first_probe];
+      if (cursor.done) continue;
+      const LshTableEntries& table = index.table(probe.table_idx);
+      const int16_t* sort_values = table.sort_values.data();
+      const uint32_t* frames = table.frames.data();
+      const uint32_t round_limit = std::min(depth, cursor.scan_limit);
+      while (!cursor.done && cursor.examined < round_limit) {
+        // Gather up to kBatch new, allowed candidates, nearest sort value first.
+        uint32_t batch_size = 0;
+        const uint64_t room = options.max_candidates - evaluations - pending_size;
+        const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
+        while (batch_size < batch_limit && cursor.examined < round_limit) {
+          const bool has_up = cursor.up < cursor.end;
+          const bool has_down = !cursor.linear && cursor.down > cursor.begin;
+          if (!has_up && !has_down) {
+            cursor.done = true;
+            break;
+          }
+          // The side whose next sort value is nearer; ties go up (ascending frames within equal
+          // sort values, so exact duplicates come lowest frame first).
+          const int32_t up_gap =
+              has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
+          const int32_t down_gap =
+              has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
+          const bool take_up = up_gap <= down_gap;
+          const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
+          const float limit = bound + kBoundSlack;
+          if (probe.score + gap * gap > limit * limit) {
+            if (!cursor.linear) {  // scanning outward: both sides only get farther
+              cursor.done = true;
+              break;
+            }
+            ++cursor.up;  // stored order: only this entry is out of reach
+            ++cursor.examined;
+            ++local.entries_examined;
+            continue;
+          }
+          const uint32_t position = take_up ? cursor.up++ : --cursor.down;
+          ++cursor.examined;
+          ++local.entries_examined;
+          const uint32_t frame = frames[position];
+          const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+          if (frame_gap < rules.exclusion_frames &&
+              rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
+            continue;
+          }
+          if (!visited_.Insert(frame)) continue;
+          distance_.Prefetch(frame);
+          batch[batch_size++] = frame;
+        }
+        verify(pending, pending_size);
+        std::copy(batch, batch + batch_size, pending);
+        pending_size = batch_size;
+        if (evaluations + pending_size >= options.max_candidates) budget_spent = true;
+        if (budget_spent) break;
+      }
+      if (!cursor.done && cursor.examined == cursor.scan_limit) {
+        cursor.done = true;
+        if (cursor.scan_limit < cursor.end - cursor.begin) ++local.bucket_scans_capped;
+      }
+      more = more || !cursor.done;
+    }
+    if (!more || depth >= options.max_bucket_scan) break;
+    depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+  }
+  };
+
+  // Sparse columns: when the probes are used up before the budget and the column is not full,
+  // or its k_max-th neighbour is much farther than the archive's typical one (the cells were
+  // sized for the typical column), more distant buckets are probed: 4x the probes per table,
+  // then 16x, each stage visiting only the new ones.
+  scan(0);
+  uint32_t per_table = options.probes_per_table;
+  for (uint32_t stage = 0; stage < options.extension_stages; ++stage) {
+    if (budget_spent || bound_stopped) break;
+    if (best_.size() == k_max && bound <= search_.extension_radius_) break;
+    const size_t first_new = probes_.size();
+    AddProbes(per_table * 4, per_table);
+    per_table *= 4;
+    ++local.extensions;
+    scan(first_new);
+  }
+  verify(pending, pending_size);
+  if (budget_spent) ++local.columns_budget_capped;
+  if (bound_stopped) ++local.columns_bound_stopped;
+
+  out->assign(best_.begin(), best_.end());
+  FinishColumn(k_max, out);
+  stats->columns += 1;
+  stats->distance_evaluations += evaluations;
+  stats->neighbours += out->size();
+  if (within_eps > k_max) stats->capped_columns += 1;
+  if (lsh_stats) lsh_stats->Add(local);
+}
+
+LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
+                     HashFamily family, LshIndex index, float extension_radius)
+    : features_(features),
+      rules_(std::move(rules)),
+      options_(std::move(options)),
+      family_(std::move(family)),
+      index_(std::move(index)),
+      extension_radius_(extension_radius) {}
+
+Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& features,
+                                                     NeighbourRules rules,
+                                                     const LshOptions& options) {
+  auto invalid = [](const std::string& what) {
+    return Status::InvalidArgument("lsh search: " + what);
+  };
+  if (!(rules.eps > 0)) return invalid("eps must be > 0");
+  if (rules.k_max == 0) return invalid("k_max must be > 0");
+  // The features' clip layout is the one used (PoseFeatures::ClipOf); the rules may repeat it.
+  if (rules.clip_first_frames.empty()) {
+    rules.clip_first_frames = features.clip_first_frames();
+  } else if (rules.clip_first_frames != features.clip_first_frames()) {
+    return invalid("the rules' clip layout differs from the pose features' (" +
+                   std::to_string(rules.clip_first_frames.size()) + " vs " +
+                   std::to_string(features.clip_first_frames().size()) + " clips)");
+  }
+  const uint32_t dims = HashFamily::kDimsPerJoint * features.weighted_joint_count();
+  if (dims == 0) return invalid("no weighted joint");
+  if (options.tables == 0 || options.tables > 64) return invalid("tables must be in 1..64");
+  if (options.hashes_per_table > HashFamily::kMaxHashesPerTable ||
+      options.hashes_per_table + 1 > dims) {
+    return invalid("hashes_per_table must be in 0.." +
+                   std::to_string(std::min(HashFamily::kMaxHashesPerTable, dims - 1)));
+  }
+  if (options.probes_per_table == 0) return invalid("probes_per_table must be > 0");
+  if (options.max_candidates == 0) return invalid("max_candidates must be > 0");
+  if (options.max_bucket_scan == 0) return invalid("max_bucket_scan must be > 0");
+  if (options.bucket_width < 0 || !std::isfinite(options.bucket_width)) {
+    return invalid("bucket_width must be >= 0");
+  }
+  if (features.frame_count() >= (uint64_t{1} << 32)) return invalid("2^32 frames or more");
+  if (options.bucket_width == 0 && !(options.width_per_hash > 0)) {
+    return invalid("width_per_hash must be > 0");
+  }
+  if (options.first_round_scan == 0) return invalid("first_round_scan must be > 0");
+  if (options.shard_frames == 0) return invalid("shard_frames must be > 0");
+  if (!(options.sparse_radius_factor > 0)) return invalid("sparse_radius_factor must be > 0");
+  const SearchScale scale = EstimateSearchScale(features, rules, options);
+  LshOptions used = ResolveLshOptions(options, features.frame_count(),
+                                      features.weighted_joint_count(), scale);
+  HashFamily family = HashFamily::Draw(features.weights(), used.tables, used.hashes_per_table,
+                                       used.bucket_width, used.seed);
+  MOTIF_ASSIGN_OR_RETURN(LshIndex index,
+                         LshIndex::Build(features, family, used.shard_frames, used.threads));
+  const float extension_radius = options.sparse_radius_factor * scale.radius;
+  return std::unique_ptr<LshSearch>(new LshSearch(features, std::move(rules), std::move(used),
+                                                  std::move(family), std::move(index),
+                                                  extension_radius));
+}
+
+Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
+                                std::vector<std::vector<Neighbour>>* columns,
+                                SearchStats* stats) const {
+  return SearchColumns(first_column, count, columns, stats, nullptr);
+}
+
+Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
+                                std::vector<std::vector<Neighbour>>* columns, SearchStats* stats,
+                                LshQueryStats* lsh_stats) const {
+  if (first_column + count > features_.frame_count()) {
+    return Status::InvalidArgument("lsh search: columns [" + std::to_string(first_column) + ", " +
+                                   std::to_string(first_column + count) + ") beyond " +
+                                   std::to_string(features_.frame_count()) + " frames");
+  }
+  if (columns->size() < count) columns->resize(count);
+  // Integer counters: their sums do not depend on how the columns were split among threads.
+  std::atomic<uint64_t> column_total{0}, evaluations{0}, neighbours{0}, capped{0};
+  std::atomic<uint64_t> probes{0}, examined{0}, scans_capped{0}, budget_capped{0},
+      bound_stopped{0}, extensions{0};
+  constexpr uint64_t kGrain = 64;
+  tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<uint64_t>(0, count, kGrain),
+        [&](const tbb::blocked_range<uint64_t>& range) {
+          Query query(*this);
+          SearchStats local;
+          LshQueryStats local_lsh;
+          for (uint64_t column_idx = range.begin(); column_idx != range.end(); ++column_idx) {
+            query.Run(first_column + column_idx, &(*columns)[column_idx], &local, &local_lsh);
+          }
+          column_total += local.columns;
+          evaluations += local.distance_evaluations;
+          neighbours += local.neighbours;
+          capped += local.capped_columns;
+          probes += local_lsh.probes;
+          examined += local_lsh.entries_examined;
+          scans_capped += local_lsh.bucket_scans_capped;
+          budget_capped += local_lsh.columns_budget_capped;
+          bound_stopped += local_lsh.columns_bound_stopped;
+          extensions += local_lsh.extensions;
+        });
+  });
+  if (stats) {
+    stats->columns += column_total;
+    stats->distance_evaluations += evaluations;
+    stats->neighbours += neighbours;
+    stats->capped_columns += capped;
+  }
+  if (lsh_stats) {
+    lsh_stats->probes += probes;
+    lsh_stats->entries_examined += examined;
+    lsh_stats->bucket_scans_capped += scans_capped;
+    lsh_stats->columns_budget_capped += budget_capped;
+    lsh_stats->columns_bound_stopped += bound_stopped;
+    lsh_stats->extensions += extensions;
+  }
+  return Status::Ok();
+}
+
+}  // namespace motif

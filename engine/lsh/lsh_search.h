@@ -1,0 +1,104 @@
+// LshSearch: approximate eps-neighbour columns of the matching trellis from an LshIndex, every
+// candidate verified with the exact pose distance D (MISSION.md part A step 2; Meng et al. 2008).
+//
+// Per column t, nearest first with a bounded amount of work (docs/design/lsh.md):
+//   1. hash f_t in every table; list, per table, its own bucket and up to probes_per_table - 1
+//      neighbouring buckets in increasing multi-probe score (Lv et al. 2007). The score is a
+//      lower bound: every frame of a probed bucket has D >= w * sqrt(score).
+//   2. visit the probes of all tables in increasing score; inside a bucket, scan outward from
+//      f_t's sort value (lower bound sqrt(score w^2 + ds^2)), verifying each new candidate with D
+//      and keeping the k_max nearest within eps;
+//   3. stop a bucket, and the whole column, once the lower bound exceeds min(eps, distance of the
+//      k_max-th neighbour found): nothing left to probe can enter the column. Hard caps bound
+//      the rest: max_bucket_scan entries per bucket, max_candidates evaluations per column.
+// The work per column is therefore bounded by the caps, not by how many eps-neighbours exist.
+// Each column depends only on the index and f_t, so columns are the same for any thread count.
+// Thread-safety: SearchColumns is const and may run from many threads at once.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "engine/distance/neighbour_search.h"
+#include "engine/distance/pose_features.h"
+#include "engine/lsh/hash_family.h"
+#include "engine/lsh/lsh_index.h"
+#include "engine/lsh/lsh_options.h"
+
+namespace motif {
+
+// LSH-specific work counters, summed over columns.
+struct LshQueryStats {
+  uint64_t probes = 0;                // buckets looked up
+  uint64_t entries_examined = 0;      // bucket entries read (including repeats and excluded)
+  uint64_t bucket_scans_capped = 0;   // buckets left early by max_bucket_scan
+  uint64_t columns_budget_capped = 0;  // columns stopped by max_candidates
+  uint64_t columns_bound_stopped = 0;  // columns stopped because nothing left could enter
+  uint64_t extensions = 0;             // extra probing stages of sparse columns
+
+  void Add(const LshQueryStats& other) {
+    probes += other.probes;
+    entries_examined += other.entries_examined;
+    bucket_scans_capped += other.bucket_scans_capped;
+    columns_budget_capped += other.columns_budget_capped;
+    columns_bound_stopped += other.columns_bound_stopped;
+    extensions += other.extensions;
+  }
+};
+
+class LshSearch final : public NeighbourSearch {
+ public:
+  // Chooses the bucket width from the data when options.bucket_width is 0 (ChooseBucketWidth),
+  // draws the hash family from options.seed and builds the index. `features` must outlive the
+  // search. rules.clip_first_frames may be empty (the features' layout is used) or must equal
+  // features.clip_first_frames(). InvalidArgument: eps <= 0, k_max == 0, another clip layout,
+  // tables or hashes_per_table out of range (1..64; 0 for automatic or 1..32 and below the
+  // embedding's dimension), a zero probe count, budget, scan depth or shard size, a negative
+  // width, 2^32 frames or more. Errors of the index build pass through.
+  static Result<std::unique_ptr<LshSearch>> Create(const PoseFeatures& features,
+                                                   NeighbourRules rules,
+                                                   const LshOptions& options);
+
+  Status SearchColumns(uint64_t first_column, uint64_t count,
+                       std::vector<std::vector<Neighbour>>* columns,
+                       SearchStats* stats) const override;
+  // The same, also adding LSH work counters to *lsh_stats (may be null).
+  Status SearchColumns(uint64_t first_column, uint64_t count,
+                       std::vector<std::vector<Neighbour>>* columns, SearchStats* stats,
+                       LshQueryStats* lsh_stats) const;
+
+  // The buckets column `column` visits, in order, as (table, bucket key, lower bound on D), before
+  // any early stop (diagnostics and tests).
+  struct ProbeInfo {
+    uint32_t table_idx;
+    uint32_t key;
+    float lower_bound;
+  };
+  std::vector<ProbeInfo> ProbeSequence(uint64_t column) const;
+
+  // The options as used (bucket_width filled in).
+  const LshOptions& options() const { return options_; }
+  const NeighbourRules& rules() const { return rules_; }
+  const HashFamily& family() const { return family_; }
+  const LshIndex& index() const { return index_; }
+  // DescribeLshOptions(options()): the trellis file's search_params.
+  std::string DescribeParams() const { return DescribeLshOptions(options_); }
+
+ private:
+  LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
+            HashFamily family, LshIndex index, float extension_radius);
+  class Query;
+
+  const PoseFeatures& features_;
+  NeighbourRules rules_;
+  LshOptions options_;
+  HashFamily family_;
+  LshIndex index_;
+  // A full column whose k_max-th neighbour is farther than this is probed further (sparse).
+  float extension_radius_ = 0;
+};
+
+}  // namespace motif

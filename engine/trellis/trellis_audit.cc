@@ -1,0 +1,136 @@
+#include "engine/trellis/trellis_audit.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <random>
+#include <set>
+
+#include <xxhash.h>
+
+#include "engine/distance/exact_search.h"
+#include "engine/distance/pose_features.h"
+#include "engine/lsh/lsh_search.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/trellis_file/trellis_file_reader.h"
+
+namespace motif {
+namespace {
+
+// `count` distinct columns of [0, frame_count), ascending; all of them if count >= frame_count.
+std::vector<uint64_t> SampleColumns(uint64_t frame_count, uint64_t count, uint64_t seed) {
+  std::vector<uint64_t> columns;
+  if (count >= frame_count) {
+    for (uint64_t column = 0; column < frame_count; ++column) columns.push_back(column);
+    return columns;
+  }
+  std::mt19937_64 rng(seed);
+  std::set<uint64_t> chosen;
+  while (chosen.size() < count) chosen.insert(rng() % frame_count);
+  return std::vector<uint64_t>(chosen.begin(), chosen.end());
+}
+
+}  // namespace
+
+Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::string& trellis_path,
+                                 const AuditOptions& options) {
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
+                         FrameFileReader::Open(archive_path));
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,
+                         TrellisFileReader::Open(trellis_path));
+  const TrellisParams& params = trellis->params();
+  if (params.archive_identity != reader->summary().identity ||
+      params.frame_count != reader->frame_count()) {
+    return Status::InvalidArgument(trellis_path + " was built from another version of " +
+                                   archive_path + ": rebuild it with motifmine trellis");
+  }
+  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
+                         LoadDistanceWeights(reader->skeleton(), options.weights_path));
+  if (XXH3_64bits(weights.data(), weights.size() * sizeof(float)) != params.weights_hash) {
+    return Status::InvalidArgument(trellis_path +
+                                   " was built with other joint weights: pass the same --weights");
+  }
+  MOTIF_ASSIGN_OR_RETURN(PoseFeatures features, PoseFeatures::FromArchive(*reader, weights));
+  NeighbourRules rules;
+  rules.eps = params.eps;
+  rules.k_max = params.k_max;
+  rules.exclusion_frames = params.exclusion_frames;
+  rules.clip_first_frames = features.clip_first_frames();
+
+  AuditReport report;
+  report.search_params = params.search_params;
+  const std::vector<uint64_t> sample =
+      SampleColumns(params.frame_count, options.sample_columns, options.seed);
+  report.sampled_columns = sample.size();
+
+  ExactSearchOptions exact_options;
+  exact_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
+  ExactSearch exact(features, rules, exact_options);
+  std::unique_ptr<LshSearch> lsh;
+  if (params.search_mode == 1) {
+    LshOptions lsh_options = options.lsh;
+    lsh_options.seed = params.seed;
+    lsh_options.threads = options.threads;
+    if (DescribeLshOptions(lsh_options) == params.search_params) {
+      MOTIF_ASSIGN_OR_RETURN(lsh, LshSearch::Create(features, rules, lsh_options));
+    }
+  }
+
+  double column_recall_sum = 0;
+  uint64_t columns_with_neighbours = 0;
+  SearchStats exact_stats;
+  SearchStats lsh_stats;
+  double exact_seconds = 0;
+  double lsh_seconds = 0;
+  std::vector<std::vector<Neighbour>> exact_column;
+  std::vector<std::vector<Neighbour>> lsh_column;
+  std::vector<std::vector<Neighbour>> stored;
+  for (size_t sample_idx = 0; sample_idx < sample.size(); ++sample_idx) {
+    const uint64_t column = sample[sample_idx];
+    auto start = std::chrono::steady_clock::now();
+    exact_column.assign(1, {});
+    MOTIF_RETURN_IF_ERROR(exact.SearchColumns(column, 1, &exact_column, &exact_stats));
+    exact_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (lsh) {
+      start = std::chrono::steady_clock::now();
+      lsh_column.assign(1, {});
+      MOTIF_RETURN_IF_ERROR(lsh->SearchColumns(column, 1, &lsh_column, &lsh_stats));
+      lsh_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    MOTIF_RETURN_IF_ERROR(trellis->ReadColumns(column, 1, &stored));
+    const std::vector<Neighbour>& truth = exact_column[0];
+    const std::vector<Neighbour>& found = stored[0];
+    report.trellis_entries += found.size();
+    report.exact_entries += truth.size();
+    uint64_t hits = 0;
+    size_t found_idx = 0;
+    for (const Neighbour& neighbour : truth) {  // both sorted by frame
+      while (found_idx < found.size() && found[found_idx].frame < neighbour.frame) ++found_idx;
+      if (found_idx < found.size() && found[found_idx].frame == neighbour.frame) ++hits;
+    }
+    report.found_entries += hits;
+    if (!truth.empty()) {
+      const double column_recall = static_cast<double>(hits) / truth.size();
+      column_recall_sum += column_recall;
+      report.min_column_recall = std::min(report.min_column_recall, column_recall);
+      ++columns_with_neighbours;
+    }
+    if (options.progress) options.progress(sample_idx + 1, sample.size());
+  }
+  report.capped_exact_columns = exact_stats.capped_columns;
+  report.recall = report.exact_entries
+                      ? static_cast<double>(report.found_entries) / report.exact_entries
+                      : 1.0;
+  report.mean_column_recall =
+      columns_with_neighbours ? column_recall_sum / columns_with_neighbours : 1.0;
+  const double sampled = std::max<double>(1.0, static_cast<double>(sample.size()));
+  report.exact_evaluations_per_query = exact_stats.distance_evaluations / sampled;
+  report.exact_seconds_per_query = exact_seconds / sampled;
+  if (lsh) {
+    report.lsh_evaluations_per_query = lsh_stats.distance_evaluations / sampled;
+    report.lsh_seconds_per_query = lsh_seconds / sampled;
+  }
+  return report;
+}
+
+}  // namespace motif

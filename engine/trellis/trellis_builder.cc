@@ -1,0 +1,175 @@
+#include "engine/trellis/trellis_builder.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include <xxhash.h>
+
+#include "engine/distance/epsilon_estimator.h"
+#include "engine/distance/exact_search.h"
+#include "engine/distance/pose_features.h"
+#include "engine/lsh/lsh_search.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/trellis_file/trellis_file_reader.h"
+
+namespace motif {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+uint64_t HashWeights(const std::vector<float>& weights) {
+  return XXH3_64bits(weights.data(), weights.size() * sizeof(float));
+}
+
+}  // namespace
+
+std::string DefaultTrellisPath(const std::string& archive_path) {
+  std::filesystem::path path(archive_path);
+  if (path.extension() == ".mfs") path.replace_extension("");
+  return path.string() + ".mtr";
+}
+
+Result<TrellisReport> BuildTrellis(const std::string& archive_path,
+                                   const std::string& trellis_path,
+                                   const TrellisOptions& options) {
+  auto note = [&](const std::string& message) {
+    if (options.note) options.note(message);
+  };
+  auto progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+    if (options.progress) options.progress(stage, done, total);
+  };
+  if (options.k_max == 0) return Status::InvalidArgument("--kmax must be at least 1");
+  if (options.eps < 0 || !std::isfinite(options.eps)) {
+    return Status::InvalidArgument("--eps must be a positive number or auto");
+  }
+  if (options.min_length_seconds <= 0) {
+    return Status::InvalidArgument("the minimum motif length must be positive");
+  }
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
+                         FrameFileReader::Open(archive_path));
+  if (reader->frame_count() >= (uint64_t{1} << 32)) {
+    return Status::NotSupported(archive_path + ": more than 2^32 frames");
+  }
+  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
+                         LoadDistanceWeights(reader->skeleton(), options.weights_path));
+
+  TrellisReport report;
+  report.trellis_path = trellis_path;
+  auto start = std::chrono::steady_clock::now();
+  progress("features", 0, reader->frame_count());
+  MOTIF_ASSIGN_OR_RETURN(
+      PoseFeatures features,
+      PoseFeatures::FromArchive(*reader, weights, [&](uint64_t done, uint64_t total) {
+        progress("features", done, total);
+      }));
+  report.features_seconds = SecondsSince(start);
+  report.feature_bytes = features.memory_bytes();
+
+  NeighbourRules rules;
+  rules.k_max = options.k_max;
+  rules.exclusion_frames =
+      options.exclusion_frames > 0
+          ? options.exclusion_frames
+          : static_cast<uint32_t>(std::lround(options.min_length_seconds * reader->fps() / 2));
+  rules.clip_first_frames = features.clip_first_frames();
+
+  TrellisParams params;
+  params.frame_count = reader->frame_count();
+  params.archive_identity = reader->summary().identity;
+  params.k_max = rules.k_max;
+  params.exclusion_frames = rules.exclusion_frames;
+  params.search_mode = options.exact ? 0 : 1;
+  params.seed = options.seed;
+  params.weights_hash = HashWeights(weights);
+  start = std::chrono::steady_clock::now();
+  if (options.eps > 0) {
+    params.eps = options.eps;
+  } else {
+    EpsilonOptions eps_options;
+    eps_options.sample_pairs = options.eps_sample_pairs;
+    eps_options.seed = options.seed;
+    eps_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
+    EpsilonEstimator estimator(features, rules, eps_options);
+    MOTIF_ASSIGN_OR_RETURN(EpsilonEstimate estimate, estimator.Estimate());
+    params.eps = estimate.eps;
+    params.mu = static_cast<float>(estimate.mu);
+    params.sigma = static_cast<float>(estimate.sigma);
+    if (!estimate.note.empty()) note(estimate.note);
+  }
+  rules.eps = params.eps;
+  report.eps_seconds = SecondsSince(start);
+
+  // The file records the search as requested (the LSH bucket width "auto" included): the
+  // width chosen from the data follows from the data and the seed.
+  LshOptions lsh = options.lsh;
+  lsh.seed = options.seed;
+  lsh.threads = options.threads;
+  params.search_params = options.exact ? "exact" : DescribeLshOptions(lsh);
+  report.params = params;
+
+  // A finished trellis with the same parameters over the same archive is the answer already.
+  std::error_code error;
+  if (std::filesystem::exists(trellis_path, error)) {
+    Result<std::unique_ptr<TrellisFileReader>> existing = TrellisFileReader::Open(trellis_path);
+    if (existing.ok() && (*existing)->params() == params) {
+      report.reused = true;
+      report.columns = (*existing)->column_count();
+      report.neighbours = (*existing)->neighbour_count();
+      report.mean_k = report.columns ? static_cast<double>(report.neighbours) / report.columns : 0;
+      return report;
+    }
+  }
+
+  start = std::chrono::steady_clock::now();
+  std::unique_ptr<NeighbourSearch> search;
+  if (options.exact) {
+    ExactSearchOptions exact_options;
+    exact_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
+    search = std::make_unique<ExactSearch>(features, rules, exact_options);
+  } else {
+    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<LshSearch> lsh_search,
+                           LshSearch::Create(features, rules, lsh));
+    note("LSH index: " + lsh_search->DescribeParams());
+    search = std::move(lsh_search);
+  }
+  report.index_seconds = SecondsSince(start);
+
+  TrellisFileWriterOptions writer_options;
+  writer_options.block_columns = options.block_columns;
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileWriter> writer,
+                         TrellisFileWriter::OpenOrResume(trellis_path, params, writer_options));
+  report.resumed_from_column = writer->next_column();
+  if (report.resumed_from_column > 0) {
+    note("resuming the interrupted build at column " + std::to_string(report.resumed_from_column));
+  }
+  start = std::chrono::steady_clock::now();
+  progress("trellis", writer->next_column(), params.frame_count);
+  SearchStats stats;
+  std::vector<std::vector<Neighbour>> columns;
+  const uint64_t frame_count = params.frame_count;
+  for (uint64_t first = writer->next_column(); first < frame_count;
+       first += writer->block_columns()) {
+    const uint64_t count = std::min<uint64_t>(writer->block_columns(), frame_count - first);
+    columns.assign(count, {});
+    MOTIF_RETURN_IF_ERROR(search->SearchColumns(first, count, &columns, &stats));
+    MOTIF_RETURN_IF_ERROR(writer->AppendBlock(columns));
+    progress("trellis", first + count, frame_count);
+  }
+  MOTIF_RETURN_IF_ERROR(writer->Finish());
+  report.search_seconds = SecondsSince(start);
+  report.distance_evaluations = stats.distance_evaluations;
+  report.capped_columns = stats.capped_columns;
+
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> finished,
+                         TrellisFileReader::Open(trellis_path));
+  report.columns = finished->column_count();
+  report.neighbours = finished->neighbour_count();
+  report.mean_k = report.columns ? static_cast<double>(report.neighbours) / report.columns : 0;
+  return report;
+}
+
+}  // namespace motif

@@ -1,0 +1,70 @@
+// BuildTrellis: the matching trellis of an archive (MISSION.md part A, steps 1-2). Streams the
+// archive once into PoseFeatures (the weighted joints, 96 bytes a frame for CMU takes), chooses
+// eps (explicit, or mu - 2 sigma of sampled pair distances), finds every column with LSH (or
+// the exact brute force), and spills the columns to the trellis file block by block as they
+// are found, so the whole trellis is never in memory: peak memory is the features, the LSH
+// index and one block of columns.
+//
+// Resumable and reusable: the trellis file records its parameters and the archive's identity.
+// A finished file with equal parameters is reused as it is; an interrupted build resumes after
+// its last complete block (TrellisFileWriter); changed parameters or a changed archive rebuild.
+// The result is the same for any thread count (each column depends only on the data, the
+// parameters and the seed).
+// Thread-safety: one build per trellis file at a time.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "common/status.h"
+#include "engine/distance/neighbour_search.h"
+#include "engine/lsh/lsh_options.h"
+#include "formats/trellis_file/trellis_file_writer.h"
+
+namespace motif {
+
+struct TrellisOptions {
+  float eps = 0;                    // > 0: explicit; 0: mu - 2 sigma of sampled pairs
+  uint64_t eps_sample_pairs = 200000;
+  uint32_t k_max = 256;
+  // Trivial-match exclusion radius in frames; 0: half the minimum motif length (min_length_s).
+  uint32_t exclusion_frames = 0;
+  double min_length_seconds = 0.5;  // lambda: 60 frames at 120 fps
+  bool exact = false;               // blocked brute force instead of LSH
+  int threads = 0;                  // 0: all cores
+  uint64_t seed = 1;
+  std::string weights_path;         // per-joint weights file; empty: the skeleton's defaults
+  LshOptions lsh;                   // lsh.seed and lsh.threads are set from seed and threads
+  uint32_t block_columns = 4096;
+  // Stages: "features", "eps", "index", "trellis"; (done, total) in frames / pairs / columns.
+  std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;
+  std::function<void(const std::string&)> note;
+};
+
+struct TrellisReport {
+  std::string trellis_path;
+  bool reused = false;              // an existing finished trellis had the same parameters
+  uint64_t resumed_from_column = 0; // > 0 when an interrupted build was continued
+  TrellisParams params;             // eps, mu, sigma, k_max, exclusion, ...
+  uint64_t columns = 0;
+  uint64_t neighbours = 0;          // entries in the trellis
+  double mean_k = 0;                // achieved mean neighbours per column (after the k_max cap)
+  uint64_t capped_columns = 0;      // columns that had more than k_max within eps
+  uint64_t distance_evaluations = 0;  // of the columns built in this run
+  double features_seconds = 0;
+  double eps_seconds = 0;
+  double index_seconds = 0;
+  double search_seconds = 0;
+  uint64_t feature_bytes = 0;
+};
+
+// "<archive without .mfs>.mtr": where `motifmine trellis` writes an archive's trellis.
+std::string DefaultTrellisPath(const std::string& archive_path);
+
+// Builds (or reuses, or resumes) the trellis of `archive_path` at `trellis_path`.
+Result<TrellisReport> BuildTrellis(const std::string& archive_path,
+                                   const std::string& trellis_path,
+                                   const TrellisOptions& options);
+
+}  // namespace motif
