@@ -1,17 +1,25 @@
 // LshSearch: approximate eps-neighbour columns of the matching trellis from an LshIndex, every
 // candidate verified with the exact pose distance D (MISSION.md part A step 2; Meng et al. 2008).
 //
-// Per column t, nearest first with a bounded amount of work (docs/design/lsh.md):
-//   1. hash f_t in every table; list, per table, its own bucket and up to probes_per_table - 1
-//      neighbouring buckets in increasing multi-probe score (Lv et al. 2007). The score is a
-//      lower bound: every frame of a probed bucket has D >= w * sqrt(score).
-//   2. visit the probes of all tables in increasing score; inside a bucket, scan outward from
-//      f_t's sort value (lower bound sqrt(score w^2 + ds^2)), verifying each new candidate with D
-//      and keeping the k_max nearest within eps;
-//   3. stop a bucket, and the whole column, once the lower bound exceeds min(eps, distance of the
-//      k_max-th neighbour found): nothing left to probe can enter the column. Hard caps bound
-//      the rest: max_bucket_scan entries per bucket, max_candidates evaluations per column.
-// The work per column is therefore bounded by the caps, not by how many eps-neighbours exist.
+// Per column t, nearest first, with a bounded amount of work (docs/design/lsh.md):
+//   1. hash f_t in every table; list, per table, its own bucket and the probes_per_table - 1
+//      neighbouring buckets of lowest multi-probe score (Lv et al. 2007). The score is a lower
+//      bound: every frame of a probed bucket has D >= sqrt(score) (orthonormal projections).
+//   2. visit the probed buckets of all tables breadth first: each is read outward from f_t's
+//      sort value, first_round_scan entries deep in every bucket, then 4x deeper, ..., so the
+//      budget goes to the entries nearest f_t in all tables first. The lower bound of an entry,
+//      sqrt(score + ds^2), ends a bucket's scan, and a probe's, once it exceeds the radius
+//      min(eps, distance of the k_max-th neighbour found): nothing beyond can enter the column.
+//      Each new candidate (not f_t, not in f_t's exclusion radius, not seen in another table) is
+//      verified with the exact D (QueryDistance, bit-identical to PoseDistance); the k_max
+//      nearest within eps are kept (ties: lower frame first).
+//   3. sparse columns, not full when the probes are used up or full but with a k_max-th
+//      neighbour beyond sparse_radius_factor x the archive's typical one, probe further: up to
+//      extension_stages stages of 4x more probes per table.
+// Hard caps bound everything: max_bucket_scan entries per bucket, max_candidates evaluations per
+// column, probes_per_table x 4^extension_stages buckets per table. The work per column is thus
+// bounded by the caps, not by how many eps-neighbours exist. Heavy buckets (a static pose
+// repeated thousands of times) cost at most max_bucket_scan entries each.
 // Each column depends only on the index and f_t, so columns are the same for any thread count.
 // Thread-safety: SearchColumns is const and may run from many threads at once.
 #pragma once

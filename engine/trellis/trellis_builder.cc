@@ -158,6 +158,12 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
     MOTIF_RETURN_IF_ERROR(search->SearchColumns(first, count, &columns, &stats));
     MOTIF_RETURN_IF_ERROR(writer->AppendBlock(columns));
     progress("trellis", first + count, frame_count);
+    if (options.stop_after_blocks > 0 &&
+        (first + count - report.resumed_from_column) >=
+            options.stop_after_blocks * writer->block_columns()) {
+      return Status::IOError(trellis_path + ": build stopped after " +
+                             std::to_string(options.stop_after_blocks) + " blocks (as asked)");
+    }
   }
   MOTIF_RETURN_IF_ERROR(writer->Finish());
   report.search_seconds = SecondsSince(start);

@@ -37,6 +37,9 @@ struct TrellisOptions {
   std::string weights_path;         // per-joint weights file; empty: the skeleton's defaults
   LshOptions lsh;                   // lsh.seed and lsh.threads are set from seed and threads
   uint32_t block_columns = 4096;
+  // Testing: stop with IOError after writing this many blocks (0: never), leaving the partial
+  // file as an interruption would.
+  uint64_t stop_after_blocks = 0;
   // Stages: "features", "eps", "index", "trellis"; (done, total) in frames / pairs / columns.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;
   std::function<void(const std::string&)> note;

@@ -1,0 +1,184 @@
+#include "engine/trellis/trellis_builder.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "common/file_util.h"
+#include "engine/distance/exact_search.h"
+#include "engine/distance/pose_features.h"
+#include "engine/synth/motion_synthesizer.h"
+#include "engine/trellis/trellis_audit.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/frame_file/frame_file_writer.h"
+#include "formats/trellis_file/trellis_file_reader.h"
+#include "tests/testing/temp_dir.h"
+
+namespace motif {
+namespace {
+
+// A synthetic archive of `frames` frames with planted motifs, written once per test.
+std::string MakeArchive(const testing::TempDir& dir, uint64_t frames) {
+  const std::string path = dir.File("synth.mfs");
+  SynthOptions options;
+  options.frames = frames;
+  options.motifs = 2;
+  options.instances_min = 2;
+  options.instances_max = 3;
+  options.motif_seconds_max = 1.5;
+  options.seed = 3;
+  options.clip_seconds_min = 15;
+  options.clip_seconds_max = 30;
+  auto synthesizer = MotionSynthesizer::Create(options);
+  if (!synthesizer.ok()) {
+    ADD_FAILURE() << synthesizer.status().ToString();
+    return path;
+  }
+  auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
+  EXPECT_TRUE(writer.ok());
+  EXPECT_TRUE((*synthesizer)->Run([&](const ClipFrames& clip) {
+    return (*writer)->AppendClip(clip);
+  }).ok());
+  EXPECT_TRUE((*writer)->Commit().ok());
+  return path;
+}
+
+TrellisOptions SmallOptions(bool exact, int threads) {
+  TrellisOptions options;
+  options.exact = exact;
+  options.threads = threads;
+  options.k_max = 64;
+  options.block_columns = 2048;
+  return options;
+}
+
+TEST(BuildTrellis, SameBytesForAnyThreadCount) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 9000);
+  for (bool exact : {true, false}) {
+    std::string bytes[2];
+    for (int threads = 1; threads <= 2; ++threads) {
+      const std::string path = dir.File("t" + std::to_string(threads) + ".mtr");
+      auto report = BuildTrellis(archive, path, SmallOptions(exact, threads));
+      ASSERT_TRUE(report.ok()) << report.status().ToString();
+      EXPECT_FALSE(report->reused);
+      EXPECT_EQ(report->columns, 9000u);
+      EXPECT_GT(report->mean_k, 1.0);
+      bytes[threads - 1] = ReadFileToString(path).value();
+    }
+    EXPECT_EQ(bytes[0], bytes[1]) << (exact ? "exact" : "lsh");
+  }
+}
+
+TEST(BuildTrellis, ExactTrellisHoldsTheExactColumns) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 6000);
+  const std::string path = dir.File("e.mtr");
+  auto report = BuildTrellis(archive, path, SmallOptions(true, 2));
+  ASSERT_TRUE(report.ok()) << report.status().ToString();
+  auto reader = FrameFileReader::Open(archive);
+  ASSERT_TRUE(reader.ok());
+  auto weights = LoadDistanceWeights((*reader)->skeleton(), "");
+  auto features = PoseFeatures::FromArchive(**reader, *weights);
+  ASSERT_TRUE(features.ok());
+  NeighbourRules rules;
+  rules.eps = report->params.eps;
+  rules.k_max = 64;
+  rules.exclusion_frames = report->params.exclusion_frames;
+  EXPECT_EQ(rules.exclusion_frames, 30u);  // half of 0.5 s at 120 fps
+  rules.clip_first_frames = features->clip_first_frames();
+  ExactSearch exact(*features, rules);
+  std::vector<std::vector<Neighbour>> expected;
+  SearchStats stats;
+  ASSERT_TRUE(exact.SearchColumns(0, 6000, &expected, &stats).ok());
+  auto trellis = TrellisFileReader::Open(path);
+  ASSERT_TRUE(trellis.ok());
+  std::vector<std::vector<Neighbour>> stored;
+  ASSERT_TRUE((*trellis)->ReadColumns(0, 6000, &stored).ok());
+  const float bound = rules.eps / 65535.0f;
+  for (uint64_t column = 0; column < 6000; ++column) {
+    ASSERT_EQ(stored[column].size(), expected[column].size()) << "column " << column;
+    for (size_t idx = 0; idx < stored[column].size(); ++idx) {
+      EXPECT_EQ(stored[column][idx].frame, expected[column][idx].frame);
+      EXPECT_NEAR(stored[column][idx].distance, expected[column][idx].distance, bound);
+    }
+  }
+}
+
+TEST(BuildTrellis, ReusesAFinishedTrellisAndRebuildsWhenAParameterChanges) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 6000);
+  const std::string path = dir.File("r.mtr");
+  ASSERT_TRUE(BuildTrellis(archive, path, SmallOptions(false, 2)).ok());
+  auto again = BuildTrellis(archive, path, SmallOptions(false, 1));
+  ASSERT_TRUE(again.ok());
+  EXPECT_TRUE(again->reused);
+  TrellisOptions changed = SmallOptions(false, 2);
+  changed.k_max = 32;
+  auto rebuilt = BuildTrellis(archive, path, changed);
+  ASSERT_TRUE(rebuilt.ok());
+  EXPECT_FALSE(rebuilt->reused);
+  auto trellis = TrellisFileReader::Open(path);
+  ASSERT_TRUE(trellis.ok());
+  EXPECT_EQ((*trellis)->params().k_max, 32u);
+}
+
+TEST(BuildTrellis, ResumesAnInterruptedBuildToTheSameFile) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 9000);
+  const std::string reference = dir.File("reference.mtr");
+  ASSERT_TRUE(BuildTrellis(archive, reference, SmallOptions(false, 2)).ok());
+  const std::string path = dir.File("resumed.mtr");
+  TrellisOptions interrupted = SmallOptions(false, 2);
+  interrupted.stop_after_blocks = 2;
+  auto stopped = BuildTrellis(archive, path, interrupted);
+  ASSERT_FALSE(stopped.ok());
+  EXPECT_FALSE(std::filesystem::exists(path));
+  auto resumed = BuildTrellis(archive, path, SmallOptions(false, 1));
+  ASSERT_TRUE(resumed.ok()) << resumed.status().ToString();
+  EXPECT_EQ(resumed->resumed_from_column, 4096u);
+  EXPECT_EQ(ReadFileToString(path).value(), ReadFileToString(reference).value());
+}
+
+TEST(AuditTrellis, LshRecallOnAPlantedSyntheticArchive) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 12000);
+  const std::string lsh_path = dir.File("l.mtr");
+  TrellisOptions options = SmallOptions(false, 2);
+  ASSERT_TRUE(BuildTrellis(archive, lsh_path, options).ok());
+  AuditOptions audit;
+  audit.sample_columns = 300;
+  audit.lsh = options.lsh;
+  auto report = AuditTrellis(archive, lsh_path, audit);
+  ASSERT_TRUE(report.ok()) << report.status().ToString();
+  EXPECT_EQ(report->sampled_columns, 300u);
+  EXPECT_GE(report->recall, 0.95);
+  EXPECT_GT(report->lsh_evaluations_per_query, 0.0);
+  EXPECT_LT(report->lsh_evaluations_per_query, report->exact_evaluations_per_query);
+  // An exact trellis audits at recall 1.
+  const std::string exact_path = dir.File("x.mtr");
+  ASSERT_TRUE(BuildTrellis(archive, exact_path, SmallOptions(true, 2)).ok());
+  auto exact_report = AuditTrellis(archive, exact_path, audit);
+  ASSERT_TRUE(exact_report.ok());
+  EXPECT_EQ(exact_report->recall, 1.0);
+}
+
+TEST(BuildTrellis, RejectsImpossibleParameters) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 6000);
+  TrellisOptions options = SmallOptions(false, 1);
+  options.k_max = 0;
+  EXPECT_TRUE(BuildTrellis(archive, dir.File("a.mtr"), options).status().IsInvalidArgument());
+  options = SmallOptions(false, 1);
+  options.eps = -1;
+  EXPECT_TRUE(BuildTrellis(archive, dir.File("a.mtr"), options).status().IsInvalidArgument());
+  options = SmallOptions(false, 1);
+  options.weights_path = dir.File("missing.txt");
+  EXPECT_TRUE(BuildTrellis(archive, dir.File("a.mtr"), options).status().IsNotFound());
+  EXPECT_TRUE(BuildTrellis(dir.File("nope.mfs"), dir.File("a.mtr"), SmallOptions(false, 1))
+                  .status()
+                  .IsNotFound());
+}
+
+}  // namespace
+}  // namespace motif
