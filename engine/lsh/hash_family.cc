@@ -9,7 +9,6 @@
 
 namespace motif {
 
-
 HashFamily HashFamily::Draw(const std::vector<float>& joint_weights, uint32_t tables,
                             uint32_t hashes_per_table, float bucket_width, uint64_t seed) {
   MOTIF_CHECK(!joint_weights.empty());

@@ -2,7 +2,8 @@
 //
 // Embedding (sign-invariant). For each weighted joint k with quaternion q and weight w_k, the 10
 // unique entries of q q^T, off-diagonal ones times sqrt(2), all divided by sqrt(2) and times w_k:
-//   e_k = w_k [q0^2/r2, q1^2/r2, q2^2/r2, q3^2/r2, q0q1, q0q2, q0q3, q1q2, q1q3, q2q3], r2 = sqrt 2.
+//   e_k = w_k [q0^2/r2, q1^2/r2, q2^2/r2, q3^2/r2, q0q1, q0q2, q0q3, q1q2, q1q3, q2q3], r2 =
+//   sqrt 2.
 // q and -q give the same e_k, so no hemisphere split can separate true neighbours. Per joint,
 // |e_k(q) - e_k(p)|^2 = w_k^2 (1 - (q.p)^2) = w_k^2 d^2 (1 + |q.p|) / 2 with
 // d = min(|q - p|, |q + p|), so d / sqrt(2) <= |De_k| / w_k <= d; summed over joints:

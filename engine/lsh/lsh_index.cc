@@ -9,64 +9,12 @@
 #include <queue>
 #include <string>
 
+#include "common/status.h"
+
 namespace motif {
 namespace {
 
 int ArenaThreads(int threads) { return threads > 0 ? threads : tbb::task_arena::automatic; }
-
-// Merges the sorted runs of one table, taken from the shards in shard order, into `out`. Keys
-// are compared as (key, sort value, frame); frames are unique, so the output is the one sorted
-// order of the union whatever the runs.
-void MergeTable(std::vector<LshTableEntries*> runs, LshTableEntries* out) {
-  size_t total = 0;
-  for (const LshTableEntries* run : runs) total += run->size();
-  out->keys.resize(total);
-  out->sort_values.resize(total);
-  out->frames.resize(total);
-  struct Head {
-    uint32_t key;
-    int16_t sort_value;
-    uint32_t frame;
-    uint32_t run_idx;
-    size_t position;
-  };
-  auto after = [](const Head& a, const Head& b) {
-    if (a.key != b.key) return a.key > b.key;
-    if (a.sort_value != b.sort_value) return a.sort_value > b.sort_value;
-    return a.frame > b.frame;
-  };
-  std::priority_queue<Head, std::vector<Head>, decltype(after)> heads(after);
-  for (uint32_t run_idx = 0; run_idx < runs.size(); ++run_idx) {
-    const LshTableEntries* run = runs[run_idx];
-    if (run->size() > 0) heads.push({run->keys[0], run->sort_values[0], run->frames[0], run_idx, 0});
-  }
-  size_t written = 0;
-  while (!heads.empty()) {
-    Head head = heads.top();
-    heads.pop();
-    const LshTableEntries* run = runs[head.run_idx];
-    // Copy the whole stretch of this run that stays below the next run's head.
-    size_t position = head.position;
-    while (true) {
-      out->keys[written] = run->keys[position];
-      out->sort_values[written] = run->sort_values[position];
-      out->frames[written] = run->frames[position];
-      ++written;
-      ++position;
-      if (position == run->size()) break;
-      if (heads.empty()) continue;
-      const Head& next = heads.top();
-      const Head candidate{run->keys[position], run->sort_values[position], run->frames[position],
-                           head.run_idx, position};
-      if (after(candidate, next)) {
-        heads.push(candidate);
-        break;
-      }
-    }
-  }
-  MOTIF_CHECK(written == total);
-  for (LshTableEntries* run : runs) run->Clear();
-}
 
 }  // namespace
 
@@ -78,8 +26,23 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                                    " frames; frame ids are 32-bit");
   }
   if (shard_frames == 0) return Status::InvalidArgument("lsh index: shard_frames is 0");
+  const uint32_t table_count = family.table_count();
+  LshIndex index;
+  index.frame_count_ = frame_count;
+  index.tables_.resize(table_count);
+  index.directories_.resize(table_count);
+  // One allocation per array for the whole build: shards fill their slices in place (large
+  // allocations are mapped and unmapped whole, so nothing lingers in the heap afterwards).
+  for (LshTableEntries& table : index.tables_) {
+    table.keys.resize(frame_count);
+    table.sort_values.resize(frame_count);
+    table.frames.resize(frame_count);
+  }
   const uint64_t shard_count = (frame_count + shard_frames - 1) / shard_frames;
-  std::vector<LshShard> shards(shard_count);
+  std::vector<uint64_t> run_starts(shard_count + 1);
+  for (uint64_t shard_idx = 0; shard_idx <= shard_count; ++shard_idx) {
+    run_starts[shard_idx] = std::min<uint64_t>(shard_idx * shard_frames, frame_count);
+  }
   const LshShardBuilder builder(features, family);
   tbb::task_arena arena(ArenaThreads(threads));
   arena.execute([&] {
@@ -87,47 +50,89 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                       [&](const tbb::blocked_range<size_t>& range) {
                         for (size_t shard_idx = range.begin(); shard_idx != range.end();
                              ++shard_idx) {
-                          const uint64_t first = shard_idx * uint64_t{shard_frames};
-                          const uint64_t count =
-                              std::min<uint64_t>(shard_frames, frame_count - first);
-                          shards[shard_idx] = builder.Build(first, count);
+                          const uint64_t first = run_starts[shard_idx];
+                          const uint64_t count = run_starts[shard_idx + 1] - first;
+                          std::vector<LshShardSlice> slices(table_count);
+                          for (uint32_t table_idx = 0; table_idx < table_count; ++table_idx) {
+                            LshTableEntries& table = index.tables_[table_idx];
+                            slices[table_idx] = {&table.keys[first], &table.sort_values[first],
+                                                 &table.frames[first]};
+                          }
+                          builder.Build(first, count, slices);
                         }
                       });
   });
-  return Merge(std::move(shards), family.table_count(), threads);
-}
-
-LshIndex LshIndex::Merge(std::vector<LshShard> shards, uint32_t table_count, int threads) {
-  LshIndex index;
-  uint64_t expected_first = 0;
-  for (const LshShard& shard : shards) {
-    MOTIF_CHECK(shard.first_frame == expected_first);
-    MOTIF_CHECK(shard.tables.size() == table_count);
-    expected_first += shard.frame_count;
-  }
-  index.frame_count_ = expected_first;
   // About 16 entries per directory slot: a bucket lookup reads one slot pair and binary-searches
   // a cache line or two of keys.
-  const uint32_t frame_bits =
-      index.frame_count_ > 1 ? std::bit_width(index.frame_count_ - 1) : 1;
+  const uint32_t frame_bits = frame_count > 1 ? std::bit_width(frame_count - 1) : 1;
   const uint32_t directory_bits = std::clamp<uint32_t>(frame_bits > 4 ? frame_bits - 4 : 1, 1, 24);
   index.directory_shift_ = 32 - directory_bits;
-  index.tables_.resize(table_count);
-  index.directories_.resize(table_count);
-  tbb::task_arena arena(ArenaThreads(threads));
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, table_count, /*grainsize=*/1),
                       [&](const tbb::blocked_range<uint32_t>& range) {
                         for (uint32_t table_idx = range.begin(); table_idx != range.end();
                              ++table_idx) {
-                          std::vector<LshTableEntries*> runs;
-                          for (LshShard& shard : shards) runs.push_back(&shard.tables[table_idx]);
-                          MergeTable(std::move(runs), &index.tables_[table_idx]);
+                          index.MergeRuns(table_idx, run_starts);
                           index.BuildDirectory(table_idx);
                         }
                       });
   });
   return index;
+}
+
+void LshIndex::MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_starts) {
+  const size_t run_count = run_starts.size() - 1;
+  if (run_count <= 1) return;
+  LshTableEntries& in = tables_[table_idx];
+  const size_t total = in.size();
+  LshTableEntries out;
+  out.keys.resize(total);
+  out.sort_values.resize(total);
+  out.frames.resize(total);
+  struct Head {
+    uint32_t key;
+    int16_t sort_value;
+    uint32_t frame;
+    size_t position;
+    size_t run_end;
+  };
+  auto after = [](const Head& a, const Head& b) {
+    if (a.key != b.key) return a.key > b.key;
+    if (a.sort_value != b.sort_value) return a.sort_value > b.sort_value;
+    return a.frame > b.frame;
+  };
+  std::priority_queue<Head, std::vector<Head>, decltype(after)> heads(after);
+  for (size_t run_idx = 0; run_idx < run_count; ++run_idx) {
+    const size_t begin = run_starts[run_idx];
+    const size_t end = run_starts[run_idx + 1];
+    if (begin < end)
+      heads.push({in.keys[begin], in.sort_values[begin], in.frames[begin], begin, end});
+  }
+  size_t written = 0;
+  while (!heads.empty()) {
+    const Head head = heads.top();
+    heads.pop();
+    // Copy the stretch of this run that stays below the next run's head. Frames are unique, so
+    // the output is the one sorted order of the union whatever the runs.
+    size_t position = head.position;
+    while (true) {
+      out.keys[written] = in.keys[position];
+      out.sort_values[written] = in.sort_values[position];
+      out.frames[written] = in.frames[position];
+      ++written;
+      ++position;
+      if (position == head.run_end) break;
+      if (heads.empty()) continue;
+      const Head candidate{in.keys[position], in.sort_values[position], in.frames[position],
+                           position, head.run_end};
+      if (after(candidate, heads.top())) {
+        heads.push(candidate);
+        break;
+      }
+    }
+  }
+  MOTIF_CHECK(written == total);
+  in = std::move(out);  // the unmerged arrays are freed here
 }
 
 void LshIndex::BuildDirectory(uint32_t table_idx) {

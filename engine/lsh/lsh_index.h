@@ -1,13 +1,16 @@
-// LshIndex: the merged hash tables of an archive. Build() hashes the archive in shards (one TBB
-// task per shard of LshOptions::shard_frames frames, inside a task_arena of the requested thread
-// count; LshShardBuilder), then merges the shards table by table in shard order. Every table is
-// sorted by (bucket key, sort value, frame), a total order, so the index is identical, byte for
-// byte, for any thread count and shard size.
+// LshIndex: the merged hash tables of an archive. Build() allocates each table's arrays once,
+// hashes the archive in shards (one TBB task per shard of LshOptions::shard_frames frames,
+// inside a task_arena of the requested thread count; LshShardBuilder), each writing its sorted
+// slice of every table, then merges each table's slices in shard order (tables in parallel).
+// Every table is sorted by (bucket key, sort value, frame), a total order, so the index is
+// identical, byte for byte, for any thread count and shard size.
 //
 // Memory per frame and table: 4 bytes of frame id, 4 of bucket key, 2 of sort value, plus a
 // directory of 4-byte offsets over the top bits of the key (about N / 16 slots per table), i.e.
-// ~10.3 bytes; the default 8 tables take ~83 bytes per frame. A heavy bucket costs nothing extra:
-// each frame is stored once per table whatever its bucket holds.
+// ~10.3 bytes; the default 8 tables take ~83 bytes per frame. While building, a table being
+// merged needs a second copy: the peak is ~83 + 10 x (tables merged at once, one per thread)
+// bytes per frame. A heavy bucket costs nothing extra: each frame is stored once per table
+// whatever its bucket holds.
 // Thread-safety: immutable once built; const methods are safe from many threads.
 #pragma once
 
@@ -24,20 +27,18 @@ namespace motif {
 
 // Sizes of one table's buckets.
 struct LshBucketStats {
-  uint64_t buckets = 0;         // distinct keys
-  uint64_t largest_bucket = 0;  // entries in the fullest bucket
+  uint64_t buckets = 0;                      // distinct keys
+  uint64_t largest_bucket = 0;               // entries in the fullest bucket
   double mean_entries_per_frame_bucket = 0;  // average over frames of the size of their bucket
 };
 
 class LshIndex {
  public:
-  // Hashes all frames of `features` with `family` in shards of `shard_frames` (> 0) frames on
-  // `threads` threads (0: all cores). InvalidArgument for an archive of 2^32 frames or more.
+  // Hashes all frames of `features` with `family` in shards of `shard_frames` frames on
+  // `threads` threads (0: all cores). InvalidArgument for shard_frames 0 or an archive of 2^32
+  // frames or more.
   static Result<LshIndex> Build(const PoseFeatures& features, const HashFamily& family,
                                 uint32_t shard_frames, int threads);
-  // Merges shards (ascending, contiguous frame ranges starting at 0) into one index; each table
-  // is merged independently on `threads` threads. Consumes the shards' tables.
-  static LshIndex Merge(std::vector<LshShard> shards, uint32_t table_count, int threads);
 
   uint32_t table_count() const { return static_cast<uint32_t>(tables_.size()); }
   uint64_t frame_count() const { return frame_count_; }
@@ -62,6 +63,9 @@ class LshIndex {
 
  private:
   void BuildDirectory(uint32_t table_idx);
+  // Merges the sorted runs of table `table_idx` (run r is [run_starts[r], run_starts[r + 1]))
+  // into one sorted table.
+  void MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_starts);
 
   uint64_t frame_count_ = 0;
   uint32_t directory_shift_ = 32;

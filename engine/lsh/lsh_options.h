@@ -50,8 +50,9 @@ struct LshOptions {
   int threads = 0;
 };
 
-// "lsh embedding=qqT tables=8 hashes=16 width=0.0567 ... seed=..." (call it on the options as
-// used, i.e. after ResolveLshOptions, so the text names the width actually used).
+// "lsh embedding=qqT tables=8 hashes=16 width=0.0567 ... seed=...". On options as given (0 =
+// automatic) it identifies a configuration (deterministic for an archive and seed); on
+// LshSearch::options() (resolved) it names the m and w actually used (LshSearch::DescribeParams).
 std::string DescribeLshOptions(const LshOptions& options);
 
 }  // namespace motif

@@ -45,7 +45,10 @@ struct Nearer {
 class VisitedSet {
  public:
   explicit VisitedSet(uint32_t max_entries) {
-    const uint32_t capacity = std::bit_ceil(std::max<uint32_t>(64, 2 * max_entries + 2));
+    // At most half full (max_entries inserts at most): short probe runs, and a table small
+    // enough to stay in L2 (64 KB for the default budget).
+    const uint32_t capacity =
+        std::bit_ceil(std::max<uint32_t>(64, max_entries + max_entries / 2 + 2));
     slots_.assign(capacity, Slot{});
     shift_ = 32 - static_cast<uint32_t>(std::countr_zero(capacity));
     mask_ = capacity - 1;
@@ -124,7 +127,7 @@ class LshSearch::Query {
   std::vector<float> embedding_;
   std::vector<float> projections_;
   std::vector<Probe> probes_;
-  std::vector<Neighbour> best_;  // max-heap by Nearer: the worst kept neighbour on top
+  std::vector<Neighbour> best_;  // accepted candidates: the k_max nearest of them are kept
   QueryDistance distance_;
 };
 
@@ -305,26 +308,35 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
   uint32_t batch[kBatch];
   uint32_t pending[kBatch];
   uint32_t pending_size = 0;
-  auto verify = [&](const uint32_t* candidates, uint32_t batch_size) {
-    for (uint32_t idx = 0; idx < batch_size; ++idx) {
-      const uint32_t frame = candidates[idx];
-      const float distance = distance_.To(frame, bound);
+  uint32_t batch_size = 0;
+  float distances[kBatch];
+  // Keeps the k_max nearest accepted so far and sets the radius to the k_max-th distance. Done
+  // when twice k_max have been accepted (amortised O(1) per candidate, where a heap would pay
+  // O(log k_max) on every improvement), and when a decision needs the exact radius.
+  auto prune = [&] {
+    if (best_.size() < k_max) return;
+    std::nth_element(best_.begin(), best_.begin() + (k_max - 1), best_.end(), Nearer());
+    best_.resize(k_max);
+    bound = std::min(eps, best_[k_max - 1].distance);
+  };
+  auto verify = [&](const uint32_t* candidates, uint32_t count) {
+    distance_.ToBatch(candidates, count, bound, distances);
+    for (uint32_t idx = 0; idx < count; ++idx) {
+      const float distance = distances[idx];
       ++evaluations;
       // A value above the bound may be a partial sum: it only says D > bound. capped_columns
       // counts a column when more than k_max candidates came out at or below eps this way.
       if (distance <= eps) ++within_eps;
       if (distance > bound) continue;  // cannot enter the column (bound <= eps)
-      const Neighbour candidate{frame, distance};
-      if (best_.size() < k_max) {
-        best_.push_back(candidate);
-        std::push_heap(best_.begin(), best_.end(), Nearer());
-      } else if (Nearer()(candidate, best_.front())) {
-        std::pop_heap(best_.begin(), best_.end(), Nearer());
-        best_.back() = candidate;
-        std::push_heap(best_.begin(), best_.end(), Nearer());
-      }
-      if (best_.size() == k_max) bound = std::min(eps, best_.front().distance);
+      best_.push_back({candidates[idx], distance});
+      if (best_.size() >= 2 * k_max) prune();
     }
+  };
+  auto flush = [&] {  // verify the pending batch, and make the gathered one pending
+    verify(pending, pending_size);
+    std::copy(batch, batch + batch_size, pending);
+    pending_size = batch_size;
+    batch_size = 0;
   };
 
   // Breadth first: every probed bucket is scanned outward from the query's sort value in rounds
@@ -332,87 +344,87 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
   // the far ends of the first buckets. Probes are in increasing lower bound; a probe whose bound
   // exceeds the current radius ends the column's probing (nothing left can enter).
   auto scan = [&](size_t first_probe) {
-  cursors_.clear();
-  uint32_t depth = options.first_round_scan;
-  size_t probe_limit = probes_.size();
-  while (!budget_spent) {
-    bool more = false;  // some bucket still has entries within the radius
-    for (size_t probe_idx = first_probe; probe_idx < probe_limit && !budget_spent; ++probe_idx) {
-      const Probe& probe = probes_[probe_idx];
-      if (probe.score > (bound + kBoundSlack) * (bound + kBoundSlack)) {
-        probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
-        bound_stopped = true;
-        break;
-      }
-      if (probe_idx - first_probe == cursors_.size()) {
-        ++local.probes;
-        cursors_.push_back(OpenBucket(probe));
-      }
-      Cursor& cursor = cursors_[probe_idx - first_probe];
-      if (cursor.done) continue;
-      const LshTableEntries& table = index.table(probe.table_idx);
-      const int16_t* sort_values = table.sort_values.data();
-      const uint32_t* frames = table.frames.data();
-      const uint32_t round_limit = std::min(depth, cursor.scan_limit);
-      while (!cursor.done && cursor.examined < round_limit) {
-        // Gather up to kBatch new, allowed candidates, nearest sort value first.
-        uint32_t batch_size = 0;
-        const uint64_t room = options.max_candidates - evaluations - pending_size;
-        const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
-        while (batch_size < batch_limit && cursor.examined < round_limit) {
-          const bool has_up = cursor.up < cursor.end;
-          const bool has_down = !cursor.linear && cursor.down > cursor.begin;
-          if (!has_up && !has_down) {
-            cursor.done = true;
-            break;
-          }
-          // The side whose next sort value is nearer; ties go up (ascending frames within equal
-          // sort values, so exact duplicates come lowest frame first).
-          const int32_t up_gap =
-              has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
-          const int32_t down_gap =
-              has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
-          const bool take_up = up_gap <= down_gap;
-          const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
-          const float limit = bound + kBoundSlack;
-          if (probe.score + gap * gap > limit * limit) {
-            if (!cursor.linear) {  // scanning outward: both sides only get farther
+    cursors_.clear();
+    uint32_t depth = options.first_round_scan;
+    size_t probe_limit = probes_.size();
+    while (!budget_spent) {
+      bool more = false;  // some bucket still has entries within the radius
+      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !budget_spent; ++probe_idx) {
+        const Probe& probe = probes_[probe_idx];
+        if (probe.score > (bound + kBoundSlack) * (bound + kBoundSlack)) {
+          probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
+          bound_stopped = true;
+          break;
+        }
+        if (probe_idx - first_probe == cursors_.size()) {
+          ++local.probes;
+          cursors_.push_back(OpenBucket(probe));
+        }
+        Cursor& cursor = cursors_[probe_idx - first_probe];
+        if (cursor.done) continue;
+        const LshTableEntries& table = index.table(probe.table_idx);
+        const int16_t* sort_values = table.sort_values.data();
+        const uint32_t* frames = table.frames.data();
+        const uint32_t round_limit = std::min(depth, cursor.scan_limit);
+        while (!cursor.done && cursor.examined < round_limit) {
+          // Gather new, allowed candidates, nearest sort value first, into the batch (which
+          // continues across buckets, so the eight-wide verification stays full).
+          const uint64_t room = options.max_candidates - evaluations - pending_size;
+          const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
+          while (batch_size < batch_limit && cursor.examined < round_limit) {
+            const bool has_up = cursor.up < cursor.end;
+            const bool has_down = !cursor.linear && cursor.down > cursor.begin;
+            if (!has_up && !has_down) {
               cursor.done = true;
               break;
             }
-            ++cursor.up;  // stored order: only this entry is out of reach
+            // The side whose next sort value is nearer; ties go up (ascending frames within equal
+            // sort values, so exact duplicates come lowest frame first).
+            const int32_t up_gap =
+                has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
+            const int32_t down_gap =
+                has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
+            const bool take_up = up_gap <= down_gap;
+            const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
+            const float limit = bound + kBoundSlack;
+            if (probe.score + gap * gap > limit * limit) {
+              if (!cursor.linear) {  // scanning outward: both sides only get farther
+                cursor.done = true;
+                break;
+              }
+              ++cursor.up;  // stored order: only this entry is out of reach
+              ++cursor.examined;
+              ++local.entries_examined;
+              continue;
+            }
+            const uint32_t position = take_up ? cursor.up++ : --cursor.down;
             ++cursor.examined;
             ++local.entries_examined;
-            continue;
+            const uint32_t frame = frames[position];
+            const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+            if (frame_gap < rules.exclusion_frames &&
+                rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
+              continue;
+            }
+            if (!visited_.Insert(frame)) continue;
+            distance_.Prefetch(frame);
+            batch[batch_size++] = frame;
           }
-          const uint32_t position = take_up ? cursor.up++ : --cursor.down;
-          ++cursor.examined;
-          ++local.entries_examined;
-          const uint32_t frame = frames[position];
-          const uint64_t frame_gap = frame > column ? frame - column : column - frame;
-          if (frame_gap < rules.exclusion_frames &&
-              rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
-            continue;
+          if (batch_size == batch_limit) flush();
+          if (evaluations + pending_size + batch_size >= options.max_candidates) {
+            budget_spent = true;
+            break;
           }
-          if (!visited_.Insert(frame)) continue;
-          distance_.Prefetch(frame);
-          batch[batch_size++] = frame;
         }
-        verify(pending, pending_size);
-        std::copy(batch, batch + batch_size, pending);
-        pending_size = batch_size;
-        if (evaluations + pending_size >= options.max_candidates) budget_spent = true;
-        if (budget_spent) break;
+        if (!cursor.done && cursor.examined == cursor.scan_limit) {
+          cursor.done = true;
+          if (cursor.scan_limit < cursor.end - cursor.begin) ++local.bucket_scans_capped;
+        }
+        more = more || !cursor.done;
       }
-      if (!cursor.done && cursor.examined == cursor.scan_limit) {
-        cursor.done = true;
-        if (cursor.scan_limit < cursor.end - cursor.begin) ++local.bucket_scans_capped;
-      }
-      more = more || !cursor.done;
+      if (!more || depth >= options.max_bucket_scan) break;
+      depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
     }
-    if (!more || depth >= options.max_bucket_scan) break;
-    depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
-  }
   };
 
   // Sparse columns: when the probes are used up before the budget and the column is not full,
@@ -423,6 +435,9 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
   uint32_t per_table = options.probes_per_table;
   for (uint32_t stage = 0; stage < options.extension_stages; ++stage) {
     if (budget_spent || bound_stopped) break;
+    flush();
+    flush();  // everything gathered is verified: the radius is up to date
+    prune();
     if (best_.size() == k_max && bound <= search_.extension_radius_) break;
     const size_t first_new = probes_.size();
     AddProbes(per_table * 4, per_table);
@@ -430,7 +445,8 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
     ++local.extensions;
     scan(first_new);
   }
-  verify(pending, pending_size);
+  flush();
+  flush();
   if (budget_spent) ++local.columns_budget_capped;
   if (bound_stopped) ++local.columns_bound_stopped;
 
@@ -490,8 +506,8 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& feature
   if (options.shard_frames == 0) return invalid("shard_frames must be > 0");
   if (!(options.sparse_radius_factor > 0)) return invalid("sparse_radius_factor must be > 0");
   const SearchScale scale = EstimateSearchScale(features, rules, options);
-  LshOptions used = ResolveLshOptions(options, features.frame_count(),
-                                      features.weighted_joint_count(), scale);
+  LshOptions used =
+      ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(), scale);
   HashFamily family = HashFamily::Draw(features.weights(), used.tables, used.hashes_per_table,
                                        used.bucket_width, used.seed);
   MOTIF_ASSIGN_OR_RETURN(LshIndex index,
@@ -519,8 +535,8 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
   if (columns->size() < count) columns->resize(count);
   // Integer counters: their sums do not depend on how the columns were split among threads.
   std::atomic<uint64_t> column_total{0}, evaluations{0}, neighbours{0}, capped{0};
-  std::atomic<uint64_t> probes{0}, examined{0}, scans_capped{0}, budget_capped{0},
-      bound_stopped{0}, extensions{0};
+  std::atomic<uint64_t> probes{0}, examined{0}, scans_capped{0}, budget_capped{0}, bound_stopped{0},
+      extensions{0};
   constexpr uint64_t kGrain = 64;
   tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
   arena.execute([&] {

@@ -40,9 +40,9 @@ namespace motif {
 
 // LSH-specific work counters, summed over columns.
 struct LshQueryStats {
-  uint64_t probes = 0;                // buckets looked up
-  uint64_t entries_examined = 0;      // bucket entries read (including repeats and excluded)
-  uint64_t bucket_scans_capped = 0;   // buckets left early by max_bucket_scan
+  uint64_t probes = 0;                 // buckets looked up
+  uint64_t entries_examined = 0;       // bucket entries read (including repeats and excluded)
+  uint64_t bucket_scans_capped = 0;    // buckets left early by max_bucket_scan
   uint64_t columns_budget_capped = 0;  // columns stopped by max_candidates
   uint64_t columns_bound_stopped = 0;  // columns stopped because nothing left could enter
   uint64_t extensions = 0;             // extra probing stages of sparse columns
@@ -67,8 +67,7 @@ class LshSearch final : public NeighbourSearch {
   // embedding's dimension), a zero probe count, budget, scan depth or shard size, a negative
   // width, 2^32 frames or more. Errors of the index build pass through.
   static Result<std::unique_ptr<LshSearch>> Create(const PoseFeatures& features,
-                                                   NeighbourRules rules,
-                                                   const LshOptions& options);
+                                                   NeighbourRules rules, const LshOptions& options);
 
   Status SearchColumns(uint64_t first_column, uint64_t count,
                        std::vector<std::vector<Neighbour>>* columns,

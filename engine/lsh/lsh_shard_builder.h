@@ -1,8 +1,11 @@
 // LshShardBuilder: hashes one shard of the archive (a contiguous frame range) into every table
 // of a HashFamily. A shard is the unit of parallel work of the index build (LshIndex::Build runs
-// one TBB task per shard); its tables are sorted by (bucket key, sort value, frame), a total
-// order, so merging the shards in shard order gives the same index for any thread count.
-// Thread-safety: Build is const; several shards may be built at once from one builder.
+// one TBB task per shard). Each shard writes only its own slice of the index's table arrays
+// (the slice at its frame range), sorted by (bucket key, sort value, frame), a total order; the
+// index then merges the sorted slices of each table in shard order, so the merged index is the
+// same for any thread count and shard size.
+// Thread-safety: Build is const; several shards may be built at once from one builder, each into
+// its own slices.
 #pragma once
 
 #include <cstdint>
@@ -13,25 +16,20 @@
 
 namespace motif {
 
-// One table's entries of a shard, or of the merged index: parallel arrays, sorted by
-// (keys[i], sort_values[i], frames[i]).
+// One table's entries: parallel arrays sorted by (keys[i], sort_values[i], frames[i]).
 struct LshTableEntries {
   std::vector<uint32_t> keys;
   std::vector<int16_t> sort_values;
   std::vector<uint32_t> frames;
 
   size_t size() const { return frames.size(); }
-  void Clear() {
-    keys = {};
-    sort_values = {};
-    frames = {};
-  }
 };
 
-struct LshShard {
-  uint64_t first_frame = 0;
-  uint64_t frame_count = 0;
-  std::vector<LshTableEntries> tables;  // one per hash table
+// Where a shard writes one table's entries: frame_count slots of each array.
+struct LshShardSlice {
+  uint32_t* keys = nullptr;
+  int16_t* sort_values = nullptr;
+  uint32_t* frames = nullptr;
 };
 
 class LshShardBuilder {
@@ -41,8 +39,10 @@ class LshShardBuilder {
       : features_(features), family_(family) {}
 
   // Hashes frames [first_frame, first_frame + frame_count) (within the archive; frame indices
-  // must fit in 32 bits) and sorts each table.
-  LshShard Build(uint64_t first_frame, uint64_t frame_count) const;
+  // must fit in 32 bits) and writes each table's entries, sorted, to slices[table_idx], which
+  // has one slice per table of frame_count slots.
+  void Build(uint64_t first_frame, uint64_t frame_count,
+             const std::vector<LshShardSlice>& slices) const;
 
  private:
   const PoseFeatures& features_;

@@ -23,15 +23,16 @@ std::vector<uint64_t> Subsample(uint64_t frame_count, SplitMix64* random) {
   std::vector<uint64_t> frames;
   if (frame_count <= kSubsampleFrames) {
     frames.resize(frame_count);
-    for (uint64_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) frames[frame_idx] = frame_idx;
+    for (uint64_t frame_idx = 0; frame_idx < frame_count; ++frame_idx)
+      frames[frame_idx] = frame_idx;
     return frames;
   }
   const double step = static_cast<double>(frame_count) / kSubsampleFrames;
   const double start = random->Uniform() * step;
   frames.resize(kSubsampleFrames);
   for (uint64_t idx = 0; idx < kSubsampleFrames; ++idx) {
-    frames[idx] = std::min<uint64_t>(frame_count - 1,
-                                     static_cast<uint64_t>(start + step * static_cast<double>(idx)));
+    frames[idx] = std::min<uint64_t>(
+        frame_count - 1, static_cast<uint64_t>(start + step * static_cast<double>(idx)));
   }
   return frames;
 }
@@ -65,43 +66,46 @@ SearchScale EstimateSearchScale(const PoseFeatures& features, const NeighbourRul
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, queries.size(), 1),
                       [&](const tbb::blocked_range<size_t>& range) {
-      QueryDistance distance(features);
-      std::vector<std::pair<float, uint64_t>> near;
-      std::vector<float> query_e(dims);
-      std::vector<float> frame_e(dims);
-      for (size_t query_idx = range.begin(); query_idx != range.end(); ++query_idx) {
-        const uint64_t query = queries[query_idx];
-        const uint32_t query_clip = features.ClipOf(query);
-        distance.SetQuery(query);
-        near.clear();
-        for (uint64_t frame : subsample) {
-          if (rules.Excluded(query, frame, query_clip, features.ClipOf(frame))) continue;
-          const float value = distance.To(frame, rules.eps);
-          if (value <= rules.eps) near.push_back({value, frame});
-        }
-        size_t kept = near.size();
-        if (near.size() >= rank) {
-          std::nth_element(near.begin(), near.begin() + (rank - 1), near.end());
-          radii[query_idx] = std::min(rules.eps, near[rank - 1].first);
-          kept = rank;
-        }
-        embedding.Embed(features.frame(query), query_e.data());
-        for (size_t idx = 0; idx < kept; ++idx) {
-          embedding.Embed(features.frame(near[idx].second), frame_e.data());
-          double squared = 0;
-          for (uint32_t dim = 0; dim < dims; ++dim) {
-            const double diff = frame_e[dim] - query_e[dim];
-            squared += diff * diff;
-          }
-          pair_l2[query_idx].push_back(static_cast<float>(std::sqrt(squared)));
-        }
-      }
-    });
+                        QueryDistance distance(features);
+                        std::vector<std::pair<float, uint64_t>> near;
+                        std::vector<float> query_e(dims);
+                        std::vector<float> frame_e(dims);
+                        for (size_t query_idx = range.begin(); query_idx != range.end();
+                             ++query_idx) {
+                          const uint64_t query = queries[query_idx];
+                          const uint32_t query_clip = features.ClipOf(query);
+                          distance.SetQuery(query);
+                          near.clear();
+                          for (uint64_t frame : subsample) {
+                            if (rules.Excluded(query, frame, query_clip, features.ClipOf(frame)))
+                              continue;
+                            const float value = distance.To(frame, rules.eps);
+                            if (value <= rules.eps) near.push_back({value, frame});
+                          }
+                          size_t kept = near.size();
+                          if (near.size() >= rank) {
+                            std::nth_element(near.begin(), near.begin() + (rank - 1), near.end());
+                            radii[query_idx] = std::min(rules.eps, near[rank - 1].first);
+                            kept = rank;
+                          }
+                          embedding.Embed(features.frame(query), query_e.data());
+                          for (size_t idx = 0; idx < kept; ++idx) {
+                            embedding.Embed(features.frame(near[idx].second), frame_e.data());
+                            double squared = 0;
+                            for (uint32_t dim = 0; dim < dims; ++dim) {
+                              const double diff = frame_e[dim] - query_e[dim];
+                              squared += diff * diff;
+                            }
+                            pair_l2[query_idx].push_back(static_cast<float>(std::sqrt(squared)));
+                          }
+                        }
+                      });
   });
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
   scale.radius = std::max(radii[radii.size() / 2], 1e-4f);
   std::vector<float> pooled;
-  for (const std::vector<float>& values : pair_l2) pooled.insert(pooled.end(), values.begin(), values.end());
+  for (const std::vector<float>& values : pair_l2)
+    pooled.insert(pooled.end(), values.begin(), values.end());
   scale.neighbour_pairs = pooled.size();
   if (pooled.empty()) {
     scale.neighbour_l2 = scale.neighbour_l2_p90 = scale.radius / 2;
@@ -129,18 +133,16 @@ LshOptions ResolveLshOptions(const LshOptions& options, uint64_t frame_count,
   }
   if (resolved.bucket_width == 0) {
     resolved.bucket_width = resolved.width_per_hash *
-                            static_cast<float>(resolved.hashes_per_table) *
-                            scale.neighbour_l2_p90;
+                            static_cast<float>(resolved.hashes_per_table) * scale.neighbour_l2_p90;
   }
   return resolved;
 }
 
 LshOptions ResolveLshOptions(const PoseFeatures& features, const NeighbourRules& rules,
                              const LshOptions& options) {
-  const SearchScale scale = options.bucket_width == 0 ? EstimateSearchScale(features, rules, options)
-                                                      : SearchScale();
-  return ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(),
-                           scale);
+  const SearchScale scale =
+      options.bucket_width == 0 ? EstimateSearchScale(features, rules, options) : SearchScale();
+  return ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(), scale);
 }
 
 }  // namespace motif

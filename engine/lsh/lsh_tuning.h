@@ -21,8 +21,8 @@
 namespace motif {
 
 struct SearchScale {
-  float radius = 0;        // D units: median over sampled frames of min(eps, k_max-th distance)
-  float neighbour_l2 = 0;  // embedding units: median |e_i - e_j| of the sampled neighbour pairs
+  float radius = 0;            // D units: median over sampled frames of min(eps, k_max-th distance)
+  float neighbour_l2 = 0;      // embedding units: median |e_i - e_j| of the sampled neighbour pairs
   float neighbour_l2_p90 = 0;  // ... and its 90th percentile
   uint64_t neighbour_pairs = 0;  // how many pairs that median is over
 };

@@ -7,18 +7,38 @@
 #include <emmintrin.h>
 #endif
 
+#if defined(MOTIF_LSH_AVX2)
+#include "engine/lsh/query_distance_avx2.h"
+#endif
+
 namespace motif {
 
 QueryDistance::QueryDistance(const PoseFeatures& features)
     : features_(features),
       joint_count_(features.weighted_joint_count()),
       group_count_(features.weighted_joint_count() / 4),
-      query_lanes_(static_cast<size_t>(features.weighted_joint_count() / 4) * 24 + 4) {}
+      query_lanes_(static_cast<size_t>(features.weighted_joint_count() / 4) * 24 + 4),
+      query_joints_(static_cast<size_t>(features.weighted_joint_count()) * 6) {
+#if defined(MOTIF_LSH_AVX2)
+  batch_avx2_ = __builtin_cpu_supports("avx2");
+#endif
+}
 
 void QueryDistance::SetQuery(uint64_t query_frame) {
   query_ = query_frame;
   const int16_t* query = features_.frame(query_frame);
   const float inverse = 1.0f / PoseFeatures::kQuantScale;
+  for (uint32_t joint_idx = 0; joint_idx < joint_count_; ++joint_idx) {
+    float* joint = &query_joints_[6 * joint_idx];
+    float norm = 0;
+    for (int component = 0; component < 4; ++component) {
+      const float value = query[4 * joint_idx + component] * inverse;
+      joint[component] = value;
+      norm += value * value;  // the same sum, in the same order, as PoseDistance
+    }
+    joint[4] = norm;
+    joint[5] = features_.weights()[joint_idx];
+  }
   for (uint32_t group_idx = 0; group_idx < group_count_; ++group_idx) {
     float* lanes = &query_lanes_[group_idx * 24];
     for (uint32_t lane = 0; lane < 4; ++lane) {
@@ -50,10 +70,14 @@ float QueryDistance::To(uint64_t frame, float limit) const {
     // 16 int16: joints j..j+3, each (w, x, y, z). Sign-extend to int32, convert, scale.
     const __m128i low = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 4 * joint_idx));
     const __m128i high = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 4 * joint_idx + 8));
-    __m128 joint0 = _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpacklo_epi16(low, low), 16)), scale);
-    __m128 joint1 = _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpackhi_epi16(low, low), 16)), scale);
-    __m128 joint2 = _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpacklo_epi16(high, high), 16)), scale);
-    __m128 joint3 = _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpackhi_epi16(high, high), 16)), scale);
+    __m128 joint0 =
+        _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpacklo_epi16(low, low), 16)), scale);
+    __m128 joint1 =
+        _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpackhi_epi16(low, low), 16)), scale);
+    __m128 joint2 =
+        _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpacklo_epi16(high, high), 16)), scale);
+    __m128 joint3 =
+        _mm_mul_ps(_mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpackhi_epi16(high, high), 16)), scale);
     _MM_TRANSPOSE4_PS(joint0, joint1, joint2, joint3);  // now component-major: w, x, y, z lanes
     const float* lanes = &query_lanes_[group_idx * 24];
     const __m128 qw = _mm_loadu_ps(lanes);
@@ -99,6 +123,26 @@ float QueryDistance::To(uint64_t frame, float limit) const {
              std::sqrt(std::max(0.0f, norm_a + norm_b - 2.0f * std::abs(dot)));
   }
   return total;
+}
+
+void QueryDistance::ToBatch(const uint32_t* frames, uint32_t count, float limit, float* out) const {
+  uint32_t done = 0;
+#if defined(MOTIF_LSH_AVX2)
+  if (batch_avx2_) {
+    const int16_t* candidates[8];
+    lsh_internal::BatchArgs args;
+    args.candidates = candidates;
+    args.joint_count = joint_count_;
+    args.query = query_joints_.data();
+    args.limit = limit;
+    for (; done + 8 <= count; done += 8) {
+      for (int idx = 0; idx < 8; ++idx) candidates[idx] = features_.frame(frames[done + idx]);
+      args.out = out + done;
+      lsh_internal::DistanceBatch8Avx2(args);
+    }
+  }
+#endif
+  for (; done < count; ++done) out[done] = To(frames[done], limit);
 }
 
 }  // namespace motif

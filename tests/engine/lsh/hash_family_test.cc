@@ -18,7 +18,8 @@ namespace {
 constexpr uint32_t kJoints = 12;
 
 // Random unit quaternions for `frames` frames of kJoints joints, all weighted (weights 0.5..1.5).
-PoseFeatures RandomFeatures(uint64_t frames, uint64_t seed, std::vector<float>* rows_out = nullptr) {
+PoseFeatures RandomFeatures(uint64_t frames, uint64_t seed,
+                            std::vector<float>* rows_out = nullptr) {
   SplitMix64 random(seed);
   const FrameLayout layout{kJoints};
   std::vector<float> rows(frames * layout.stride(), 0.0f);
@@ -51,7 +52,7 @@ std::vector<float> Embedding(const HashFamily& family, const PoseFeatures& featu
   return embedding;
 }
 
-TEST(HashFamily, EmbeddingIgnoresQuaternionSigns) {
+TEST(LshHashFamily, EmbeddingIgnoresQuaternionSigns) {
   std::vector<float> rows;
   const PoseFeatures features = RandomFeatures(8, 1, &rows);
   std::vector<float> flipped = rows;
@@ -68,7 +69,7 @@ TEST(HashFamily, EmbeddingIgnoresQuaternionSigns) {
   EXPECT_EQ(Embedding(family, features, 3), Embedding(family, flipped_features, 3));
 }
 
-TEST(HashFamily, EmbeddingDistanceBracketsPoseDistance) {
+TEST(LshHashFamily, EmbeddingDistanceBracketsPoseDistance) {
   const PoseFeatures features = RandomFeatures(200, 2);
   const HashFamily family = HashFamily::Draw(features.weights(), 1, 4, 0.1f, 5);
   double max_weight_sum = 0;
@@ -78,7 +79,8 @@ TEST(HashFamily, EmbeddingDistanceBracketsPoseDistance) {
       const std::vector<float> ea = Embedding(family, features, a);
       const std::vector<float> eb = Embedding(family, features, b);
       double squared = 0;
-      for (size_t dim = 0; dim < ea.size(); ++dim) squared += (ea[dim] - eb[dim]) * (ea[dim] - eb[dim]);
+      for (size_t dim = 0; dim < ea.size(); ++dim)
+        squared += (ea[dim] - eb[dim]) * (ea[dim] - eb[dim]);
       const double l2 = std::sqrt(squared);
       const double pose = PoseDistance(features, a, b);
       // |e_a - e_b| <= D <= sqrt(2) * sum_k |De_k| <= sqrt(2 J) |e_a - e_b| (quantisation slack)
@@ -88,7 +90,7 @@ TEST(HashFamily, EmbeddingDistanceBracketsPoseDistance) {
   }
 }
 
-TEST(HashFamily, ProjectionsOfATableAreOrthonormal) {
+TEST(LshHashFamily, ProjectionsOfATableAreOrthonormal) {
   const PoseFeatures features = RandomFeatures(2, 3);
   const float width = 0.25f;
   const uint32_t hashes = 10;
@@ -117,7 +119,8 @@ TEST(HashFamily, ProjectionsOfATableAreOrthonormal) {
         const double scale_b = b < hashes ? width : 1.0;
         double dot = 0;
         for (uint32_t dim = 0; dim < dims; ++dim) {
-          dot += matrix[table_idx * (hashes + 1) + a][dim] * matrix[table_idx * (hashes + 1) + b][dim];
+          dot +=
+              matrix[table_idx * (hashes + 1) + a][dim] * matrix[table_idx * (hashes + 1) + b][dim];
         }
         EXPECT_NEAR(dot * scale_a * scale_b, a == b ? 1.0 : 0.0, 1e-4)
             << "table " << table_idx << " rows " << a << ", " << b;
@@ -126,7 +129,7 @@ TEST(HashFamily, ProjectionsOfATableAreOrthonormal) {
   }
 }
 
-TEST(HashFamily, SameSeedSameFunctionsOtherSeedOthers) {
+TEST(LshHashFamily, SameSeedSameFunctionsOtherSeedOthers) {
   const PoseFeatures features = RandomFeatures(4, 4);
   const HashFamily first = HashFamily::Draw(features.weights(), 4, 12, 0.1f, 77);
   const HashFamily again = HashFamily::Draw(features.weights(), 4, 12, 0.1f, 77);
@@ -145,7 +148,7 @@ TEST(HashFamily, SameSeedSameFunctionsOtherSeedOthers) {
   EXPECT_TRUE(std::equal(d.begin(), d.end(), a.begin()));
 }
 
-TEST(HashFamily, BucketKeyDependsOnEveryCell) {
+TEST(LshHashFamily, BucketKeyDependsOnEveryCell) {
   int32_t cells[6] = {0, 1, -1, 5, 7, -3};
   const uint32_t key = HashFamily::BucketKey(cells, 6);
   for (int idx = 0; idx < 6; ++idx) {
@@ -156,7 +159,7 @@ TEST(HashFamily, BucketKeyDependsOnEveryCell) {
   }
 }
 
-TEST(QueryDistance, BitIdenticalToPoseDistance) {
+TEST(LshQueryDistance, BitIdenticalToPoseDistance) {
   for (uint32_t joints : {12u, 13u, 3u}) {
     SplitMix64 random(joints);
     const uint64_t frames = 300;
@@ -179,8 +182,7 @@ TEST(QueryDistance, BitIdenticalToPoseDistance) {
     for (uint32_t joint_idx = 0; joint_idx < joints; ++joint_idx) {
       weights[joint_idx] = 0.25f + 0.5f * static_cast<float>(random.Uniform());
     }
-    const PoseFeatures features =
-        PoseFeatures::FromRows(rows.data(), frames, joints, weights, {0});
+    const PoseFeatures features = PoseFeatures::FromRows(rows.data(), frames, joints, weights, {0});
     QueryDistance distance(features);
     for (uint64_t query = 0; query < frames; query += 5) {
       distance.SetQuery(query);
@@ -198,6 +200,33 @@ TEST(QueryDistance, BitIdenticalToPoseDistance) {
         ASSERT_EQ(std::memcmp(&generous, &exact, sizeof(float)), 0);
       }
     }
+    // The batch path (eight frames per AVX2 instruction where the CPU has it), any count.
+    std::vector<uint32_t> frames_list;
+    for (uint32_t frame = 0; frame < frames; frame += 3) frames_list.push_back(frame);
+    for (uint64_t query : {0u, 3u, 101u}) {
+      distance.SetQuery(query);
+      for (uint32_t count : {1u, 7u, 8u, 9u, 16u, 23u, 100u}) {
+        std::vector<float> out(count);
+        distance.ToBatch(frames_list.data(), count, INFINITY, out.data());
+        for (uint32_t idx = 0; idx < count; ++idx) {
+          const float exact = PoseDistance(features, query, frames_list[idx]);
+          ASSERT_EQ(std::memcmp(&out[idx], &exact, sizeof(float)), 0)
+              << joints << " joints, batch of " << count << ", " << query << " to "
+              << frames_list[idx] << ": " << out[idx] << " vs " << exact;
+        }
+        // With a limit: exact at or below it, above it otherwise.
+        distance.ToBatch(frames_list.data(), count, 1.0f, out.data());
+        for (uint32_t idx = 0; idx < count; ++idx) {
+          const float exact = PoseDistance(features, query, frames_list[idx]);
+          if (exact <= 1.0f) {
+            ASSERT_EQ(std::memcmp(&out[idx], &exact, sizeof(float)), 0);
+          } else {
+            ASSERT_GT(out[idx], 1.0f);
+          }
+        }
+      }
+    }
+    RecordProperty("batch_avx2", distance.batch_avx2() ? "yes" : "no");
     distance.SetQuery(3);
     EXPECT_EQ(distance.To(7), 0.0f);
     EXPECT_EQ(distance.To(8), 0.0f);

@@ -1,4 +1,13 @@
-// Temporary experiment driver (not a test): recall / cost of LSH parameters.
+// lsh_experiment: the study tool behind docs/design/lsh.md (not a test; built beside lsh_test).
+// key=value arguments:
+//   data=real|synth|synthbig|reseq frames=N seed=S queries=Q k_max=K eps=E
+//   LSH options: tables= hashes= width= width_per_hash= probes= max_candidates= max_bucket_scan=
+//                first_round= stages= sparse= threads= range=(columns timed in one block)
+//   modes: oracle (how well L2 / l1,2 embedding distances rank the exact neighbours),
+//          contrast (D_2k/D_k, D_4k/D_k, D_16k/D_k), simulate bits=B (offline ranking of all
+//          probed entries by their projected distance), diagnose [count] (misses in probed
+//          buckets), worst (columns under 0.5 recall), exact_speed exact_columns=C.
+// Ground truth (the direct loop with PoseDistance) is cached in /tmp/lshgt_*.bin.
 #include <tbb/parallel_for.h>
 
 #include <chrono>
@@ -6,8 +15,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <malloc.h>
 #include <ctime>
-#include <sys/mman.h>
 #include <set>
 #include <array>
 #include <cmath>
@@ -16,6 +25,7 @@
 #include "engine/distance/exact_search.h"
 #include "engine/lsh/lsh_search.h"
 #include "tests/engine/lsh/lsh_test_util.h"
+#include "tests/testing/mocap_data.h"
 
 using namespace motif;
 using namespace motif::testing;
@@ -36,14 +46,32 @@ int main(int argc, char** argv) {
   auto t0 = std::chrono::steady_clock::now();
   PoseFeatures features;
   if (data == "real") {
-    auto loaded = RealTakeFeatures("/work/shared/data/mocap/bvh");
+    auto loaded = RealTakeFeatures(MocapDir() + "/bvh");
     if (!loaded.ok()) {
       std::printf("%s\n", loaded.status().ToString().c_str());
       return 1;
     }
     features = std::move(*loaded);
+  } else if (data == "synthbig") {
+    SynthOptions so;
+    so.frames = frames;
+    so.seed = static_cast<uint64_t>(get("seed", 7));
+    auto synthesizer = MotionSynthesizer::Create(so);
+    const Skeleton& skeleton = (*synthesizer)->skeleton();
+    const FrameLayout layout{static_cast<uint32_t>(skeleton.joint_count())};
+    std::vector<float> rows;
+    rows.reserve(frames * layout.stride());
+    std::vector<uint64_t> starts;
+    (void)(*synthesizer)->Run([&](const ClipFrames& clip) {
+      starts.push_back(rows.size() / layout.stride());
+      rows.insert(rows.end(), clip.rows.begin(), clip.rows.end());
+      return Status::Ok();
+    });
+    features = PoseFeatures::FromRows(rows.data(), rows.size() / layout.stride(), layout.joint_count,
+                                      DefaultWeights(skeleton), starts);
+    rows = std::vector<float>();
   } else if (data == "reseq") {
-    auto sources = DiscoverTakes({"/work/shared/data/mocap/bvh"}, ImportOptions());
+    auto sources = DiscoverTakes({MocapDir() + "/bvh"}, ImportOptions());
     std::vector<Take> takes;
     for (const TakeSource& source : *sources) {
       Take take = *ImportTake(source, ImportOptions());
@@ -60,14 +88,6 @@ int main(int argc, char** argv) {
     features = FeaturesFromClips((*synthesizer)->skeleton(), clips);
   } else {
     features = SyntheticFeatures(frames, static_cast<uint64_t>(get("seed", 7)));
-  }
-  if (args.count("huge")) {
-    const char* begin = reinterpret_cast<const char*>(features.frame(0));
-    uintptr_t start = (reinterpret_cast<uintptr_t>(begin) + 4095) & ~uintptr_t{4095};
-    size_t length = features.memory_bytes() - (start - reinterpret_cast<uintptr_t>(begin));
-    // copy into a hugepage-advised region is not possible (private vector), so advise in place
-    int rc = madvise(reinterpret_cast<void*>(start), length & ~size_t{4095}, MADV_HUGEPAGE);
-    std::printf("madvise rc=%d\n", rc);
   }
   auto t1 = std::chrono::steady_clock::now();
   NeighbourRules rules = RulesWithEstimatedEps(features, static_cast<uint32_t>(get("k_max", 256)));
@@ -225,6 +245,29 @@ int main(int argc, char** argv) {
   options.first_round_scan = static_cast<uint32_t>(get("first_round", options.first_round_scan));
   options.extension_stages = static_cast<uint32_t>(get("stages", options.extension_stages));
   options.sparse_radius_factor = static_cast<float>(get("sparse", options.sparse_radius_factor));
+  auto rss = [] {
+    malloc_trim(0);
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    double kb = 0;
+    while (status >> key) {
+      if (key == "VmRSS:") { status >> kb; break; }
+      std::getline(status, key);
+    }
+    return kb * 1024;
+  };
+  auto peak = [] {
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    double kb = 0;
+    while (status >> key) {
+      if (key == "VmHWM:") { status >> kb; break; }
+      std::getline(status, key);
+    }
+    return kb * 1024;
+  };
+  const double rss_before = rss();
+  { std::ofstream clear("/proc/self/clear_refs"); clear << "5"; }
   auto tr = std::chrono::steady_clock::now();
   SearchScale scale = EstimateSearchScale(features, rules, options); float radius = scale.radius;
   auto tb = std::chrono::steady_clock::now();
@@ -234,6 +277,9 @@ int main(int argc, char** argv) {
     std::printf("%s\n", search.status().ToString().c_str());
     return 1;
   }
+  std::printf("memory: features %.1f B/frame; rss before create %.1f B/frame; peak growth during create %.1f B/frame\n",
+              (double)features.memory_bytes() / features.frame_count(), rss_before / features.frame_count(),
+              (peak() - rss_before) / features.frame_count());
   std::printf("neighbour_l2 median %.4f p90 %.4f pairs %llu\n", scale.neighbour_l2, scale.neighbour_l2_p90, (unsigned long long)scale.neighbour_pairs);
   std::printf("%s\nradius=%.4f (%.2fs) build=%.2fs index=%.1f B/frame\n",
               (*search)->DescribeParams().c_str(), radius,
@@ -426,6 +472,7 @@ int main(int argc, char** argv) {
   Status s = (*search)->SearchColumns(block_first, range, &block, &bstats2);
   double tblock = std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
   const double cblock = cpu() - c0;
+  std::printf("peak growth after block %.1f B/frame\n", (peak() - rss_before) / features.frame_count());
   std::printf("block of %llu columns: %.2fs = %.1f us/column wall, %.1f us/column cpu, evals/col=%.0f\n",
               (unsigned long long)range, tblock, 1e6 * tblock / range, 1e6 * cblock / range,
               (double)bstats2.distance_evaluations / range);

@@ -53,9 +53,10 @@ TEST_F(LshIndexTest, EveryFrameOncePerTableInSortedOrder) {
       ASSERT_EQ(frames[frame_idx], frame_idx) << "table " << table_idx;
     }
     for (size_t idx = 1; idx < table.size(); ++idx) {
-      const auto before = std::make_tuple(table.keys[idx - 1], table.sort_values[idx - 1],
-                                          table.frames[idx - 1]);
-      const auto after = std::make_tuple(table.keys[idx], table.sort_values[idx], table.frames[idx]);
+      const auto before =
+          std::make_tuple(table.keys[idx - 1], table.sort_values[idx - 1], table.frames[idx - 1]);
+      const auto after =
+          std::make_tuple(table.keys[idx], table.sort_values[idx], table.frames[idx]);
       ASSERT_LT(before, after) << "table " << table_idx << " entry " << idx;
     }
   }
@@ -119,8 +120,8 @@ TEST_F(LshIndexTest, MemoryIsAboutTenBytesPerFramePerTable) {
   const HashFamily family = Family();
   auto index = LshIndex::Build(*features_, family, 1 << 16, 2);
   ASSERT_TRUE(index.ok());
-  const double per_frame_per_table = static_cast<double>(index->memory_bytes()) /
-                                     features_->frame_count() / index->table_count();
+  const double per_frame_per_table =
+      static_cast<double>(index->memory_bytes()) / features_->frame_count() / index->table_count();
   EXPECT_GE(per_frame_per_table, 10.0);
   EXPECT_LT(per_frame_per_table, 10.6);
 }

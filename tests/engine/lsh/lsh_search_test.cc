@@ -97,7 +97,8 @@ TEST_F(LshSearchTest, RecallOnSyntheticArchive) {
   EXPECT_GE(measured.recall.column_mean, 0.95);
   EXPECT_GT(measured.exact_neighbours_per_column, 50) << "eps too small for a meaningful test";
   // Sub-quadratic: far fewer distance evaluations than frames per column.
-  EXPECT_LT(measured.stats.distance_evaluations, measured.stats.columns * features_->frame_count() / 5);
+  EXPECT_LT(measured.stats.distance_evaluations,
+            measured.stats.columns * features_->frame_count() / 5);
 }
 
 TEST(LshSearchRealTakes, RecallOnRealCmuTakes) {
@@ -212,7 +213,7 @@ TEST_F(LshSearchTest, SameColumnsForOneAndTwoThreads) {
 // static frames' columns must still be exact (distance 0, lowest frames first), and the other
 // columns must not slow down.
 TEST(LshSearchHeavyBucket, StaticPoseRepeatedThousandsOfTimes) {
-  const uint64_t motion_frames = 20000;
+  const uint64_t motion_frames = 12000;
   const uint64_t static_frames = 6000;
   SynthOptions options;
   options.frames = motion_frames;
@@ -297,14 +298,16 @@ TEST(LshSearchHeavyBucket, StaticPoseRepeatedThousandsOfTimes) {
   SearchStats all_stats;
   LshQueryStats all_lsh;
   const auto start = std::chrono::steady_clock::now();
-  ASSERT_TRUE(search->SearchColumns(0, features.frame_count(), &columns, &all_stats, &all_lsh).ok());
+  ASSERT_TRUE(
+      search->SearchColumns(0, features.frame_count(), &columns, &all_stats, &all_lsh).ok());
   const double heavy_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (const std::vector<Neighbour>& column : columns) ASSERT_LE(column.size(), rules.k_max);
   SearchStats plain_stats;
   std::vector<std::vector<Neighbour>> plain_columns;
   const auto plain_start = std::chrono::steady_clock::now();
-  ASSERT_TRUE(plain_search->SearchColumns(0, plain.frame_count(), &plain_columns, &plain_stats).ok());
+  ASSERT_TRUE(
+      plain_search->SearchColumns(0, plain.frame_count(), &plain_columns, &plain_stats).ok());
   const double plain_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - plain_start).count();
   const double heavy_per_column =
@@ -346,9 +349,8 @@ TEST_F(LshSearchTest, QuaternionSignFlipGivesTheSameColumns) {
       }
     }
   }
-  const PoseFeatures original = PoseFeatures::FromRows(rows.data(), frames, joints,
-                                                       features_->weights(),
-                                                       features_->clip_first_frames());
+  const PoseFeatures original = PoseFeatures::FromRows(
+      rows.data(), frames, joints, features_->weights(), features_->clip_first_frames());
   const PoseFeatures sign_flipped = PoseFeatures::FromRows(
       flipped.data(), frames, joints, features_->weights(), features_->clip_first_frames());
   NeighbourRules rules = *rules_;
@@ -406,7 +408,8 @@ TEST_F(LshSearchTest, ChoosesParametersFromTheData) {
   const LshOptions resolved = ResolveLshOptions(*features_, *rules_, LshOptions());
   EXPECT_EQ(resolved.hashes_per_table, DefaultHashesPerTable(features_->frame_count()));
   EXPECT_GT(resolved.bucket_width, 0.0f);
-  EXPECT_EQ(ResolveLshOptions(*features_, *rules_, LshOptions()).bucket_width, resolved.bucket_width);
+  EXPECT_EQ(ResolveLshOptions(*features_, *rules_, LshOptions()).bucket_width,
+            resolved.bucket_width);
   const SearchScale scale = EstimateSearchScale(*features_, *rules_, LshOptions());
   EXPECT_GT(scale.neighbour_pairs, 1000u);
   EXPECT_LE(scale.radius, rules_->eps);

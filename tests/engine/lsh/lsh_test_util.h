@@ -68,7 +68,8 @@ inline PoseFeatures SyntheticFeatures(uint64_t frames, uint64_t seed = 7) {
 // Every BVH take under `bvh_dir`, imported as the importer does (canonical skeleton, default
 // weights), conformed to the first take's skeleton and at its rate, one clip per take.
 inline Result<PoseFeatures> RealTakeFeatures(const std::string& bvh_dir) {
-  MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources, DiscoverTakes({bvh_dir}, ImportOptions()));
+  MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources,
+                         DiscoverTakes({bvh_dir}, ImportOptions()));
   std::vector<ClipFrames> clips;
   Skeleton skeleton;
   double fps = 0;
@@ -137,17 +138,18 @@ inline std::vector<uint64_t> SampleColumns(uint64_t frame_count, uint32_t count,
   while (columns.size() < std::min<uint64_t>(count, frame_count)) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     const uint64_t column = (state >> 17) % frame_count;
-    if (std::find(columns.begin(), columns.end(), column) == columns.end()) columns.push_back(column);
+    if (std::find(columns.begin(), columns.end(), column) == columns.end())
+      columns.push_back(column);
   }
   std::sort(columns.begin(), columns.end());
   return columns;
 }
 
 struct RecallStats {
-  uint64_t exact = 0;          // neighbours in the exact columns
-  uint64_t found = 0;          // of those, in the approximate columns
-  double column_mean = 0;      // mean over columns of found / exact (1 for empty exact columns)
-  double worst_column = 1;     // the lowest such share
+  uint64_t exact = 0;       // neighbours in the exact columns
+  uint64_t found = 0;       // of those, in the approximate columns
+  double column_mean = 0;   // mean over columns of found / exact (1 for empty exact columns)
+  double worst_column = 1;  // the lowest such share
   double pooled() const { return exact ? static_cast<double>(found) / exact : 1.0; }
 };
 
@@ -160,8 +162,9 @@ inline RecallStats Recall(const std::vector<std::vector<Neighbour>>& exact,
     uint64_t hits = 0;
     for (const Neighbour& neighbour : exact[column_idx]) {
       const auto& column = approximate[column_idx];
-      auto it = std::lower_bound(column.begin(), column.end(), neighbour.frame,
-                                 [](const Neighbour& a, uint32_t frame) { return a.frame < frame; });
+      auto it =
+          std::lower_bound(column.begin(), column.end(), neighbour.frame,
+                           [](const Neighbour& a, uint32_t frame) { return a.frame < frame; });
       if (it != column.end() && it->frame == neighbour.frame) ++hits;
     }
     stats.exact += exact[column_idx].size();
