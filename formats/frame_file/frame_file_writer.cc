@@ -20,6 +20,8 @@
 #include "formats/frame_file/archive_loader.h"
 #include "formats/frame_file/block_codec.h"
 
+#include "common/file_lock.h"
+
 namespace motif {
 
 using frame_file::ArchiveMetadata;
@@ -32,39 +34,6 @@ using frame_file::LoadedArchive;
 
 namespace {
 
-// An exclusive flock(2) on the archive, held through a descriptor of its own. flock, not fcntl:
-// an fcntl lock is dropped when *any* descriptor of the file in this process is closed (the
-// reader's mapping, the writer's WritableFile), a flock only with this descriptor.
-class ArchiveLock {
- public:
-  ArchiveLock() = default;
-  ~ArchiveLock() { Release(); }
-  ArchiveLock(const ArchiveLock&) = delete;
-  ArchiveLock& operator=(const ArchiveLock&) = delete;
-
-  // IOError "... locked ..." if another writer holds it; NotFound if there is no file.
-  Status Acquire(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return Status::FromErrno(path + ": open to lock", errno);
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      const int saved_errno = errno;
-      ::close(fd);
-      if (saved_errno == EWOULDBLOCK) {
-        return Status::IOError(path + ": the archive is locked by another writer");
-      }
-      return Status::FromErrno(path + ": flock", saved_errno);
-    }
-    fd_ = fd;
-    return Status::Ok();
-  }
-  void Release() {
-    if (fd_ >= 0) ::close(fd_);  // closing the descriptor releases the flock
-    fd_ = -1;
-  }
-
- private:
-  int fd_ = -1;
-};
 
 // Maps `path` read-only just long enough to validate it and copy out what an append needs.
 Result<LoadedArchive> LoadArchiveFile(const std::string& path) {
@@ -179,7 +148,7 @@ class FrameFileWriter::Impl {
     return Status::Ok();
   }
 
-  ArchiveLock& lock() { return lock_; }
+  ExclusiveFileLock& lock() { return lock_; }
   const ArchiveMetadata& metadata() const { return metadata_; }
   uint64_t frame_count() const { return next_frame_; }
 
@@ -440,7 +409,7 @@ class FrameFileWriter::Impl {
   FrameFileWriterOptions options_;
   FileSystem* fs_;
   std::unique_ptr<WritableFile> file_;
-  ArchiveLock lock_;
+  ExclusiveFileLock lock_;
   frame_file::FileHeader header_;
   ArchiveMetadata metadata_;  // committed plus appended clips and blocks
   uint64_t generation_ = 0;
@@ -503,7 +472,8 @@ Result<std::unique_ptr<FrameFileWriter>> FrameFileWriter::Create(
 Result<std::unique_ptr<FrameFileWriter>> FrameFileWriter::OpenForAppend(
     const std::string& path, const FrameFileWriterOptions& options) {
   auto impl = std::make_unique<Impl>(Impl::Mode::kAppend, path, options);
-  MOTIF_RETURN_IF_ERROR(impl->lock().Acquire(path));
+  MOTIF_RETURN_IF_ERROR(
+      impl->lock().Acquire(path, "the archive is locked by another writer"));
   MOTIF_ASSIGN_OR_RETURN(LoadedArchive archive, LoadArchiveFile(path));
   if (!archive.fallback_reason.empty()) {
     return Status::Corruption(archive.fallback_reason +

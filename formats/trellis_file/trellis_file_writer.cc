@@ -17,6 +17,8 @@
 #include "formats/trellis_file/trellis_block_codec.h"
 #include "formats/trellis_file/trellis_file_format.h"
 
+#include "common/file_lock.h"
+
 namespace motif {
 
 using trellis_file::BlockHandle;
@@ -24,39 +26,6 @@ using trellis_file::BlockHeader;
 
 namespace {
 
-// An exclusive flock(2) on the partial file, held through a descriptor of its own. flock, not
-// fcntl: an fcntl lock is dropped when *any* descriptor of the file in this process is closed
-// (the resume scan's mapping, the WritableFile), a flock only with this descriptor.
-class PartialLock {
- public:
-  PartialLock() = default;
-  ~PartialLock() { Release(); }
-  PartialLock(const PartialLock&) = delete;
-  PartialLock& operator=(const PartialLock&) = delete;
-
-  // IOError "... locked ..." if another writer holds it.
-  Status Acquire(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return Status::FromErrno(path + ": open to lock", errno);
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      const int saved_errno = errno;
-      ::close(fd);
-      if (saved_errno == EWOULDBLOCK) {
-        return Status::IOError(path + ": locked: another writer is building this trellis");
-      }
-      return Status::FromErrno(path + ": flock", saved_errno);
-    }
-    fd_ = fd;
-    return Status::Ok();
-  }
-  void Release() {
-    if (fd_ >= 0) ::close(fd_);  // closing the descriptor releases the flock
-    fd_ = -1;
-  }
-
- private:
-  int fd_ = -1;
-};
 
 // What a resume scan found in a partial file.
 struct ScanResult {
@@ -131,7 +100,8 @@ class TrellisFileWriter::Impl {
     MOTIF_ASSIGN_OR_RETURN(
         file_, fs_->OpenWritable(partial_path_,
                                  exists ? OpenMode::kExisting : OpenMode::kCreateExclusive));
-    MOTIF_RETURN_IF_ERROR(lock_.Acquire(partial_path_));
+    MOTIF_RETURN_IF_ERROR(
+        lock_.Acquire(partial_path_, "locked: another writer is building this trellis"));
     if (exists) {
       MOTIF_ASSIGN_OR_RETURN(const uint64_t size, file_->Size());
       MOTIF_ASSIGN_OR_RETURN(ScanResult scan, Scan(size));
@@ -297,7 +267,7 @@ class TrellisFileWriter::Impl {
   FileSystem* fs_;
   std::string header_bytes_;
   std::unique_ptr<WritableFile> file_;
-  PartialLock lock_;
+  ExclusiveFileLock lock_;
   trellis_file::BlockEncoder encoder_;
   std::string block_bytes_;
   std::vector<BlockHandle> index_;  // the blocks written so far

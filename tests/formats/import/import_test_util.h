@@ -12,8 +12,10 @@
 namespace motif::import_test {
 
 // The hand-written fixtures in tests/data/import.
+// Fixtures are stored as "<name>.txt" (hand-written text, kept apart from real mocap files,
+// which never enter the repository).
 inline std::string FixturePath(const std::string& name) {
-  return std::string(MOTIF_IMPORT_TEST_DATA) + "/" + name;
+  return std::string(MOTIF_IMPORT_TEST_DATA) + "/" + name + ".txt";
 }
 
 inline std::string ReadText(const std::string& path) {

@@ -149,8 +149,10 @@ TEST(DiscoverTakes, AsfPathOverridesPairing) {
 }
 
 TEST(ImportTake, BvhTakeCarriesNameHashRateAndWeights) {
+  TempDir dir;  // the take's name is its file stem: give the fixture its real name
   TakeSource source;
-  source.path = FixturePath("custom_zxy.bvh");
+  source.path = dir.File("custom_zxy.bvh");
+  std::filesystem::copy_file(FixturePath("custom_zxy.bvh"), source.path);
   Result<Take> take = ImportTake(source, {});
   ASSERT_TRUE(take.ok()) << take.status().ToString();
   EXPECT_EQ(take->name, "custom_zxy");
@@ -167,9 +169,11 @@ TEST(ImportTake, BvhTakeCarriesNameHashRateAndWeights) {
 }
 
 TEST(ImportTake, AmcTakeUsesTheAmcRateAndHashesTheAmcBytes) {
+  TempDir dir;  // the take's name is its file stem: give the fixture its real name
   TakeSource source;
   source.format = TakeFormat::kAmc;
-  source.path = FixturePath("tiny_01.amc");
+  source.path = dir.File("tiny_01.amc");
+  std::filesystem::copy_file(FixturePath("tiny_01.amc"), source.path);
   source.asf_path = FixturePath("tiny.asf");
   ImportOptions options;
   options.amc_fps = 60;
