@@ -12,7 +12,7 @@
 // $MOTIF_MOCAP_DIR is absent). eps = mu - 2 sigma of 20,000 sampled pairs, a 30-frame exclusion
 // radius, k_max = 256.
 // Counters (query): evaluations_per_column (exact D computations), entries_per_column (bucket
-// entries read), recall (share of the exact k_max-nearest found, 64 sampled columns, exact by
+// entries read), recall (share of the exact k_max-nearest found, 256 sampled columns, exact by
 // ExactSearch), speedup_vs_exact (columns per second against ExactSearch's on the same
 // archive and thread count, measured on 512 columns right after), index_bytes_per_frame, and
 // rss_bytes_per_frame: the growth of the resident set from before LshSearch::Create to the end
@@ -46,6 +46,7 @@ namespace motif {
 namespace {
 
 constexpr uint64_t kQueryBlock = 4096;
+constexpr int kRecallColumns = 256;  // sampled columns for the recall counter
 
 // Resident set size now (VmRSS), bytes, after handing freed heap memory back to the system (so
 // that what an earlier archive left in the allocator does not hide the growth we measure).
@@ -202,9 +203,18 @@ const Archive& ArchiveOf(const std::string& data, uint64_t frames) {
   return cached;
 }
 
+// Defaults, or for tuning sweeps the environment's MOTIF_LSH_PROBES, MOTIF_LSH_MAX_CANDIDATES,
+// MOTIF_LSH_MAX_ENTRIES and MOTIF_LSH_WIDTH_PER_HASH.
 LshOptions OptionsFor(uint32_t threads) {
   LshOptions options;
   options.threads = static_cast<int>(threads);
+  auto from_env = [](const char* name, auto* value) {
+    if (const char* text = std::getenv(name)) *value = static_cast<std::decay_t<decltype(*value)>>(std::atof(text));
+  };
+  from_env("MOTIF_LSH_PROBES", &options.probes_per_table);
+  from_env("MOTIF_LSH_MAX_CANDIDATES", &options.max_candidates);
+  from_env("MOTIF_LSH_MAX_ENTRIES", &options.max_entries);
+  from_env("MOTIF_LSH_WIDTH_PER_HASH", &options.width_per_hash);
   return options;
 }
 
@@ -276,6 +286,10 @@ void BM_LshQuery(benchmark::State& state, std::string data) {
   state.counters["evaluations_per_column"] =
       static_cast<double>(stats.distance_evaluations) / count;
   state.counters["entries_per_column"] = static_cast<double>(lsh_stats.entries_examined) / count;
+  state.counters["probes_per_column"] = static_cast<double>(lsh_stats.probes) / count;
+  state.counters["extensions_per_column"] = static_cast<double>(lsh_stats.extensions) / count;
+  state.counters["budget_capped_share"] =
+      static_cast<double>(lsh_stats.columns_budget_capped) / count;
   state.counters["neighbours_per_column"] = static_cast<double>(stats.neighbours) / count;
   state.counters["index_bytes_per_frame"] =
       static_cast<double>(search.index().memory_bytes()) / frames;
@@ -288,7 +302,7 @@ void BM_LshQuery(benchmark::State& state, std::string data) {
   uint64_t exact_total = 0;
   uint64_t found = 0;
   uint64_t state_bits = 11;
-  for (int sample = 0; sample < 64; ++sample) {
+  for (int sample = 0; sample < kRecallColumns; ++sample) {
     state_bits = state_bits * 6364136223846793005ull + 1442695040888963407ull;
     const uint64_t column = (state_bits >> 17) % frames;
     std::vector<std::vector<Neighbour>> exact_column;

@@ -2,14 +2,16 @@
 # Installs the Debian packages motifmine builds on, if any is missing. Safe to run repeatedly.
 # Why each: Boost (iostreams, interprocess mmap, program_options for the CLI), Eigen (pose math),
 # oneTBB (parallel import and LSH shards), zstd (block compression), xxHash (XXH3 block
-# checksums), nlohmann-json (motifs.json, truth files, --json output), Google Benchmark and
-# GoogleTest/GoogleMock (bench/ and tests/).
+# checksums), nlohmann-json (motifs.json, truth files, --json output), Spectra (header-only
+# sparse Lanczos eigensolver: normalized cut on large instance graphs, engine/cluster/), Google
+# Benchmark and GoogleTest/GoogleMock (bench/ and tests/).
 set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
   libboost-dev libboost-iostreams-dev libboost-program-options-dev
   libeigen3-dev libtbb-dev libzstd-dev libxxhash-dev nlohmann-json3-dev
+  libspectra-dev
   libbenchmark-dev libgtest-dev libgmock-dev
 )
 

@@ -58,5 +58,9 @@ int RunExport(const std::vector<std::string>& args);
 int RunSynth(const std::vector<std::string>& args);
 int RunTrellis(const std::vector<std::string>& args);
 int RunInspectTrellis(const std::vector<std::string>& args);
+int RunGrow(const std::vector<std::string>& args);
+int RunCluster(const std::vector<std::string>& args);
+int RunExportMotif(const std::vector<std::string>& args);
+int RunReport(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

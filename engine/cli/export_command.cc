@@ -2,27 +2,13 @@
 #include <cstdio>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cli/clip_range_take.h"
 #include "formats/export/bvh_writer.h"
 #include "formats/frame_file/frame_file_reader.h"
 
 namespace motif::cli {
 
 namespace po = boost::program_options;
-
-namespace {
-
-// Frames [start, end) of `take`.
-Take SliceTake(const Take& take, size_t start, size_t end) {
-  Take slice = take;
-  const size_t joint_count = take.joint_count();
-  slice.root_positions.assign(take.root_positions.begin() + start,
-                              take.root_positions.begin() + end);
-  slice.rotations.assign(take.rotations.begin() + start * joint_count,
-                         take.rotations.begin() + end * joint_count);
-  return slice;
-}
-
-}  // namespace
 
 int RunExport(const std::vector<std::string>& args) {
   CommandSpec spec;
@@ -55,26 +41,14 @@ int RunExport(const std::vector<std::string>& args) {
   }
   const uint64_t start = vm["start"].as<uint64_t>();
   const uint64_t end = vm.count("end") ? vm["end"].as<uint64_t>() : clip->frame_count;
-  if (start >= end || end > clip->frame_count) {
-    return ReportError("export", Status::InvalidArgument(
-                                     "frame range [" + std::to_string(start) + ", " +
-                                     std::to_string(end) + ") is not inside clip '" + name +
-                                     "', which has " + std::to_string(clip->frame_count) +
-                                     " frames"));
-  }
-  // The root trajectory is integrated from the clip's start, so read from frame 0.
-  std::vector<float> rows;
-  Status status = reader.ReadFrames(clip->first_frame, end, &rows);
-  if (!status.ok()) return ReportError("export", status);
-  Take take = ClipFramesToTake(reader.skeleton(), *clip, rows.data(), end);
-  take = SliceTake(take, start, end);
+  Result<Take> take = ReadClipRangeAsTake(reader, *clip, start, end);
+  if (!take.ok()) return ReportError("export", take.status());
   const std::string out = vm["out"].as<std::string>();
-  status = WriteBvh(take, out);
-  if (!status.ok()) return ReportError("export", status);
+  if (Status status = WriteBvh(*take, out); !status.ok()) return ReportError("export", status);
   std::printf("wrote %s: clip %s frames [%llu, %llu), %llu frames at %g fps\n", out.c_str(),
               name.c_str(), static_cast<unsigned long long>(start),
               static_cast<unsigned long long>(end), static_cast<unsigned long long>(end - start),
-              take.fps);
+              take->fps);
   return kExitOk;
 }
 

@@ -24,6 +24,10 @@ const Command kCommands[] = {
     {"synth", motif::cli::RunSynth, "write a synthetic archive with planted motifs and its truth"},
     {"trellis", motif::cli::RunTrellis, "build the matching trellis (LSH eps-NN) of an archive, or audit it"},
     {"inspect-trellis", motif::cli::RunInspectTrellis, "print one column of a trellis"},
+    {"grow", motif::cli::RunGrow, "grow the trellis's continuous paths into motif candidates"},
+    {"cluster", motif::cli::RunCluster, "cluster the grown paths into motifs (normalized cut): motifs.json"},
+    {"report", motif::cli::RunReport, "write the HTML report of motifs.json: overview, timeline, stick figures"},
+    {"export-motif", motif::cli::RunExportMotif, "write every instance of one motif as a BVH file"},
 };
 
 void PrintUsage(FILE* out) {

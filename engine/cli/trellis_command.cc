@@ -53,14 +53,16 @@ int RunAudit(const po::variables_map& vm, const std::string& archive, const std:
 int RunTrellis(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "trellis";
-  spec.usage = "motifmine trellis ARCHIVE [--eps X|auto] [--kmax K] [--exclusion F] [--exact] "
-               "[--threads T] [--seed S] | --audit [--sample Q]";
+  spec.usage = "motifmine trellis ARCHIVE [--eps X|auto] [--kmax K] [--exclusion F] "
+               "[--search auto|lsh|exact] [--threads T] [--seed S] | --audit [--sample Q]";
   spec.summary =
       "Builds the matching trellis of ARCHIVE beside it (ARCHIVE.mtr): for every frame, the\n"
       "frames whose weighted pose distance is at most eps (at most K_max, the nearest), found\n"
-      "with LSH (or by brute force with --exact) and written to disk block by block. A finished\n"
-      "trellis with the same parameters is reused; an interrupted build resumes. --audit compares\n"
-      "the trellis with exact eps-NN on sampled columns and prints the recall.";
+      "with LSH (by exact brute force on archives below " + std::to_string(kAutoExactMaxFrames) +
+      " frames, where it is faster),\n"
+      "and written to disk block by block. A finished trellis with the same parameters is\n"
+      "reused; an interrupted build resumes. --audit compares the trellis with exact eps-NN on\n"
+      "sampled columns and prints the recall.";
   LshOptions lsh_defaults;
   spec.options.add_options()
       ("eps", po::value<std::string>()->default_value("auto"),
@@ -70,7 +72,10 @@ int RunTrellis(const std::vector<std::string>& args) {
        "frames of the same clip closer than this are never neighbours (0: half of --min-length)")
       ("min-length", po::value<double>()->default_value(0.5),
        "minimum motif length in seconds (its half is the default exclusion radius)")
-      ("exact", "blocked brute force instead of LSH (O(N^2): for validation and small archives)")
+      ("search", po::value<std::string>()->default_value("auto"),
+       ("how columns are found: lsh, exact (blocked brute force, O(N^2)), or auto (exact below " +
+        std::to_string(kAutoExactMaxFrames) + " frames, lsh from there on)").c_str())
+      ("exact", "the same as --search exact")
       ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
       ("seed", po::value<uint64_t>()->default_value(1), "seed of the eps sample and the LSH tables")
       ("weights", po::value<std::string>()->default_value(""),
@@ -114,7 +119,16 @@ int RunTrellis(const std::vector<std::string>& args) {
   options.k_max = vm["kmax"].as<uint32_t>();
   options.exclusion_frames = vm["exclusion"].as<uint32_t>();
   options.min_length_seconds = vm["min-length"].as<double>();
+  Result<TrellisSearchMode> search = ParseTrellisSearchMode(vm["search"].as<std::string>());
   options.exact = vm.count("exact") > 0;
+  if (!search.ok() || (options.exact && *search == TrellisSearchMode::kLsh)) {
+    std::fprintf(stderr, "motifmine trellis: %s\nusage: %s\n",
+                 search.ok() ? "--exact and --search lsh contradict each other"
+                             : search.status().message().c_str(),
+                 spec.usage.c_str());
+    return kExitUsage;
+  }
+  options.search = *search;
   options.threads = vm["threads"].as<int>();
   options.seed = vm["seed"].as<uint64_t>();
   options.weights_path = vm["weights"].as<std::string>();
@@ -162,9 +176,10 @@ int RunTrellis(const std::vector<std::string>& args) {
                                       std::max<uint64_t>(1, report->columns -
                                                                 report->resumed_from_column)
                                 : 0.0);
-    std::printf("  time         features %.1fs, eps %.1fs, index %.1fs, columns %.1fs\n",
+    std::printf("  time         features %.1fs, eps %.1fs, index %.1fs, columns %.1fs (writes "
+                "%.1fs beside the search, %.1fs waited for)\n",
                 report->features_seconds, report->eps_seconds, report->index_seconds,
-                report->search_seconds);
+                report->search_seconds, report->write_seconds, report->write_wait_seconds);
   }
   return kExitOk;
 }

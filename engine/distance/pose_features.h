@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "common/huge_page_allocator.h"
 #include "common/status.h"
 #include "formats/frame_file/frame_file_reader.h"
 
@@ -55,7 +56,8 @@ class PoseFeatures {
   uint64_t frame_count_ = 0;
   std::vector<float> weights_;
   std::vector<uint32_t> joints_;
-  std::vector<int16_t> values_;
+  // Read at random by every verification: on huge pages (HugePageAllocator).
+  std::vector<int16_t, HugePageAllocator<int16_t>> values_;
   std::vector<uint64_t> clip_first_frames_;
 };
 

@@ -130,6 +130,17 @@ uint32_t HashFamily::KeyOfCoordinates(const float* coordinates) const {
   return BucketKey(cells, hashes_per_table_);
 }
 
+uint32_t HashFamily::PositionCode(const float* coordinates) const {
+  const uint32_t coded = std::min(hashes_per_table_, kCodedHashes);
+  uint32_t code = 0;
+  for (uint32_t idx = 0; idx < coded; ++idx) {
+    const float fraction = coordinates[idx] - std::floor(coordinates[idx]);
+    const uint32_t quarter = std::min(3u, static_cast<uint32_t>(fraction * 4.0f));
+    code |= quarter << (2 * idx);
+  }
+  return code;
+}
+
 int16_t HashFamily::QuantiseSortValue(float sort_value) const {
   const float scaled = std::round(sort_value * sort_scale_);
   return static_cast<int16_t>(std::clamp(scaled, -32767.0f, 32767.0f));

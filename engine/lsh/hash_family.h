@@ -56,6 +56,13 @@ class HashFamily {
   // Floor of each coordinate, then BucketKey.
   uint32_t KeyOfCoordinates(const float* coordinates) const;
 
+  // Where a frame sits inside its cell: 2 bits per hash coordinate (the quarter of the cell its
+  // x_ti falls in) for the first kCodedHashes coordinates. A query ranks the entries of the
+  // buckets it probes by the distance this code implies (LshSearch), which orders candidates
+  // far better than the cell alone at 4 bytes per entry.
+  static constexpr uint32_t kCodedHashes = 16;
+  uint32_t PositionCode(const float* coordinates) const;
+
   // Sort value quantised: round(s * scale) clamped to int16.
   int16_t QuantiseSortValue(float sort_value) const;
   // Sort value units per int16 step (1 / scale).

@@ -37,6 +37,7 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
     table.keys.resize(frame_count);
     table.sort_values.resize(frame_count);
     table.frames.resize(frame_count);
+    table.codes.resize(frame_count);
   }
   const uint64_t shard_count = (frame_count + shard_frames - 1) / shard_frames;
   std::vector<uint64_t> run_starts(shard_count + 1);
@@ -56,7 +57,7 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                           for (uint32_t table_idx = 0; table_idx < table_count; ++table_idx) {
                             LshTableEntries& table = index.tables_[table_idx];
                             slices[table_idx] = {&table.keys[first], &table.sort_values[first],
-                                                 &table.frames[first]};
+                                                 &table.frames[first], &table.codes[first]};
                           }
                           builder.Build(first, count, slices);
                         }
@@ -89,6 +90,7 @@ void LshIndex::MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_st
   out.keys.resize(total);
   out.sort_values.resize(total);
   out.frames.resize(total);
+  out.codes.resize(total);
   struct Head {
     uint32_t key;
     int16_t sort_value;
@@ -119,6 +121,7 @@ void LshIndex::MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_st
       out.keys[written] = in.keys[position];
       out.sort_values[written] = in.sort_values[position];
       out.frames[written] = in.frames[position];
+      out.codes[written] = in.codes[position];
       ++written;
       ++position;
       if (position == head.run_end) break;
@@ -181,7 +184,7 @@ uint64_t LshIndex::memory_bytes() const {
   for (const LshTableEntries& table : tables_) {
     bytes += table.keys.capacity() * sizeof(uint32_t) +
              table.sort_values.capacity() * sizeof(int16_t) +
-             table.frames.capacity() * sizeof(uint32_t);
+             table.frames.capacity() * sizeof(uint32_t) + table.codes.capacity() * sizeof(uint32_t);
   }
   for (const std::vector<uint32_t>& directory : directories_) {
     bytes += directory.capacity() * sizeof(uint32_t);

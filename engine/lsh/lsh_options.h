@@ -33,6 +33,9 @@ struct LshOptions {
   // (heavy buckets: a static pose repeated thousands of times falls into one bucket).
   uint32_t max_candidates = 4096;
   uint32_t max_bucket_scan = 2048;
+  // Bucket entries gathered and ranked per column (and per extension stage) before the best
+  // max_candidates of them are verified.
+  uint32_t max_entries = 16384;
   // Buckets are scanned breadth first: all probed buckets to this depth, then 4x deeper, ...
   // up to max_bucket_scan.
   uint32_t first_round_scan = 64;

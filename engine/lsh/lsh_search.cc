@@ -26,6 +26,9 @@ struct Probe {
   uint32_t table_idx = 0;
   uint32_t rank = 0;  // order within its table (0: the query's own bucket)
   uint32_t key = 0;
+  // Coordinates whose cell is one below / one above the query's (bit i: hash coordinate i).
+  uint32_t minus_mask = 0;
+  uint32_t plus_mask = 0;
 };
 
 bool ProbeBefore(const Probe& a, const Probe& b) {
@@ -129,7 +132,70 @@ class LshSearch::Query {
   std::vector<Probe> probes_;
   std::vector<Neighbour> best_;  // accepted candidates: the k_max nearest of them are kept
   QueryDistance distance_;
+
+  // Ranking by position code. Per probed bucket, eight 16-entry tables (one per code nibble) of
+  // the estimated squared distance contributed by that nibble's two coordinates, in units of
+  // 1/128 cell^2 (small enough to stay in L1 for all of a column's buckets). The estimate, in
+  // those units, is the bin of the counting sort: 1/128 cell^2 resolution up to 8 cells^2.
+  static constexpr size_t kEstimateTableSize = 8 * 16;
+  static constexpr float kEstimateUnitsPerCell2 = 128.0f;
+  static constexpr uint32_t kRankBins = 1024;
+  void FillEstimateTable(const Probe& probe, size_t cursor_idx);
+  struct Gathered {
+    uint32_t frame;
+    float lower_squared;  // lower bound on D^2 from the probe and the sort value
+    uint32_t bin;         // estimate bin
+  };
+  struct Ranked {
+    uint32_t frame;
+    float lower_squared;
+  };
+  std::vector<uint16_t> estimate_tables_;
+  std::vector<Gathered> gathered_;
+  std::vector<Ranked> ranked_;
+  std::vector<uint32_t> bin_starts_;
 };
+
+// The estimate of an entry with code c in `probe`'s bucket: per coded coordinate i, the squared
+// distance (in cells) from the query's position x_i to the centre of the entry's quarter of its
+// cell (the probe's cell is the query's, one below or one above along i); coordinates beyond
+// the coded ones add the squared distance to the crossed boundary, if any (in the first table).
+__attribute__((noinline)) void LshSearch::Query::FillEstimateTable(const Probe& probe,
+                                                                   size_t cursor_idx) {
+  const HashFamily& family = search_.family_;
+  const uint32_t hashes = family.hashes_per_table();
+  const uint32_t coded = std::min(hashes, HashFamily::kCodedHashes);
+  const float* coordinates = &projections_[static_cast<size_t>(probe.table_idx) * (hashes + 1)];
+  float terms[HashFamily::kCodedHashes][4] = {};
+  for (uint32_t idx = 0; idx < coded; ++idx) {
+    const float fraction = coordinates[idx] - std::floor(coordinates[idx]);
+    const float offset = (probe.minus_mask >> idx & 1u)  ? -1.0f
+                         : (probe.plus_mask >> idx & 1u) ? 1.0f
+                                                         : 0.0f;
+    for (uint32_t quarter = 0; quarter < 4; ++quarter) {
+      const float delta = offset + (static_cast<float>(quarter) + 0.5f) * 0.25f - fraction;
+      terms[idx][quarter] = delta * delta * kEstimateUnitsPerCell2;
+    }
+  }
+  float base = 0;
+  for (uint32_t idx = coded; idx < hashes; ++idx) {
+    const float fraction = coordinates[idx] - std::floor(coordinates[idx]);
+    if (probe.minus_mask >> idx & 1u) base += fraction * fraction;
+    if (probe.plus_mask >> idx & 1u) base += (1.0f - fraction) * (1.0f - fraction);
+  }
+  base *= kEstimateUnitsPerCell2;
+  if (estimate_tables_.size() < (cursor_idx + 1) * kEstimateTableSize) {
+    estimate_tables_.resize((cursor_idx + 1) * kEstimateTableSize);
+  }
+  uint16_t* table = &estimate_tables_[cursor_idx * kEstimateTableSize];
+  for (uint32_t nibble = 0; nibble < 8; ++nibble) {
+    const float add = nibble == 0 ? base : 0.0f;
+    for (uint32_t value = 0; value < 16; ++value) {
+      const float sum = terms[2 * nibble][value & 3] + terms[2 * nibble + 1][value >> 2] + add;
+      table[16 * nibble + value] = static_cast<uint16_t>(std::min(std::round(sum), 8000.0f));
+    }
+  }
+}
 
 // Multi-probe sequence of one table (Lv et al. 2007, query-directed probing): the 2m boundaries
 // of the query's cell sorted by squared distance; perturbation sets are generated in increasing
@@ -160,7 +226,9 @@ void LshSearch::Query::ListProbes(uint32_t table_idx, const float* coordinates, 
     if (a.squared != b.squared) return a.squared < b.squared;
     return a.coordinate < b.coordinate || (a.coordinate == b.coordinate && a.step < b.step);
   });
-  if (skip == 0) probes_.push_back({0.0f, table_idx, 0, HashFamily::BucketKey(cells, hashes)});
+  if (skip == 0) {
+    probes_.push_back({0.0f, table_idx, 0, HashFamily::BucketKey(cells, hashes), 0, 0});
+  }
   if (wanted <= 1) return;
 
   // A set is a bit mask over sorted boundaries (at most 64) and its largest member.
@@ -191,6 +259,8 @@ void LshSearch::Query::ListProbes(uint32_t table_idx, const float* coordinates, 
       heap.push({set.score + next_squared, set.members | (uint64_t{1} << next), next});
     }
     uint32_t used = 0;
+    uint32_t minus_mask = 0;
+    uint32_t plus_mask = 0;
     bool valid = true;
     int32_t perturbed[HashFamily::kMaxHashesPerTable];
     std::copy(cells, cells + hashes, perturbed);
@@ -202,11 +272,12 @@ void LshSearch::Query::ListProbes(uint32_t table_idx, const float* coordinates, 
       }
       used |= 1u << boundary.coordinate;
       perturbed[boundary.coordinate] += boundary.step;
+      (boundary.step < 0 ? minus_mask : plus_mask) |= 1u << boundary.coordinate;
     }
     if (!valid) continue;
     if (emitted >= skip) {
       probes_.push_back({set.score * width_squared, table_idx, emitted,
-                         HashFamily::BucketKey(perturbed, hashes)});
+                         HashFamily::BucketKey(perturbed, hashes), minus_mask, plus_mask});
     }
     ++emitted;
   }
@@ -339,80 +410,95 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
     batch_size = 0;
   };
 
-  // Breadth first: every probed bucket is scanned outward from the query's sort value in rounds
-  // of growing depth, so the budget goes to the entries nearest the query in all tables before
-  // the far ends of the first buckets. Probes are in increasing lower bound; a probe whose bound
-  // exceeds the current radius ends the column's probing (nothing left can enter).
+  // Gather, rank, verify. The entries of the probed buckets within reach (the probe's lower
+  // bound plus the sort-value gap within the radius) are read breadth first, in rounds of growing
+  // depth outward from the query's sort value, up to max_entries per column. Each gets an
+  // estimate of its squared distance from the query: its position code (the quarter of the cell
+  // it sits in along each of the first 16 projections) against the query's exact position, plus
+  // the sort-value gap. Candidates are then verified in order of that estimate (a counting sort
+  // on kRankBins bins; within a bin, gathering order), up to max_candidates. Ordering by the
+  // code is what keeps recall on large archives, where a column's probed buckets hold ten times
+  // more frames than the budget can verify (docs/design/lsh.md).
   auto scan = [&](size_t first_probe) {
     cursors_.clear();
+    gathered_.clear();
+    const float limit = bound + kBoundSlack;
+    const float limit_squared = limit * limit;
+    // An estimate unit is 1 / kEstimateUnitsPerCell2 of a squared cell width.
+    const float gap_scale = std::sqrt(kEstimateUnitsPerCell2) / family.bucket_width();
     uint32_t depth = options.first_round_scan;
     size_t probe_limit = probes_.size();
-    while (!budget_spent) {
-      bool more = false;  // some bucket still has entries within the radius
-      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !budget_spent; ++probe_idx) {
+    bool entries_spent = false;
+    while (!entries_spent) {
+      bool more = false;  // some bucket still has entries within reach
+      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !entries_spent;
+           ++probe_idx) {
         const Probe& probe = probes_[probe_idx];
-        if (probe.score > (bound + kBoundSlack) * (bound + kBoundSlack)) {
+        if (probe.score > limit_squared) {
           probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
           bound_stopped = true;
           break;
         }
-        if (probe_idx - first_probe == cursors_.size()) {
+        const size_t cursor_idx = probe_idx - first_probe;
+        if (cursor_idx == cursors_.size()) {
           ++local.probes;
           cursors_.push_back(OpenBucket(probe));
+          if (!cursors_.back().done) FillEstimateTable(probe, cursor_idx);
         }
-        Cursor& cursor = cursors_[probe_idx - first_probe];
+        Cursor& cursor = cursors_[cursor_idx];
         if (cursor.done) continue;
         const LshTableEntries& table = index.table(probe.table_idx);
         const int16_t* sort_values = table.sort_values.data();
         const uint32_t* frames = table.frames.data();
+        const uint32_t* codes = table.codes.data();
+        const uint16_t* estimates = &estimate_tables_[cursor_idx * kEstimateTableSize];
         const uint32_t round_limit = std::min(depth, cursor.scan_limit);
-        while (!cursor.done && cursor.examined < round_limit) {
-          // Gather new, allowed candidates, nearest sort value first, into the batch (which
-          // continues across buckets, so the eight-wide verification stays full).
-          const uint64_t room = options.max_candidates - evaluations - pending_size;
-          const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
-          while (batch_size < batch_limit && cursor.examined < round_limit) {
-            const bool has_up = cursor.up < cursor.end;
-            const bool has_down = !cursor.linear && cursor.down > cursor.begin;
-            if (!has_up && !has_down) {
+        while (cursor.examined < round_limit) {
+          const bool has_up = cursor.up < cursor.end;
+          const bool has_down = !cursor.linear && cursor.down > cursor.begin;
+          if (!has_up && !has_down) {
+            cursor.done = true;
+            break;
+          }
+          // The side whose next sort value is nearer; ties go up (ascending frames within equal
+          // sort values, so exact duplicates come lowest frame first).
+          const int32_t up_gap =
+              has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
+          const int32_t down_gap =
+              has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
+          const bool take_up = up_gap <= down_gap;
+          const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
+          const float lower_squared = probe.score + gap * gap;
+          if (lower_squared > limit_squared) {
+            if (!cursor.linear) {  // scanning outward: both sides only get farther
               cursor.done = true;
               break;
             }
-            // The side whose next sort value is nearer; ties go up (ascending frames within equal
-            // sort values, so exact duplicates come lowest frame first).
-            const int32_t up_gap =
-                has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
-            const int32_t down_gap =
-                has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
-            const bool take_up = up_gap <= down_gap;
-            const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
-            const float limit = bound + kBoundSlack;
-            if (probe.score + gap * gap > limit * limit) {
-              if (!cursor.linear) {  // scanning outward: both sides only get farther
-                cursor.done = true;
-                break;
-              }
-              ++cursor.up;  // stored order: only this entry is out of reach
-              ++cursor.examined;
-              ++local.entries_examined;
-              continue;
-            }
-            const uint32_t position = take_up ? cursor.up++ : --cursor.down;
+            ++cursor.up;  // stored order: only this entry is out of reach
             ++cursor.examined;
             ++local.entries_examined;
-            const uint32_t frame = frames[position];
-            const uint64_t frame_gap = frame > column ? frame - column : column - frame;
-            if (frame_gap < rules.exclusion_frames &&
-                rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
-              continue;
-            }
-            if (!visited_.Insert(frame)) continue;
-            distance_.Prefetch(frame);
-            batch[batch_size++] = frame;
+            continue;
           }
-          if (batch_size == batch_limit) flush();
-          if (evaluations + pending_size + batch_size >= options.max_candidates) {
-            budget_spent = true;
+          const uint32_t position = take_up ? cursor.up++ : --cursor.down;
+          ++cursor.examined;
+          ++local.entries_examined;
+          const uint32_t frame = frames[position];
+          const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+          if (frame_gap < rules.exclusion_frames &&
+              rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
+            continue;
+          }
+          const uint32_t code = codes[position];
+          uint32_t estimate = 0;
+          for (uint32_t nibble = 0; nibble < 8; ++nibble) {
+            estimate += estimates[16 * nibble + ((code >> (4 * nibble)) & 15u)];
+          }
+          const float gap_units = gap * gap_scale;
+          estimate += static_cast<uint32_t>(std::min(gap_units * gap_units, 65535.0f));
+          const uint32_t bin = std::min(estimate, kRankBins - 1);
+          gathered_.push_back({frame, lower_squared, bin});
+          if (gathered_.size() >= options.max_entries) {
+            entries_spent = true;
             break;
           }
         }
@@ -424,6 +510,29 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
       }
       if (!more || depth >= options.max_bucket_scan) break;
       depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+    }
+
+    // Counting sort of the gathered entries by estimate bin (stable: gathering order within a
+    // bin, so the verification order depends only on the index and the query).
+    bin_starts_.assign(kRankBins + 1, 0);
+    for (const Gathered& entry : gathered_) ++bin_starts_[entry.bin + 1];
+    for (uint32_t bin = 0; bin < kRankBins; ++bin) bin_starts_[bin + 1] += bin_starts_[bin];
+    ranked_.resize(gathered_.size());
+    for (const Gathered& entry : gathered_) {
+      ranked_[bin_starts_[entry.bin]++] = {entry.frame, entry.lower_squared};
+    }
+
+    for (const Ranked& candidate : ranked_) {
+      if (evaluations + pending_size + batch_size >= options.max_candidates) {
+        budget_spent = true;
+        break;
+      }
+      const float radius = bound + kBoundSlack;
+      if (candidate.lower_squared > radius * radius) continue;  // cannot enter the column
+      if (!visited_.Insert(candidate.frame)) continue;            // seen in another table
+      distance_.Prefetch(candidate.frame);
+      batch[batch_size++] = candidate.frame;
+      if (batch_size == kBatch) flush();
     }
   };
 
@@ -494,6 +603,7 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& feature
   }
   if (options.probes_per_table == 0) return invalid("probes_per_table must be > 0");
   if (options.max_candidates == 0) return invalid("max_candidates must be > 0");
+  if (options.max_entries == 0) return invalid("max_entries must be > 0");
   if (options.max_bucket_scan == 0) return invalid("max_bucket_scan must be > 0");
   if (options.bucket_width < 0 || !std::isfinite(options.bucket_width)) {
     return invalid("bucket_width must be >= 0");

@@ -16,11 +16,13 @@
 
 namespace motif {
 
-// One table's entries: parallel arrays sorted by (keys[i], sort_values[i], frames[i]).
+// One table's entries: parallel arrays sorted by (keys[i], sort_values[i], frames[i]); codes[i]
+// is the entry's HashFamily::PositionCode.
 struct LshTableEntries {
   std::vector<uint32_t> keys;
   std::vector<int16_t> sort_values;
   std::vector<uint32_t> frames;
+  std::vector<uint32_t> codes;
 
   size_t size() const { return frames.size(); }
 };
@@ -30,6 +32,7 @@ struct LshShardSlice {
   uint32_t* keys = nullptr;
   int16_t* sort_values = nullptr;
   uint32_t* frames = nullptr;
+  uint32_t* codes = nullptr;
 };
 
 class LshShardBuilder {

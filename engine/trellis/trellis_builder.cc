@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <memory>
 
 #include <xxhash.h>
@@ -27,6 +28,26 @@ uint64_t HashWeights(const std::vector<float>& weights) {
 
 }  // namespace
 
+const char* TrellisSearchModeName(TrellisSearchMode mode) {
+  switch (mode) {
+    case TrellisSearchMode::kAuto:
+      return "auto";
+    case TrellisSearchMode::kLsh:
+      return "lsh";
+    case TrellisSearchMode::kExact:
+      return "exact";
+  }
+  return "?";
+}
+
+Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name) {
+  for (TrellisSearchMode mode :
+       {TrellisSearchMode::kAuto, TrellisSearchMode::kLsh, TrellisSearchMode::kExact}) {
+    if (name == TrellisSearchModeName(mode)) return mode;
+  }
+  return Status::InvalidArgument("--search must be auto, lsh or exact, not '" + name + "'");
+}
+
 std::string DefaultTrellisPath(const std::string& archive_path) {
   std::filesystem::path path(archive_path);
   if (path.extension() == ".mfs") path.replace_extension("");
@@ -49,6 +70,9 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   if (options.min_length_seconds <= 0) {
     return Status::InvalidArgument("the minimum motif length must be positive");
   }
+  if (options.exact && options.search == TrellisSearchMode::kLsh) {
+    return Status::InvalidArgument("--exact and --search lsh contradict each other");
+  }
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
                          FrameFileReader::Open(archive_path));
   if (reader->frame_count() >= (uint64_t{1} << 32)) {
@@ -59,6 +83,17 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
 
   TrellisReport report;
   report.trellis_path = trellis_path;
+  // The search: as asked, or by the archive's size (the exact search is faster on small ones).
+  TrellisSearchMode search_mode = options.exact ? TrellisSearchMode::kExact : options.search;
+  if (search_mode == TrellisSearchMode::kAuto) {
+    search_mode = reader->frame_count() < options.auto_exact_max_frames ? TrellisSearchMode::kExact
+                                                                        : TrellisSearchMode::kLsh;
+    note(std::string("search: ") + TrellisSearchModeName(search_mode) + " (auto: " +
+         std::to_string(reader->frame_count()) + " frames, exact below " +
+         std::to_string(options.auto_exact_max_frames) + ")");
+  }
+  const bool exact = search_mode == TrellisSearchMode::kExact;
+  report.search = search_mode;
   auto start = std::chrono::steady_clock::now();
   progress("features", 0, reader->frame_count());
   MOTIF_ASSIGN_OR_RETURN(
@@ -82,7 +117,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   params.archive_identity = reader->summary().identity;
   params.k_max = rules.k_max;
   params.exclusion_frames = rules.exclusion_frames;
-  params.search_mode = options.exact ? 0 : 1;
+  params.search_mode = exact ? 0 : 1;
   params.seed = options.seed;
   params.weights_hash = HashWeights(weights);
   start = std::chrono::steady_clock::now();
@@ -108,7 +143,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   LshOptions lsh = options.lsh;
   lsh.seed = options.seed;
   lsh.threads = options.threads;
-  params.search_params = options.exact ? "exact" : DescribeLshOptions(lsh);
+  params.search_params = exact ? "exact" : DescribeLshOptions(lsh);
   report.params = params;
 
   // A finished trellis with the same parameters over the same archive is the answer already.
@@ -126,7 +161,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
 
   start = std::chrono::steady_clock::now();
   std::unique_ptr<NeighbourSearch> search;
-  if (options.exact) {
+  if (exact) {
     ExactSearchOptions exact_options;
     exact_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
     search = std::make_unique<ExactSearch>(features, rules, exact_options);
@@ -148,23 +183,62 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   }
   start = std::chrono::steady_clock::now();
   progress("trellis", writer->next_column(), params.frame_count);
+  // Two column buffers: while block b is compressed and written (fsynced) on a writer thread,
+  // block b + 1 is searched by all the search threads. Blocks are written in order, so the file
+  // is the same as with a serial loop.
   SearchStats stats;
-  std::vector<std::vector<Neighbour>> columns;
+  std::vector<std::vector<Neighbour>> buffers[2];
+  std::future<Status> pending_write;  // the write of the previous block, if any
+  uint64_t pending_end = 0;           // its last column + 1
   const uint64_t frame_count = params.frame_count;
-  for (uint64_t first = writer->next_column(); first < frame_count;
-       first += writer->block_columns()) {
-    const uint64_t count = std::min<uint64_t>(writer->block_columns(), frame_count - first);
-    columns.assign(count, {});
-    MOTIF_RETURN_IF_ERROR(search->SearchColumns(first, count, &columns, &stats));
-    MOTIF_RETURN_IF_ERROR(writer->AppendBlock(columns));
-    progress("trellis", first + count, frame_count);
+  const uint64_t block_columns = writer->block_columns();
+  // Waits for the pending write; then reports progress and applies stop_after_blocks.
+  auto finish_pending_write = [&]() -> Status {
+    if (!pending_write.valid()) return Status::Ok();
+    const auto wait_start = std::chrono::steady_clock::now();
+    MOTIF_RETURN_IF_ERROR(pending_write.get());
+    report.write_wait_seconds += SecondsSince(wait_start);
+    progress("trellis", pending_end, frame_count);
     if (options.stop_after_blocks > 0 &&
-        (first + count - report.resumed_from_column) >=
-            options.stop_after_blocks * writer->block_columns()) {
+        pending_end - report.resumed_from_column >= options.stop_after_blocks * block_columns) {
       return Status::IOError(trellis_path + ": build stopped after " +
                              std::to_string(options.stop_after_blocks) + " blocks (as asked)");
     }
+    return Status::Ok();
+  };
+  // Never leave with a write in flight (it uses the writer and a buffer).
+  struct WaitOnExit {
+    std::future<Status>* write;
+    ~WaitOnExit() {
+      if (write->valid()) write->wait();
+    }
+  } wait_on_exit{&pending_write};
+  size_t buffer_idx = 0;
+  for (uint64_t first = writer->next_column(); first < frame_count; first += block_columns) {
+    const uint64_t count = std::min<uint64_t>(block_columns, frame_count - first);
+    std::vector<std::vector<Neighbour>>& columns = buffers[buffer_idx];
+    buffer_idx ^= 1;
+    columns.assign(count, {});  // the previous use's memory is freed
+    MOTIF_RETURN_IF_ERROR(search->SearchColumns(first, count, &columns, &stats));
+    // A search may leave a column's capacity at everything it found within eps (the exact
+    // search: thousands of entries at large N) although it keeps at most k_max: give it back
+    // before the block waits for the writer, so two blocks in flight cost no more than one.
+    for (std::vector<Neighbour>& column : columns) column.shrink_to_fit();
+    MOTIF_RETURN_IF_ERROR(finish_pending_write());
+    pending_end = first + count;
+    pending_write = std::async(std::launch::async, [&writer, &columns, &report] {
+      const auto write_start = std::chrono::steady_clock::now();
+      Status status;
+      try {
+        status = writer->AppendBlock(columns);
+      } catch (const std::bad_alloc&) {
+        status = Status::ResourceExhausted("trellis writer: out of memory");
+      }
+      report.write_seconds += SecondsSince(write_start);  // read only after get()
+      return status;
+    });
   }
+  MOTIF_RETURN_IF_ERROR(finish_pending_write());
   MOTIF_RETURN_IF_ERROR(writer->Finish());
   report.search_seconds = SecondsSince(start);
   report.distance_evaluations = stats.distance_evaluations;

@@ -1,9 +1,11 @@
 // BuildTrellis: the matching trellis of an archive (MISSION.md part A, steps 1-2). Streams the
 // archive once into PoseFeatures (the weighted joints, 96 bytes a frame for CMU takes), chooses
-// eps (explicit, or mu - 2 sigma of sampled pair distances), finds every column with LSH (or
-// the exact brute force), and spills the columns to the trellis file block by block as they
-// are found, so the whole trellis is never in memory: peak memory is the features, the LSH
-// index and one block of columns.
+// eps (explicit, or mu - 2 sigma of sampled pair distances), finds every column with LSH or the
+// exact brute force (by default the exact search below kAutoExactMaxFrames frames, where it is
+// faster, LSH above), and spills the columns to the trellis file block by block as they are
+// found, so the whole trellis is never in memory: peak memory is the features, the LSH index and
+// two blocks of columns. The search of block b + 1 overlaps the compression and write (fsync)
+// of block b on a writer thread, so the search threads never wait for the disk.
 //
 // Resumable and reusable: the trellis file records its parameters and the archive's identity.
 // A finished file with equal parameters is reused as it is; an interrupted build resumes after
@@ -24,6 +26,21 @@
 
 namespace motif {
 
+// How the columns are found. kAuto: exact below auto_exact_max_frames frames, LSH from there on.
+enum class TrellisSearchMode { kAuto, kLsh, kExact };
+
+// "auto", "lsh", "exact".
+const char* TrellisSearchModeName(TrellisSearchMode mode);
+// The inverse; InvalidArgument for anything else.
+Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name);
+
+// Below this many frames kAuto uses the exact search. Measured with bench_engine_trellis (whole
+// builds, 2 threads, CPU time; docs/benchmarks_trellis.md): the exact build grows as N^2 and the
+// LSH build about as N; they cross near 77,000 frames (procedural synthetic) and 88,000
+// (re-sequenced real takes). Up to this threshold the exact build costs at most ~16 % more than
+// LSH, and it has recall 1. Rerun scripts/bench_trellis.sh after changing the LSH search.
+inline constexpr uint64_t kAutoExactMaxFrames = 90000;
+
 struct TrellisOptions {
   float eps = 0;                    // > 0: explicit; 0: mu - 2 sigma of sampled pairs
   uint64_t eps_sample_pairs = 200000;
@@ -31,7 +48,9 @@ struct TrellisOptions {
   // Trivial-match exclusion radius in frames; 0: half the minimum motif length (min_length_s).
   uint32_t exclusion_frames = 0;
   double min_length_seconds = 0.5;  // lambda: 60 frames at 120 fps
-  bool exact = false;               // blocked brute force instead of LSH
+  TrellisSearchMode search = TrellisSearchMode::kAuto;
+  uint64_t auto_exact_max_frames = kAutoExactMaxFrames;  // kAuto: exact when N < this
+  bool exact = false;               // the same as search = kExact (kept for existing callers)
   int threads = 0;                  // 0: all cores
   uint64_t seed = 1;
   std::string weights_path;         // per-joint weights file; empty: the skeleton's defaults
@@ -50,6 +69,7 @@ struct TrellisReport {
   bool reused = false;              // an existing finished trellis had the same parameters
   uint64_t resumed_from_column = 0; // > 0 when an interrupted build was continued
   TrellisParams params;             // eps, mu, sigma, k_max, exclusion, ...
+  TrellisSearchMode search = TrellisSearchMode::kLsh;  // the search used: kLsh or kExact
   uint64_t columns = 0;
   uint64_t neighbours = 0;          // entries in the trellis
   double mean_k = 0;                // achieved mean neighbours per column (after the k_max cap)
@@ -58,7 +78,9 @@ struct TrellisReport {
   double features_seconds = 0;
   double eps_seconds = 0;
   double index_seconds = 0;
-  double search_seconds = 0;
+  double search_seconds = 0;        // the column search and the writes (overlapped)
+  double write_seconds = 0;         // compressing and writing (fsync) blocks, on the writer thread
+  double write_wait_seconds = 0;    // time the search waited for the writer
   uint64_t feature_bytes = 0;
 };
 

@@ -205,6 +205,9 @@ uint64_t TrellisFileReader::neighbour_count() const { return impl_->footer.neigh
 uint64_t TrellisFileReader::file_bytes() const { return impl_->size; }
 const std::string& TrellisFileReader::path() const { return impl_->path; }
 uint16_t TrellisFileReader::format_minor() const { return impl_->footer.format_minor; }
+uint64_t TrellisFileReader::identity() const {
+  return trellis_file::LoadU64(impl_->data + impl_->size - 8);  // the footer checksum
+}
 
 Status TrellisFileReader::ReadBlock(uint64_t block_idx, TrellisBlock* block,
                                     bool decode_distances) const {

@@ -43,6 +43,10 @@ class TrellisFileReader {
   uint64_t file_bytes() const;
   const std::string& path() const;
   uint16_t format_minor() const;  // of the writer (this reader reads any 1.x)
+  // Identifies this trellis's content: the footer checksum, which covers the header checksum
+  // (the params) and the index checksum (every block's checksum). Results derived from the
+  // trellis (the paths file) record it, and are rebuilt when it changes.
+  uint64_t identity() const;
 
   // Decodes block `block_idx` (checksum verified) into *block (its vectors are reused). Without
   // `decode_distances` the distances are left 0 (the path grower needs only frames; about half

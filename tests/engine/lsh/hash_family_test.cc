@@ -159,6 +159,26 @@ TEST(LshHashFamily, BucketKeyDependsOnEveryCell) {
   }
 }
 
+TEST(LshHashFamily, PositionCodeIsTheQuarterOfTheCellPerCoordinate) {
+  const std::vector<float> weights(12, 1.0f);
+  // 20 hashes: only the first 16 are coded, 2 bits each, coordinate i in bits 2i and 2i + 1.
+  const HashFamily family = HashFamily::Draw(weights, 1, 20, 0.1f, 5);
+  float coordinates[21] = {};
+  const float fractions[4] = {0.1f, 0.3f, 0.6f, 0.99f};
+  uint32_t expected = 0;
+  for (int idx = 0; idx < 20; ++idx) {
+    // Negative cells too: the quarter is of the position inside the cell, floor-based.
+    const float cell = static_cast<float>(idx % 3) - 1.0f;
+    coordinates[idx] = cell + fractions[idx % 4];
+    if (idx < 16) expected |= static_cast<uint32_t>(idx % 4) << (2 * idx);
+  }
+  EXPECT_EQ(family.PositionCode(coordinates), expected);
+  coordinates[0] = -0.9f;  // position 0.1 in cell -1: quarter 0
+  coordinates[1] = -0.2f;  // position 0.8 in cell -1: quarter 3
+  expected = (expected & ~0xfu) | (3u << 2);
+  EXPECT_EQ(family.PositionCode(coordinates), expected);
+}
+
 TEST(LshQueryDistance, BitIdenticalToPoseDistance) {
   for (uint32_t joints : {12u, 13u, 3u}) {
     SplitMix64 random(joints);

@@ -45,7 +45,8 @@ std::string MakeArchive(const testing::TempDir& dir, uint64_t frames) {
 
 TrellisOptions SmallOptions(bool exact, int threads) {
   TrellisOptions options;
-  options.exact = exact;
+  // Explicit: on archives this small the default (auto) would choose the exact search.
+  options.search = exact ? TrellisSearchMode::kExact : TrellisSearchMode::kLsh;
   options.threads = threads;
   options.k_max = 64;
   options.block_columns = 2048;
@@ -58,7 +59,7 @@ TEST(BuildTrellis, SameBytesForAnyThreadCount) {
   for (bool exact : {true, false}) {
     std::string bytes[2];
     for (int threads = 1; threads <= 2; ++threads) {
-      const std::string path = dir.File("t" + std::to_string(threads) + ".mtr");
+      const std::string path = dir.File(std::to_string(threads) + "t.mtr");
       auto report = BuildTrellis(archive, path, SmallOptions(exact, threads));
       ASSERT_TRUE(report.ok()) << report.status().ToString();
       EXPECT_FALSE(report->reused);
@@ -161,6 +162,52 @@ TEST(AuditTrellis, LshRecallOnAPlantedSyntheticArchive) {
   auto exact_report = AuditTrellis(archive, exact_path, audit);
   ASSERT_TRUE(exact_report.ok());
   EXPECT_EQ(exact_report->recall, 1.0);
+}
+
+TEST(BuildTrellis, AutoChoosesExactBelowTheThresholdAndLshFromIt) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 6000);
+  TrellisOptions options = SmallOptions(false, 2);
+  options.search = TrellisSearchMode::kAuto;
+  EXPECT_EQ(options.auto_exact_max_frames, kAutoExactMaxFrames);
+  EXPECT_GT(kAutoExactMaxFrames, 6000u);
+  auto small = BuildTrellis(archive, dir.File("auto.mtr"), options);
+  ASSERT_TRUE(small.ok()) << small.status().ToString();
+  EXPECT_EQ(small->search, TrellisSearchMode::kExact);
+  EXPECT_EQ(small->params.search_mode, 0u);
+  EXPECT_EQ(small->params.search_params, "exact");
+  // The same file as asking for the exact search: reused, not rebuilt.
+  auto exact = BuildTrellis(archive, dir.File("auto.mtr"), SmallOptions(true, 1));
+  ASSERT_TRUE(exact.ok());
+  EXPECT_TRUE(exact->reused);
+  // At or above the threshold: LSH, recorded as such.
+  options.auto_exact_max_frames = 6000;
+  auto large = BuildTrellis(archive, dir.File("auto.mtr"), options);
+  ASSERT_TRUE(large.ok()) << large.status().ToString();
+  EXPECT_FALSE(large->reused);
+  EXPECT_EQ(large->search, TrellisSearchMode::kLsh);
+  EXPECT_EQ(large->params.search_mode, 1u);
+  EXPECT_EQ(large->params.search_params.rfind("lsh ", 0), 0u) << large->params.search_params;
+  // The legacy flag still forces the exact search; it contradicts an explicit LSH request.
+  TrellisOptions legacy = SmallOptions(false, 2);
+  legacy.search = TrellisSearchMode::kAuto;
+  legacy.exact = true;
+  legacy.auto_exact_max_frames = 1;
+  auto forced = BuildTrellis(archive, dir.File("auto.mtr"), legacy);
+  ASSERT_TRUE(forced.ok());
+  EXPECT_EQ(forced->search, TrellisSearchMode::kExact);
+  legacy.search = TrellisSearchMode::kLsh;
+  EXPECT_TRUE(BuildTrellis(archive, dir.File("b.mtr"), legacy).status().IsInvalidArgument());
+}
+
+TEST(TrellisSearchMode, NamesRoundTrip) {
+  for (TrellisSearchMode mode :
+       {TrellisSearchMode::kAuto, TrellisSearchMode::kLsh, TrellisSearchMode::kExact}) {
+    auto parsed = ParseTrellisSearchMode(TrellisSearchModeName(mode));
+    ASSERT_TRUE(parsed.ok());
+    EXPECT_EQ(*parsed, mode);
+  }
+  EXPECT_TRUE(ParseTrellisSearchMode("fast").status().IsInvalidArgument());
 }
 
 TEST(BuildTrellis, RejectsImpossibleParameters) {

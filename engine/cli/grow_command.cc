@@ -1,0 +1,146 @@
+// motifmine grow ARCHIVE [...]: grows the paths of ARCHIVE's matching trellis (the streaming
+// path grower) into the paths file, or reuses an up-to-date one.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+#include "engine/cli/cli_common.h"
+#include "engine/grow/paths_builder.h"
+#include "engine/trellis/trellis_builder.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+// "60" is 60 frames; "0.5s" is half a second at the archive's rate.
+Status ParseMinLength(const std::string& text, PathsOptions* options) {
+  const bool seconds = !text.empty() && text.back() == 's';
+  const std::string number = seconds ? text.substr(0, text.size() - 1) : text;
+  char* end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  const bool parsed = !number.empty() && end == number.c_str() + number.size() &&
+                      std::isfinite(value) && value > 0;
+  if (!parsed || (!seconds && (value != std::floor(value) || value > 4294967296.0))) {
+    return Status::InvalidArgument("--min-length must be a whole number of frames (60) or "
+                                   "seconds with an s (0.5s), not '" + text + "'");
+  }
+  if (seconds) {
+    options->min_length_seconds = value;
+    options->min_length_frames = 0;
+  } else {
+    options->min_length_frames = static_cast<uint64_t>(value);
+  }
+  return Status::Ok();
+}
+
+// Peak resident memory of this process (VmHWM), 0 if unknown.
+uint64_t PeakResidentBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      uint64_t kilobytes = 0;
+      status >> kilobytes;
+      return kilobytes * 1024;
+    }
+    std::getline(status, key);
+  }
+  return 0;
+}
+
+// "24.0 KB", "1.6 MB".
+std::string Bytes(uint64_t bytes) {
+  char text[32];
+  if (bytes < 1000000) {
+    std::snprintf(text, sizeof(text), "%.1f KB", static_cast<double>(bytes) / 1e3);
+  } else {
+    std::snprintf(text, sizeof(text), "%.1f MB", static_cast<double>(bytes) / 1e6);
+  }
+  return text;
+}
+
+}  // namespace
+
+int RunGrow(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "grow";
+  spec.usage = "motifmine grow ARCHIVE [--trellis PATH] [--branch B] [--min-length L] "
+               "[--all-branches] [--out PATH]";
+  spec.summary =
+      "Grows continuous paths through ARCHIVE's matching trellis (built by `motifmine trellis`)\n"
+      "with the streaming tree-growing scheme of Meng et al. 2008, and writes the candidates\n"
+      "(paths at least --min-length long on both sides; the longest of each tree unless\n"
+      "--all-branches) to ARCHIVE.mpa. A path at frame j may\n"
+      "continue to frames j .. j+B-1 of the next column; paths never cross a clip boundary.\n"
+      "An existing paths file grown from the same trellis with the same parameters is reused.";
+  spec.options.add_options()
+      ("trellis", po::value<std::string>()->default_value(""), "default: ARCHIVE.mtr")
+      ("branch", po::value<uint32_t>()->default_value(GrowOptions{}.branch),
+       "branching factor B (the paper's experiments: 5)")
+      ("min-length", po::value<std::string>()->default_value("0.5s"),
+       "minimum path length lambda, on both sides: frames (60) or seconds (0.5s)")
+      ("all-branches", "keep every path of a tree that died long enough (default: the longest "
+                       "of each tree)")
+      ("out", po::value<std::string>()->default_value(""), "paths file (default ARCHIVE.mpa)");
+  AddProgressOptions(spec);
+  spec.positional = {{"archive", 1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const std::string archive = vm["archive"].as<std::string>();
+  std::string trellis = vm["trellis"].as<std::string>();
+  if (trellis.empty()) trellis = DefaultTrellisPath(archive);
+  std::string out = vm["out"].as<std::string>();
+  if (out.empty()) out = DefaultPathsPath(archive);
+
+  PathsOptions options;
+  options.branch = vm["branch"].as<uint32_t>();
+  options.all_branches = vm.count("all-branches") > 0;
+  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(), &options);
+      !status.ok()) {
+    return ReportError("grow", status);
+  }
+  ProgressReporter progress(ProgressModeFrom(vm));
+  bool started = false;
+  options.progress = [&](uint64_t done, uint64_t total) {
+    if (!started) progress.BeginStage("grow", total, "columns");
+    started = true;
+    progress.Update(done);
+  };
+  Result<PathsReport> report = BuildPaths(archive, trellis, out, options);
+  if (started) progress.EndStage();
+  if (!report.ok()) return ReportError("grow", report.status());
+
+  const PathsParams& params = report->params;
+  if (report->reused) {
+    std::printf("%s is up to date (same trellis and parameters): reused\n", out.c_str());
+  } else {
+    std::printf("wrote %s\n", out.c_str());
+  }
+  std::printf("  candidates   %s paths of at least %llu frames on both sides (%s)\n",
+              WithCommas(report->candidates).c_str(),
+              static_cast<unsigned long long>(params.min_length),
+              params.all_branches ? "every branch" : "the longest of each tree");
+  std::printf("  trellis      %s (%s columns, %s entries)\n", trellis.c_str(),
+              WithCommas(params.frame_count).c_str(), WithCommas(report->trellis_entries).c_str());
+  std::printf("  branch       %u\n", params.branch);
+  if (!report->reused) {
+    const GrowStats& stats = report->stats;
+    std::printf("  trees        %s roots, %s paths died, %s of them long enough\n",
+                WithCommas(stats.trees).c_str(), WithCommas(stats.dead_paths).c_str(),
+                WithCommas(stats.long_paths).c_str());
+    std::printf("  time         grow %.2fs (%.1f M entries/s), write %.2fs\n",
+                report->grow_seconds,
+                report->grow_seconds > 0
+                    ? static_cast<double>(stats.entries) / report->grow_seconds / 1e6
+                    : 0.0,
+                report->write_seconds);
+    std::printf("  memory       grower %s, peak resident %s\n", Bytes(stats.memory_bytes).c_str(),
+                Bytes(PeakResidentBytes()).c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace motif::cli

@@ -1,0 +1,91 @@
+// motifmine report DIR [--archive PATH] [--out FILE]: (re)writes the HTML report of a mining
+// result from DIR/motifs.json (engine/report/report_html.h).
+#include <cstdio>
+#include <filesystem>
+
+#include "engine/cli/cli_common.h"
+#include "engine/cli/mined_motifs.h"
+#include "engine/cluster/planted_motif_score.h"
+#include "engine/report/report_html.h"
+#include "engine/synth/truth_json_reader.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+int RunReport(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "report";
+  spec.usage = "motifmine report DIR [--archive PATH] [--out FILE.html] [--view side|front] "
+               "[--truth FILE.truth.json]";
+  spec.summary =
+      "Writes the visual report of DIR/motifs.json (the output of `motifmine cluster`) as one\n"
+      "self-contained HTML file (default DIR/report.html): an overview, a timeline of the\n"
+      "instances in every clip, and each motif with stick-figure keyframes of its instances.\n"
+      "The frames come from the archive named in motifs.json, or --archive if it has moved.";
+  ReportOptions defaults;
+  spec.options.add_options()
+      ("archive", po::value<std::string>()->default_value(""),
+       "the archive (default: the one named in motifs.json)")
+      ("out", po::value<std::string>()->default_value(""), "the HTML file (default: DIR/report.html)")
+      ("view", po::value<std::string>()->default_value("side"),
+       "side (the skeleton's Z axis to the right) or front (its X axis)")
+      ("keyframes", po::value<uint32_t>()->default_value(defaults.keyframes),
+       "stick figures per instance")
+      ("instances", po::value<uint32_t>()->default_value(defaults.instances_per_motif),
+       "instances drawn per motif")
+      ("eager", po::value<uint32_t>()->default_value(defaults.eager_motifs),
+       "motifs whose figures are written as SVG; the rest are drawn by the page's script")
+      ("truth", po::value<std::string>()->default_value(""),
+       "a synthetic archive's truth file: add recall, precision and ARI to the overview");
+  spec.positional = {{"dir", 1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  ReportOptions options;
+  const std::string view = vm["view"].as<std::string>();
+  if (view != "side" && view != "front") {
+    return ReportError("report",
+                       Status::InvalidArgument("--view must be side or front, not '" + view + "'"));
+  }
+  options.view = view == "side" ? FigureView::kSide : FigureView::kFront;
+  options.keyframes = vm["keyframes"].as<uint32_t>();
+  options.instances_per_motif = vm["instances"].as<uint32_t>();
+  options.eager_motifs = vm["eager"].as<uint32_t>();
+  if (options.keyframes == 0 || options.keyframes > 50) {
+    return ReportError("report", Status::InvalidArgument("--keyframes must be 1 to 50"));
+  }
+
+  const std::string dir = vm["dir"].as<std::string>();
+  Result<MinedMotifs> mined = OpenMinedMotifs(dir, vm["archive"].as<std::string>());
+  if (!mined.ok()) return ReportError("report", mined.status());
+  ReportInfo info;
+  info.archive_path = mined->archive->path();
+  info.truth_path = vm["truth"].as<std::string>();
+  if (!info.truth_path.empty()) {
+    Result<TruthFile> truth = ReadTruthJson(info.truth_path);
+    if (!truth.ok()) return ReportError("report", truth.status());
+    std::vector<FoundInstance> found;
+    for (const MotifsJsonMotif& motif : mined->document.motifs) {
+      for (const MotifsJsonInstance& instance : motif.instances) {
+        found.push_back({instance.clip, instance.start, instance.end, motif.id});
+      }
+    }
+    info.planted_score = ScorePlantedMotifs(found, truth->instances);
+  }
+  std::string out = vm["out"].as<std::string>();
+  if (out.empty()) {
+    out = (std::filesystem::path(mined->motifs_path).parent_path() / "report.html").string();
+  }
+  if (Status status = WriteReportHtml(out, mined->document, *mined->archive, info, options);
+      !status.ok()) {
+    return ReportError("report", status);
+  }
+  std::error_code error;
+  const uintmax_t bytes = std::filesystem::file_size(out, error);
+  std::printf("wrote %s (%s motifs, %.1f KiB)\n", out.c_str(),
+              WithCommas(mined->document.motifs.size()).c_str(),
+              error ? 0.0 : static_cast<double>(bytes) / 1024.0);
+  return kExitOk;
+}
+
+}  // namespace motif::cli

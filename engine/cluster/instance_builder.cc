@@ -1,0 +1,163 @@
+#include "engine/cluster/instance_builder.h"
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+namespace motif {
+
+namespace {
+
+// Union-find with path halving; the smaller index becomes the root, so results do not depend on
+// the order of unions.
+class DisjointSets {
+ public:
+  explicit DisjointSets(size_t count) : parent_(count) {
+    std::iota(parent_.begin(), parent_.end(), size_t{0});
+  }
+  size_t Find(size_t node) {
+    while (parent_[node] != node) {
+      parent_[node] = parent_[parent_[node]];
+      node = parent_[node];
+    }
+    return node;
+  }
+  void Union(size_t a, size_t b) {
+    a = Find(a);
+    b = Find(b);
+    if (a == b) return;
+    if (a < b) {
+      parent_[b] = a;
+    } else {
+      parent_[a] = b;
+    }
+  }
+
+ private:
+  std::vector<size_t> parent_;
+};
+
+// Longer first; ties broken by every field so the choice never depends on input order.
+bool IsLongerPath(const PathCandidate& a, const PathCandidate& b) {
+  return std::make_tuple(a.top_length(), a.match_length(), b.top_start, b.match_start, b.top_end,
+                         b.match_end) > std::make_tuple(b.top_length(), b.match_length(),
+                                                        a.top_start, a.match_start, a.top_end,
+                                                        a.match_end);
+}
+
+}  // namespace
+
+std::vector<PathCandidate> KeepLongestPathPerRoot(std::vector<PathCandidate> candidates) {
+  std::sort(candidates.begin(), candidates.end(),
+            [](const PathCandidate& a, const PathCandidate& b) {
+              if (a.root_column != b.root_column) return a.root_column < b.root_column;
+              if (a.root_frame != b.root_frame) return a.root_frame < b.root_frame;
+              return IsLongerPath(a, b);
+            });
+  std::vector<PathCandidate> kept;
+  for (const PathCandidate& candidate : candidates) {
+    if (!kept.empty() && kept.back().root_column == candidate.root_column &&
+        kept.back().root_frame == candidate.root_frame) {
+      continue;  // a shorter branch of the same tree
+    }
+    kept.push_back(candidate);
+  }
+  return kept;
+}
+
+bool OverlapsEnough(const MotifInstance& a, const MotifInstance& b, double fraction) {
+  const uint64_t shorter = std::min(a.length(), b.length());
+  if (shorter == 0) return false;
+  return static_cast<double>(OverlapFrames(a, b)) >= fraction * static_cast<double>(shorter);
+}
+
+InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
+                           const InstanceOptions& options) {
+  InstanceSet set;
+  set.stats.candidates = candidates.size();
+  std::vector<PathCandidate> paths;
+  paths.reserve(candidates.size());
+  for (const PathCandidate& candidate : candidates) {
+    if (candidate.top_end > candidate.top_start && candidate.match_end > candidate.match_start) {
+      paths.push_back(candidate);
+    }
+  }
+  paths = KeepLongestPathPerRoot(std::move(paths));
+  set.stats.kept_paths = paths.size();
+
+  // Raw instance 2k is path k's top-row segment, 2k + 1 its matched segment.
+  std::vector<MotifInstance> raw(2 * paths.size());
+  for (size_t path_idx = 0; path_idx < paths.size(); ++path_idx) {
+    raw[2 * path_idx] = {paths[path_idx].top_start, paths[path_idx].top_end};
+    raw[2 * path_idx + 1] = {paths[path_idx].match_start, paths[path_idx].match_end};
+  }
+  set.stats.raw_instances = raw.size();
+
+  std::vector<size_t> by_start(raw.size());
+  std::iota(by_start.begin(), by_start.end(), size_t{0});
+  std::sort(by_start.begin(), by_start.end(), [&](size_t a, size_t b) {
+    return std::tie(raw[a].start, raw[a].end, a) < std::tie(raw[b].start, raw[b].end, b);
+  });
+
+  // The sweep: `reaching` holds the earlier instances whose end is past the current start; only
+  // they can overlap it.
+  DisjointSets sets(raw.size());
+  std::vector<size_t> reaching;
+  for (size_t idx : by_start) {
+    const MotifInstance& current = raw[idx];
+    size_t kept = 0;
+    for (size_t other : reaching) {
+      if (raw[other].end <= current.start) continue;
+      reaching[kept++] = other;
+      if (OverlapsEnough(raw[other], current, options.merge_overlap)) sets.Union(other, idx);
+    }
+    reaching.resize(kept);
+    reaching.push_back(idx);
+  }
+
+  // Each set becomes the union of its ranges. Sets with equal unions are merged as well.
+  std::vector<MotifInstance> merged_of_root(raw.size());
+  std::vector<size_t> roots;
+  for (size_t idx = 0; idx < raw.size(); ++idx) {
+    const size_t root = sets.Find(idx);
+    if (root == idx) {
+      merged_of_root[root] = raw[idx];
+      roots.push_back(root);
+    } else {
+      merged_of_root[root].start = std::min(merged_of_root[root].start, raw[idx].start);
+      merged_of_root[root].end = std::max(merged_of_root[root].end, raw[idx].end);
+    }
+  }
+  for (size_t root : roots) set.instances.push_back(merged_of_root[root]);
+  std::sort(set.instances.begin(), set.instances.end(),
+            [](const MotifInstance& a, const MotifInstance& b) {
+              return std::tie(a.start, a.end) < std::tie(b.start, b.end);
+            });
+  set.instances.erase(std::unique(set.instances.begin(), set.instances.end()),
+                      set.instances.end());
+  set.stats.instances = set.instances.size();
+
+  auto id_of = [&](size_t raw_idx) {
+    const MotifInstance& range = merged_of_root[sets.Find(raw_idx)];
+    auto it = std::lower_bound(set.instances.begin(), set.instances.end(), range,
+                               [](const MotifInstance& a, const MotifInstance& b) {
+                                 return std::tie(a.start, a.end) < std::tie(b.start, b.end);
+                               });
+    return static_cast<uint32_t>(it - set.instances.begin());
+  };
+  for (size_t path_idx = 0; path_idx < paths.size(); ++path_idx) {
+    const uint32_t top = id_of(2 * path_idx);
+    const uint32_t match = id_of(2 * path_idx + 1);
+    if (top == match) {
+      ++set.stats.self_links;
+      continue;
+    }
+    set.links.push_back({std::min(top, match), std::max(top, match)});
+  }
+  std::sort(set.links.begin(), set.links.end());
+  set.links.erase(std::unique(set.links.begin(), set.links.end()), set.links.end());
+  set.stats.links = set.links.size();
+  return set;
+}
+
+}  // namespace motif

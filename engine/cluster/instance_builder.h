@@ -1,0 +1,56 @@
+// Instance building, the first half of the paper's clustering step (Meng et al. 2008, step 3):
+// from the grower's path candidates to the motif instances that get clustered.
+//
+//  1. Keep the longest path per root. Candidates of one tree (same root node) are branches of
+//     one match: only the longest (top-row length, then matched length, then earliest) stays.
+//  2. Each kept path gives two instances, its top-row segment and its matched segment, linked.
+//  3. Instances that overlap by at least 3/4 of the shorter one are merged: a union-find over an
+//     interval sweep (instances by start; each is compared only with the earlier instances that
+//     still reach it), so the cost is O(n log n + n·d), d the overlap depth, never all pairs.
+//     A merged instance is the union of its members' ranges. Members overlap pairwise along a
+//     chain, so the union is one contiguous range inside one clip. The union (rather than, say,
+//     the longest member or the intersection) keeps every frame some path found, so no evidence
+//     is lost, at the price that a chain of merges can make an instance longer than any member.
+//  4. Links are carried to the merged instances; a path whose two segments merged into one
+//     instance (a periodic motion matching itself at a shift) leaves no link and is counted.
+// Thread-safety: pure functions.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/cluster/motif_instance.h"
+#include "engine/grow/path_candidate.h"
+
+namespace motif {
+
+struct InstanceOptions {
+  double merge_overlap = 0.75;  // merge when the overlap is at least this fraction of the shorter
+};
+
+struct InstanceSetStats {
+  uint64_t candidates = 0;      // paths given
+  uint64_t kept_paths = 0;      // after keeping the longest per root
+  uint64_t raw_instances = 0;   // 2 per kept path
+  uint64_t instances = 0;       // after merging
+  uint64_t links = 0;           // distinct links between merged instances
+  uint64_t self_links = 0;      // kept paths whose two segments merged into one instance
+};
+
+struct InstanceSet {
+  std::vector<MotifInstance> instances;  // sorted by (start, end); an instance's id is its index
+  std::vector<InstanceLink> links;       // distinct, a < b, sorted
+  InstanceSetStats stats;
+};
+
+// The longest candidate of each root (root_column, root_frame), sorted by root.
+std::vector<PathCandidate> KeepLongestPathPerRoot(std::vector<PathCandidate> candidates);
+
+// True if a and b share at least `fraction` of the shorter one's frames.
+bool OverlapsEnough(const MotifInstance& a, const MotifInstance& b, double fraction);
+
+// Steps 1 to 4 above. Candidates with an empty segment are skipped (the grower never makes them).
+InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
+                           const InstanceOptions& options = {});
+
+}  // namespace motif

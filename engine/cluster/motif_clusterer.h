@@ -1,0 +1,72 @@
+// ClusterMotifs: the clustering step of motif mining (Meng et al. 2008, step 3), from the path
+// grower's candidates to ranked motifs:
+//   candidates -> instances (instance_builder.h: longest path per root, 3/4-overlap merge, links)
+//   -> similarity graph (instance_similarity.h: shared similar frames read back from the trellis,
+//      plus the links) -> groups (normalized_cut.h) -> motifs, most important first.
+// A motif's importance is its number of instances times their mean length (= the frames it
+// covers); ties go to the motif that starts first. Its instances are listed by position.
+// Thread-safety: one call per thread; the reader may be shared.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "engine/cluster/instance_builder.h"
+#include "engine/cluster/instance_similarity.h"
+#include "engine/cluster/motif_instance.h"
+#include "engine/cluster/normalized_cut.h"
+#include "engine/grow/path_candidate.h"
+#include "formats/trellis_file/trellis_file_reader.h"
+
+namespace motif {
+
+struct ClusterOptions {
+  InstanceOptions instances;
+  SimilarityOptions similarity;   // its threads and progress are set from the fields below
+  NormalizedCutOptions cut;       // its threads and seed are set from the fields below
+  uint64_t seed = 1;
+  int threads = 0;                // 0: all cores
+  // (stage, done, total): stage "similarity" counts instance columns read.
+  std::function<void(const std::string&, uint64_t, uint64_t)> progress;
+};
+
+struct Motif {
+  std::vector<uint32_t> instances;  // ids into ClusterResult::instances, ascending (= by start)
+  uint64_t total_frames = 0;        // the score: instance count × mean length
+  double mean_length() const {
+    return instances.empty() ? 0.0
+                             : static_cast<double>(total_frames) /
+                                   static_cast<double>(instances.size());
+  }
+};
+
+struct ClusterReport {
+  InstanceSetStats instance_stats;
+  SimilarityStats similarity_stats;
+  NormalizedCutStats cut_stats;
+  uint64_t clustered_instances = 0;  // in a kept motif
+  uint64_t covered_frames = 0;       // distinct frames inside some motif instance
+  double instance_seconds = 0;
+  double cut_seconds = 0;
+};
+
+struct ClusterResult {
+  std::vector<MotifInstance> instances;  // every merged instance, by start
+  std::vector<InstanceLink> links;
+  std::vector<Motif> motifs;             // most important first
+  ClusterReport report;
+};
+
+// InvalidArgument if a candidate lies outside the trellis; Corruption from the trellis.
+Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates,
+                                    const TrellisFileReader& trellis,
+                                    const ClusterOptions& options);
+
+// Groups of instance ids -> motifs ranked as above (exposed for tests).
+std::vector<Motif> RankMotifs(const std::vector<std::vector<uint32_t>>& groups,
+                              const std::vector<MotifInstance>& instances);
+
+}  // namespace motif

@@ -1,0 +1,98 @@
+// motifs.json: the mined motifs, the contract other tools read (docs/guide_cluster.md).
+//
+//   {"version": 1, "archive": "...", "frames": N,
+//    "clips": [{"name": "05_01", "source": "...", "frames": 1234, "fps": 120.0,
+//               "first_frame": 0}, ...],
+//    "params": {"eps": ..., "kmax": ..., "branch": ..., "min_length": ..., "groups": ...,
+//               "seed": ...},
+//    "motifs": [{"id": 0, "instances": [{"clip": "05_01", "start": 100, "end": 260}, ...]}, ...]}
+//
+// start/end are 0-based frames within the clip, end exclusive; clip names are the clips' names
+// (source file stems). Motifs are listed most important first (id = rank); instances by
+// position. "groups" is the number asked for, or "auto". "min_length" is the grower's lambda in
+// frames (as in the paths file; "min_length_seconds" gives it at the archive's rate).
+// Fields beyond the contract: per motif "instance_count", "mean_length" (frames),
+// "mean_seconds", "score" (instance count × mean length, in frames); per instance "frame" (its
+// global first frame) and "length"; at the top "summary" {"motifs", "instances",
+// "covered_frames"}. Readers must ignore fields they do not know; the version changes only if a
+// contract field changes meaning.
+// Thread-safety: pure functions.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "engine/cluster/motif_clusterer.h"
+#include "formats/motion/pose_frames.h"
+
+namespace motif {
+
+struct MotifsJsonClip {
+  std::string name;
+  std::string source;
+  uint64_t frames = 0;
+  double fps = 0;
+  uint64_t first_frame = 0;
+  bool operator==(const MotifsJsonClip&) const = default;
+};
+
+struct MotifsJsonParams {
+  double eps = 0;
+  uint32_t kmax = 0;
+  uint32_t branch = 0;
+  uint64_t min_length = 0;  // lambda, frames
+  uint32_t groups = 0;    // 0: "auto"
+  uint64_t seed = 0;
+  bool operator==(const MotifsJsonParams&) const = default;
+};
+
+struct MotifsJsonInstance {
+  std::string clip;
+  uint64_t start = 0;  // within the clip
+  uint64_t end = 0;    // exclusive
+  uint64_t frame = 0;  // global first frame (extra field; the reader computes it from the clips
+                       // when absent)
+  uint64_t length() const { return end - start; }
+  bool operator==(const MotifsJsonInstance&) const = default;
+};
+
+struct MotifsJsonMotif {
+  uint32_t id = 0;
+  std::vector<MotifsJsonInstance> instances;
+  bool operator==(const MotifsJsonMotif&) const = default;
+};
+
+struct MotifsDocument {
+  std::string archive;
+  uint64_t frames = 0;
+  std::vector<MotifsJsonClip> clips;
+  MotifsJsonParams params;
+  std::vector<MotifsJsonMotif> motifs;
+  uint64_t covered_frames = 0;  // summary (not compared: derived)
+  bool operator==(const MotifsDocument& other) const {
+    return archive == other.archive && frames == other.frames && clips == other.clips &&
+           params == other.params && motifs == other.motifs;
+  }
+};
+
+// The document of a clustering result over an archive with `clips` (in archive order).
+// InvalidArgument if an instance is not inside one clip.
+Result<MotifsDocument> MakeMotifsDocument(const ClusterResult& result,
+                                          const std::string& archive_path,
+                                          uint64_t archive_frames,
+                                          const std::vector<ClipInfo>& clips,
+                                          const MotifsJsonParams& params);
+
+std::string MotifsJsonText(const MotifsDocument& document);
+// Written atomically (temporary file, fsync, rename). IOError / ResourceExhausted.
+Status WriteMotifsJson(const std::string& path, const MotifsDocument& document);
+
+// InvalidArgument naming the field if the text is not a motifs.json of version 1 (a missing
+// contract field, a wrong type, an instance with end <= start or naming an unknown clip);
+// NotSupported for another version.
+Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::string& name);
+Result<MotifsDocument> ReadMotifsJson(const std::string& path);
+
+}  // namespace motif

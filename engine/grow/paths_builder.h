@@ -1,0 +1,56 @@
+// BuildPaths: the path-growing stage of `motifmine grow` (MISSION.md part A, step 3): opens the
+// archive (for its clips and frame rate) and its matching trellis, checks that the trellis was
+// built over this version of the archive, streams the trellis through the PathGrower and writes
+// the candidates to a paths file (formats/paths_file/) atomically.
+//
+// Reusable: the paths file records the trellis's identity and the grow parameters; an existing
+// valid file with equal ones is the answer already (the grower is deterministic) and is reused.
+// A changed trellis or parameter, or a damaged file, grows the paths again.
+// Thread-safety: one build per paths file at a time.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "common/status.h"
+#include "engine/grow/path_grower.h"
+#include "formats/paths_file/paths_file_writer.h"
+
+namespace motif {
+
+struct PathsOptions {
+  uint32_t branch = GrowOptions{}.branch;
+  // lambda: min_length_frames if > 0, else min_length_seconds at the archive's frame rate
+  // (rounded, at least 1 frame): 0.5 s is 60 frames at 120 fps, as in the paper.
+  uint64_t min_length_frames = 0;
+  double min_length_seconds = 0.5;
+  bool all_branches = false;  // GrowOptions::keep_all_branches
+  // (done_columns, total): (0, N) first and (N, N) last, not called when the file is reused.
+  std::function<void(uint64_t done, uint64_t total)> progress;
+};
+
+struct PathsReport {
+  std::string paths_path;
+  bool reused = false;       // an existing paths file had the same trellis and parameters
+  PathsParams params;        // branch, min_length in frames, trellis and archive identity
+  uint64_t candidates = 0;
+  uint64_t trellis_entries = 0;
+  GrowStats stats;           // of this run (zero when reused)
+  double grow_seconds = 0;   // streaming the trellis and growing
+  double write_seconds = 0;
+};
+
+// "<archive without .mfs>.mpa": where `motifmine grow` writes an archive's paths.
+std::string DefaultPathsPath(const std::string& archive_path);
+
+// lambda in frames for a length in seconds at `fps`: round(seconds * fps), at least 1.
+uint64_t MinLengthFrames(double seconds, double fps);
+
+// Grows (or reuses) the paths of `trellis_path` (the trellis of `archive_path`) into
+// `paths_path`. NotFound / Corruption / IOError for the files, naming them; InvalidArgument
+// for parameters, or if the trellis was built over another archive or another version of it.
+Result<PathsReport> BuildPaths(const std::string& archive_path, const std::string& trellis_path,
+                               const std::string& paths_path, const PathsOptions& options);
+
+}  // namespace motif

@@ -1,0 +1,537 @@
+#include "engine/report/report_html.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "common/file_util.h"
+#include "engine/report/forward_kinematics.h"
+#include "engine/report/motifs_archive_check.h"
+#include "formats/motion/quaternion_math.h"
+
+namespace motif {
+
+namespace {
+
+// Frames read from the archive at a time: instances are visited in archive order, so one chunk
+// usually serves several of them, and a column block is decoded about once.
+constexpr uint64_t kChunkFrames = 4096;
+
+std::string Printf(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+std::string Commas(uint64_t value) {
+  std::string digits = std::to_string(value);
+  std::string text;
+  for (size_t idx = 0; idx < digits.size(); ++idx) {
+    if (idx > 0 && (digits.size() - idx) % 3 == 0) text += ',';
+    text += digits[idx];
+  }
+  return text;
+}
+
+std::string Seconds(uint64_t frames, double fps) {
+  return Printf("%.2f s", fps > 0 ? static_cast<double>(frames) / fps : 0.0);
+}
+
+std::string Bytes(uint64_t bytes) {
+  const double value = static_cast<double>(bytes);
+  if (value >= 1024.0 * 1024 * 1024) return Printf("%.2f GiB", value / (1024.0 * 1024 * 1024));
+  if (value >= 1024.0 * 1024) return Printf("%.1f MiB", value / (1024.0 * 1024));
+  return Printf("%.0f KiB", value / 1024.0);
+}
+
+// A fixed colour per motif id: hues a golden angle apart, so neighbouring ids never look alike.
+std::string MotifColour(uint32_t motif_id) {
+  const int hue = static_cast<int>(std::fmod(motif_id * 137.508, 360.0));
+  return "hsl(" + std::to_string(hue) + ",70%," + (motif_id % 2 ? "36%)" : "44%)");
+}
+
+// Global [start, end) of an instance.
+struct GlobalRange {
+  uint64_t start = 0;
+  uint64_t end = 0;
+};
+
+// Up to `count` instances of `motif` to draw: first one per clip (in order), so the strips show
+// the motif as different takes perform it, then the rest in order.
+std::vector<size_t> ChooseInstances(const MotifsJsonMotif& motif, size_t count) {
+  std::vector<size_t> chosen;
+  std::unordered_set<std::string> clips;
+  for (size_t idx = 0; idx < motif.instances.size() && chosen.size() < count; ++idx) {
+    if (clips.insert(motif.instances[idx].clip).second) chosen.push_back(idx);
+  }
+  for (size_t idx = 0; idx < motif.instances.size() && chosen.size() < count; ++idx) {
+    if (std::find(chosen.begin(), chosen.end(), idx) == chosen.end()) chosen.push_back(idx);
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+// One instance strip to draw.
+struct FigureJob {
+  size_t motif_idx = 0;
+  size_t slot = 0;  // index into the motif's chosen instances
+  const ClipInfo* clip = nullptr;
+  uint64_t start = 0;  // within the clip
+  uint64_t end = 0;
+};
+
+class FigureRenderer {
+ public:
+  FigureRenderer(const FrameFileReader& reader, const ReportOptions& options)
+      : reader_(reader),
+        options_(options),
+        layout_(MakeStickFigureLayout(reader.skeleton())),
+        stride_(reader.layout().stride()) {
+    projection_.view = options.view;
+    projection_.pixels_per_unit =
+        FigureScaleFor(reader.skeleton(), projection_.height_px, projection_.margin_px);
+  }
+
+  const StickFigureLayout& layout() const { return layout_; }
+  const FigureProjection& projection() const { return projection_; }
+
+  // The keyframes of one instance, projected. Jobs must come in increasing global start order
+  // for the chunk cache to work well (any order is correct).
+  Result<std::vector<std::vector<FigurePoint>>> Project(const FigureJob& job) {
+    const uint32_t keyframes = std::max<uint32_t>(1, options_.keyframes);
+    const uint64_t global_start = job.clip->first_frame + job.start;
+    const uint64_t global_end = job.clip->first_frame + job.end;
+    MOTIF_RETURN_IF_ERROR(EnsureCached(global_start, global_end));
+    std::vector<float> rows(keyframes * stride_);
+    const uint64_t length = job.end - job.start;
+    for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
+      const uint64_t offset =
+          keyframes == 1 ? 0
+                         : static_cast<uint64_t>(std::llround(static_cast<double>(key_idx) *
+                                                              static_cast<double>(length - 1) /
+                                                              (keyframes - 1)));
+      const float* row = &cache_[(global_start + offset - cache_first_) * stride_];
+      std::copy(row, row + stride_, rows.begin() + key_idx * stride_);
+    }
+    // The keyframes are not consecutive, so the root's integrated horizontal path is
+    // meaningless; each figure is centred on its own root below, which cancels it. Height,
+    // heading and joint rotations come straight from each row.
+    const Take take = ClipFramesToTake(reader_.skeleton(), *job.clip, rows.data(), keyframes);
+    std::vector<std::vector<Eigen::Vector3d>> positions(keyframes);
+    double floor = std::numeric_limits<double>::max();
+    for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
+      positions[key_idx] = TakeFramePositions(take, key_idx);
+      for (const Eigen::Vector3d& point : positions[key_idx]) floor = std::min(floor, point.y());
+    }
+    // The first keyframe's heading for all of them: instances line up, and a turn within the
+    // motif still shows.
+    FigureProjection projection = projection_;
+    projection.heading_rad = HeadingOf(take.rotation(0, 0));
+    std::vector<std::vector<FigurePoint>> projected(keyframes);
+    for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
+      const Eigen::Vector3d& root = take.root_positions[key_idx];
+      projection.origin = Eigen::Vector3d(root.x(), floor, root.z());
+      projected[key_idx] = ProjectFigure(layout_, positions[key_idx], projection);
+    }
+    return projected;
+  }
+
+ private:
+  Status EnsureCached(uint64_t global_start, uint64_t global_end) {
+    if (global_start >= cache_first_ && global_end <= cache_first_ + cache_count_) {
+      return Status::Ok();
+    }
+    const uint64_t count = std::min(std::max(global_end - global_start, kChunkFrames),
+                                    reader_.frame_count() - global_start);
+    MOTIF_RETURN_IF_ERROR(reader_.ReadFrames(global_start, count, &cache_));
+    cache_first_ = global_start;
+    cache_count_ = count;
+    return Status::Ok();
+  }
+
+  const FrameFileReader& reader_;
+  const ReportOptions& options_;
+  StickFigureLayout layout_;
+  FigureProjection projection_;
+  size_t stride_ = 0;
+  std::vector<float> cache_;
+  uint64_t cache_first_ = 0;
+  uint64_t cache_count_ = 0;
+};
+
+constexpr char kStyle[] = R"css(
+body{font:14px/1.45 system-ui,-apple-system,"Segoe UI",sans-serif;margin:20px auto;max-width:1400px;padding:0 16px;color:#222}
+h1{font-size:22px;margin:0 0 4px}h2{font-size:18px;border-bottom:1px solid #ccc;margin-top:28px}
+nav a{margin-right:14px}
+table.kv td{padding:2px 16px 2px 0;vertical-align:top}table.kv td:first-child{color:#555;white-space:nowrap}
+table.t{border-collapse:collapse}table.t td{padding:1px 14px 1px 0}table.t td:nth-child(2){text-align:right}
+.note{color:#666;font-size:12px}
+.tlrow{display:flex;align-items:center;margin:3px 0}
+.tlrow .n{width:170px;flex:none;overflow:hidden;text-overflow:ellipsis;white-space:nowrap;font-size:12px}
+.tlrow .w{flex:1;min-width:0}
+.tl{display:block;height:16px;background:#e6e6e6}
+.tl rect{fill:currentColor;stroke:currentColor;stroke-width:1px;vector-effect:non-scaling-stroke;cursor:pointer}
+.tl rect:hover{opacity:.6}
+.motif{border-top:1px solid #ddd;padding:8px 0 4px;margin-top:10px}
+.motif h3{margin:0;font-size:16px}
+.sw{display:inline-block;width:12px;height:12px;margin-right:7px;border-radius:2px;vertical-align:-1px;background:currentColor}
+.meta{margin:2px 0 8px;color:#444;font-size:13px}
+.insts{display:flex;flex-wrap:wrap;gap:8px 28px;min-height:138px}
+.strip .lbl{font-size:11px;color:#555;white-space:nowrap}
+.figs{display:flex;min-height:120px}
+.fig{flex:none;background:#f6f6f6;margin-right:2px}
+.fig path{fill:none;stroke:currentColor;stroke-width:1.7;stroke-linecap:round;stroke-linejoin:round}
+button{font:inherit;margin:6px 0}
+)css";
+
+// A click on a timeline instance goes to its motif. The lazy motifs' figures are drawn from the
+// JSON block (format: EncodeFigurePoints) when they come near the viewport; the SVG it writes is
+// the same as StickFigureSvg's.
+constexpr char kScript[] = R"js(
+(function(){
+document.addEventListener('click',function(e){var r=e.target.closest&&e.target.closest('.tl rect');if(r)location.hash='m'+r.getAttribute('class').slice(1);});
+var el=document.getElementById('pose-data');if(!el)return;
+var D=JSON.parse(el.textContent),C=D.chains,P=D.points,A='ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_',V={};
+for(var i=0;i<64;i++)V[A.charAt(i)]=i;
+function c(s,i){return (V[s.charAt(i)]*64+V[s.charAt(i+1)]+D.min)/10;}
+function fig(s,o){var d='';for(var a=0;a<C.length;a++){var ch=C[a];for(var b=0;b<ch.length;b++){var j=o+4*ch[b];d+=(b?'L':'M')+c(s,j)+' '+c(s,j+2);}}
+return '<svg class="fig" width="'+D.w+'" height="'+D.h+'" viewBox="0 0 '+D.w+' '+D.h+'"><path d="'+d+'"/></svg>';}
+function render(box){if(box.getAttribute('data-done'))return;box.setAttribute('data-done','1');
+var m=D.motifs[box.getAttribute('data-m')]||[],f=box.querySelectorAll('.figs');
+for(var s=0;s<f.length&&s<m.length;s++){var h='';for(var o=0;o<m[s].length;o+=4*P)h+=fig(m[s],o);f[s].innerHTML=h;}}
+var boxes=Array.prototype.slice.call(document.querySelectorAll('.insts[data-m]'));
+if('IntersectionObserver' in window){var io=new IntersectionObserver(function(es){es.forEach(function(e){if(e.isIntersecting){render(e.target);io.unobserve(e.target);}});},{rootMargin:'1000px'});boxes.forEach(function(b){io.observe(b);});}
+else boxes.forEach(render);
+var all=document.getElementById('draw-all');if(all)all.onclick=function(){boxes.forEach(render);};
+})();
+)js";
+
+std::string ViewName(FigureView view) { return view == FigureView::kSide ? "side" : "front"; }
+
+void AppendOverview(const MotifsDocument& document, const FrameFileReader& reader,
+                    const ReportInfo& info, const ReportOptions& options,
+                    uint64_t instance_count, uint64_t covered_frames, std::string* html) {
+  const double fps = reader.fps();
+  const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
+  std::string& out = *html;
+  out += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">\n";
+  auto row = [&](const std::string& key, const std::string& value_html) {
+    out += "<tr><td>" + key + "</td><td>" + value_html + "</td></tr>\n";
+  };
+  row("archive", "<code>" + HtmlEscape(archive) + "</code>");
+  row("frames", Commas(reader.frame_count()) + " (" +
+                    Printf("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) +
+                    " at " + Printf("%g fps", fps) + "), " + Commas(reader.clips().size()) +
+                    " clips, skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
+                    std::to_string(reader.skeleton().joint_count()) + " joints)");
+  const MotifsJsonParams& params = document.params;
+  row("parameters",
+      "&epsilon; " + Printf("%.4g", params.eps) + ", K<sub>max</sub> " +
+          std::to_string(params.kmax) + ", branching B " + std::to_string(params.branch) +
+          ", minimum length &lambda; " + Commas(params.min_length) + " frames (" +
+          Seconds(params.min_length, fps) + "), groups " +
+          (params.groups ? std::to_string(params.groups) : std::string("auto")) + ", seed " +
+          std::to_string(params.seed) +
+          (info.parameters_text.empty()
+               ? std::string()
+               : "<br><code>" + HtmlEscape(info.parameters_text) + "</code>"));
+  if (!info.timings.empty()) {
+    std::string table = "<table class=\"t\">";
+    double total = 0;
+    for (const ReportStageTiming& timing : info.timings) {
+      table += "<tr><td>" + HtmlEscape(timing.stage) + "</td><td>" +
+               Printf("%.2f s", timing.seconds) + "</td></tr>";
+      total += timing.seconds;
+    }
+    table += "<tr><td><b>total</b></td><td><b>" + Printf("%.2f s", total) + "</b></td></tr>";
+    row("timings", table + "</table>");
+  }
+  if (info.peak_memory_bytes > 0) row("peak memory", Bytes(info.peak_memory_bytes));
+  row("motifs", Commas(document.motifs.size()) + " motifs, " + Commas(instance_count) +
+                    " instances");
+  row("coverage",
+      Commas(covered_frames) + " frames in some instance (" +
+          Printf("%.1f%%", reader.frame_count()
+                               ? 100.0 * static_cast<double>(covered_frames) / reader.frame_count()
+                               : 0.0) +
+          " of the archive)");
+  if (info.planted_score) {
+    const PlantedMotifScore& score = *info.planted_score;
+    row("planted motifs",
+        (info.truth_path.empty() ? std::string() : "<code>" + HtmlEscape(info.truth_path) +
+                                                        "</code>: ") +
+            std::to_string(score.planted_motifs) + " motifs, " + Commas(score.planted) +
+            " instances; recall " + Printf("%.3f", score.recall) + " (" +
+            Commas(score.planted_hit) + " hit), precision " + Printf("%.3f", score.precision) +
+            " (" + Commas(score.found_hitting) + " of " + Commas(score.found) +
+            " found instances), adjusted Rand index " +
+            Printf("%.3f", score.adjusted_rand_index));
+  }
+  row("figures", ViewName(options.view) + " view, heading removed; " +
+                     std::to_string(options.keyframes) +
+                     " keyframes per instance, evenly spaced from its first frame to its last; "
+                     "up to " +
+                     std::to_string(options.instances_per_motif) + " instances per motif");
+  out += "</table>\n<p class=\"note\">Frame ranges are 0-based within their clip, the end "
+         "excluded (as in motifs.json). Write a motif's instances as BVH files with "
+         "<code>motifmine export-motif DIR --motif ID --out FOLDER</code>.</p></section>\n";
+}
+
+void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reader,
+                    std::string* html) {
+  const double fps = reader.fps();
+  struct Mark {
+    uint64_t start = 0;
+    uint64_t end = 0;
+    uint32_t motif_id = 0;
+  };
+  std::unordered_map<std::string, std::vector<Mark>> marks;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      marks[instance.clip].push_back({instance.start, instance.end, motif.id});
+    }
+  }
+  uint64_t longest = 1;
+  for (const ClipInfo& clip : reader.clips()) longest = std::max(longest, clip.frame_count);
+  std::string& out = *html;
+  out += "<section id=\"timeline\"><h2>Timeline</h2><p class=\"note\">One bar per clip that "
+         "holds instances, its length to scale; each rectangle is an instance, coloured by "
+         "motif. Hover for its frames, click to go to its motif.</p>\n";
+  std::vector<const ClipInfo*> empty_clips;
+  for (const ClipInfo& clip : reader.clips()) {
+    auto found = marks.find(clip.name);
+    if (found == marks.end()) {
+      empty_clips.push_back(&clip);
+      continue;
+    }
+    std::vector<Mark>& clip_marks = found->second;
+    std::sort(clip_marks.begin(), clip_marks.end(),
+              [](const Mark& a, const Mark& b) { return a.start < b.start; });
+    const std::string name = HtmlEscape(clip.name);
+    const double width_percent =
+        std::max(2.0, 100.0 * static_cast<double>(clip.frame_count) / longest);
+    out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + " (" +
+           Commas(clip.frame_count) + " frames)\">" + name + "</span><span class=\"w\"><svg " +
+           "class=\"tl\" style=\"width:" + Printf("%.1f", width_percent) +
+           "%\" viewBox=\"0 0 " + std::to_string(clip.frame_count) +
+           " 1\" preserveAspectRatio=\"none\">";
+    for (const Mark& mark : clip_marks) {
+      const std::string id = std::to_string(mark.motif_id);
+      // The colour comes from the motif's class; a click is handled by the page's script. Both
+      // keep the thousands of rectangles of a large archive short.
+      out += "<rect class=\"c" + id + "\" x=\"" + std::to_string(mark.start) + "\" width=\"" +
+             std::to_string(mark.end - mark.start) + "\" height=\"1\"><title>motif " + id +
+             ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) +
+             " (" + Seconds(mark.end - mark.start, fps) + ")</title></rect>";
+    }
+    out += "</svg></span></div>\n";
+  }
+  if (!empty_clips.empty()) {
+    out += "<details><summary>" + Commas(empty_clips.size()) +
+           " clips without instances</summary><p class=\"note\">";
+    for (size_t idx = 0; idx < empty_clips.size(); ++idx) {
+      if (idx > 0) out += ", ";
+      out += HtmlEscape(empty_clips[idx]->name);
+    }
+    out += "</p></details>\n";
+  }
+  out += "</section>\n";
+}
+
+}  // namespace
+
+std::string HtmlEscape(const std::string& text) {
+  std::string escaped;
+  escaped.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&#39;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFileReader& reader,
+                                   const ReportInfo& info, const ReportOptions& options) {
+  MOTIF_RETURN_IF_ERROR(CheckMotifsMatchArchive(document, "the motifs document", reader));
+  const double fps = reader.fps();
+  std::unordered_map<std::string, const ClipInfo*> clips_by_name;
+  for (const ClipInfo& clip : reader.clips()) clips_by_name.emplace(clip.name, &clip);
+
+  // Instances, coverage, and the strips to draw, in archive order.
+  uint64_t instance_count = 0;
+  std::vector<GlobalRange> ranges;
+  std::vector<std::vector<size_t>> chosen(document.motifs.size());
+  std::vector<FigureJob> jobs;
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    const MotifsJsonMotif& motif = document.motifs[motif_idx];
+    instance_count += motif.instances.size();
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      const uint64_t first = clips_by_name.at(instance.clip)->first_frame;
+      ranges.push_back({first + instance.start, first + instance.end});
+    }
+    chosen[motif_idx] = ChooseInstances(motif, options.instances_per_motif);
+    for (size_t slot = 0; slot < chosen[motif_idx].size(); ++slot) {
+      const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
+      jobs.push_back({motif_idx, slot, clips_by_name.at(instance.clip), instance.start,
+                      instance.end});
+    }
+  }
+  std::sort(ranges.begin(), ranges.end(),
+            [](const GlobalRange& a, const GlobalRange& b) { return a.start < b.start; });
+  uint64_t covered_frames = 0;
+  uint64_t covered_until = 0;
+  for (const GlobalRange& range : ranges) {
+    const uint64_t from = std::max(range.start, covered_until);
+    if (range.end > from) covered_frames += range.end - from;
+    covered_until = std::max(covered_until, range.end);
+  }
+
+  // Figures: SVG for the eager motifs, encoded points for the rest.
+  std::sort(jobs.begin(), jobs.end(), [](const FigureJob& a, const FigureJob& b) {
+    const uint64_t a_start = a.clip->first_frame + a.start;
+    const uint64_t b_start = b.clip->first_frame + b.start;
+    return a_start != b_start ? a_start < b_start
+                              : std::tie(a.motif_idx, a.slot) < std::tie(b.motif_idx, b.slot);
+  });
+  FigureRenderer renderer(reader, options);
+  const FigureProjection& projection = renderer.projection();
+  std::vector<std::vector<std::string>> strips(document.motifs.size());
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    strips[motif_idx].resize(chosen[motif_idx].size());
+  }
+  for (const FigureJob& job : jobs) {
+    MOTIF_ASSIGN_OR_RETURN(std::vector<std::vector<FigurePoint>> keyframes,
+                           renderer.Project(job));
+    std::string& strip = strips[job.motif_idx][job.slot];
+    const bool eager = job.motif_idx < options.eager_motifs;
+    for (const std::vector<FigurePoint>& points : keyframes) {
+      strip += eager ? StickFigureSvg(renderer.layout(), points, projection.width_px,
+                                      projection.height_px)
+                     : EncodeFigurePoints(points);
+    }
+  }
+
+  const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
+  std::string html;
+  html.reserve(1 << 20);
+  html += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
+          "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">\n"
+          "<title>motifmine report: " + HtmlEscape(archive) + "</title>\n<style>" + kStyle;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    html += ".c" + std::to_string(motif.id) + "{color:" + MotifColour(motif.id) + "}\n";
+  }
+  html += "</style></head><body>\n<h1>motifmine report</h1>\n<nav><a href=\"#overview\">"
+          "overview</a><a href=\"#timeline\">timeline</a><a href=\"#motifs\">motifs</a></nav>\n";
+  AppendOverview(document, reader, info, options, instance_count, covered_frames, &html);
+  AppendTimeline(document, reader, &html);
+
+  html += "<section id=\"motifs\"><h2>Motifs</h2>";
+  if (document.motifs.empty()) html += "<p>No motifs were found.</p>";
+  if (document.motifs.size() > options.eager_motifs) {
+    html += "<p class=\"note\">Figures of motifs after the first " +
+            std::to_string(options.eager_motifs) +
+            " are drawn as they scroll into view. <button id=\"draw-all\" type=\"button\">"
+            "Draw all figures</button> (before printing)</p>";
+  }
+  html += "\n";
+  std::string lazy_json;
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    const MotifsJsonMotif& motif = document.motifs[motif_idx];
+    const std::string id = std::to_string(motif.id);
+    uint64_t total_frames = 0;
+    uint64_t shortest = UINT64_MAX;
+    uint64_t longest = 0;
+    std::vector<std::string> clip_names;
+    std::unordered_set<std::string> seen_clips;
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      total_frames += instance.length();
+      shortest = std::min(shortest, instance.length());
+      longest = std::max(longest, instance.length());
+      if (seen_clips.insert(instance.clip).second) clip_names.push_back(instance.clip);
+    }
+    const size_t count = motif.instances.size();
+    const uint64_t mean = count ? (total_frames + count / 2) / count : 0;
+    html += "<section class=\"motif\" id=\"m" + id + "\"><h3><span class=\"sw c" + id +
+            "\"></span>motif " + id + "</h3><p class=\"meta\">" +
+            Commas(count) + (count == 1 ? " instance" : " instances") + " &middot; " +
+            Commas(mean) + " frames (" + Seconds(mean, fps) + ") on average";
+    if (count > 1 && shortest != longest) {
+      html += ", " + Commas(shortest) + "\u2013" + Commas(longest);
+    }
+    html += " &middot; " + Commas(clip_names.size()) +
+            (clip_names.size() == 1 ? " clip: " : " clips: ");
+    for (size_t idx = 0; idx < clip_names.size() && idx < options.clip_names_per_motif; ++idx) {
+      if (idx > 0) html += ", ";
+      html += HtmlEscape(clip_names[idx]);
+    }
+    if (clip_names.size() > options.clip_names_per_motif) {
+      html += " +" + Commas(clip_names.size() - options.clip_names_per_motif) + " more";
+    }
+    const bool eager = motif_idx < options.eager_motifs;
+    html += "</p><div class=\"insts c" + id + "\"" +
+            (eager ? std::string() : " data-m=\"" + id + "\"") + ">";
+    if (!eager) {
+      if (!lazy_json.empty()) lazy_json += ",\n";
+      lazy_json += "\"" + id + "\":[";
+    }
+    for (size_t slot = 0; slot < chosen[motif_idx].size(); ++slot) {
+      const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
+      html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(instance.clip) + " " +
+              std::to_string(instance.start) + "\u2013" + std::to_string(instance.end) + " (" +
+              Seconds(instance.length(), fps) + ")</div><div class=\"figs\">" +
+              (eager ? strips[motif_idx][slot] : std::string()) + "</div></div>";
+      if (!eager) {
+        if (slot > 0) lazy_json += ",";
+        lazy_json += "\"" + strips[motif_idx][slot] + "\"";
+      }
+    }
+    if (!eager) lazy_json += "]";
+    html += "</div>";
+    if (count > chosen[motif_idx].size()) {
+      html += "<p class=\"note\">" + Commas(count - chosen[motif_idx].size()) +
+              " more instances not drawn.</p>";
+    }
+    html += "</section>\n";
+  }
+  html += "</section>\n";
+
+  if (!lazy_json.empty()) {
+    const StickFigureLayout& layout = renderer.layout();
+    html += "<script type=\"application/json\" id=\"pose-data\">{\"w\":" +
+            FormatFigureCoord(projection.width_px) +
+            ",\"h\":" + FormatFigureCoord(projection.height_px) +
+            ",\"points\":" + std::to_string(layout.points.size()) +
+            ",\"min\":" + std::to_string(std::lround(kFigureCoordMin * 10)) + ",\"chains\":[";
+    for (size_t chain_idx = 0; chain_idx < layout.chains.size(); ++chain_idx) {
+      html += chain_idx ? ",[" : "[";
+      for (size_t step = 0; step < layout.chains[chain_idx].size(); ++step) {
+        if (step > 0) html += ",";
+        html += std::to_string(layout.chains[chain_idx][step]);
+      }
+      html += "]";
+    }
+    html += "],\"motifs\":{\n" + lazy_json + "}}</script>\n";
+  }
+  html += std::string("<script>") + kScript + "</script>\n";
+  html += "</body></html>\n";
+  return html;
+}
+
+Status WriteReportHtml(const std::string& path, const MotifsDocument& document,
+                       const FrameFileReader& reader, const ReportInfo& info,
+                       const ReportOptions& options) {
+  MOTIF_ASSIGN_OR_RETURN(std::string html, ReportHtmlText(document, reader, info, options));
+  return AtomicWriteFile(path, html);
+}
+
+}  // namespace motif

@@ -1,0 +1,154 @@
+#include "engine/cluster/instance_builder.h"
+
+#include <algorithm>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace motif {
+namespace {
+
+PathCandidate Path(uint64_t top_start, uint64_t top_end, uint64_t match_start, uint64_t match_end,
+                   uint64_t root_column, uint64_t root_frame) {
+  return {top_start, top_end, match_start, match_end, root_column, root_frame};
+}
+
+TEST(KeepLongestPathPerRootTest, KeepsOnlyTheLongestBranchOfEachTree) {
+  std::vector<PathCandidate> candidates = {
+      Path(100, 180, 500, 580, 100, 500),  // root (100, 500): 80 frames
+      Path(100, 220, 500, 620, 100, 500),  // root (100, 500): 120 frames, the longest
+      Path(100, 200, 500, 601, 100, 500),  // root (100, 500): 100 frames
+      Path(300, 400, 900, 1000, 300, 900),
+  };
+  std::vector<PathCandidate> kept = KeepLongestPathPerRoot(candidates);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0], candidates[1]);
+  EXPECT_EQ(kept[1], candidates[3]);
+  // The choice does not depend on the input order, ties included.
+  candidates.push_back(Path(100, 220, 510, 630, 100, 500));  // same lengths as the longest
+  std::vector<PathCandidate> reversed(candidates.rbegin(), candidates.rend());
+  EXPECT_EQ(KeepLongestPathPerRoot(candidates), KeepLongestPathPerRoot(reversed));
+  EXPECT_EQ(KeepLongestPathPerRoot(candidates)[0].match_start, 500u);  // earliest wins the tie
+}
+
+TEST(OverlapsEnoughTest, ThreeQuartersOfTheShorterIsTheBoundary) {
+  EXPECT_TRUE(OverlapsEnough({0, 100}, {25, 125}, 0.75));   // 75 of 100
+  EXPECT_FALSE(OverlapsEnough({0, 100}, {26, 126}, 0.75));  // 74 of 100
+  EXPECT_TRUE(OverlapsEnough({0, 400}, {300, 380}, 0.75));  // the shorter lies inside
+  EXPECT_FALSE(OverlapsEnough({0, 100}, {100, 200}, 0.75)); // touching, no shared frame
+}
+
+TEST(BuildInstancesTest, TwoInstancesPerPathLinked) {
+  InstanceSet set = BuildInstances({Path(0, 100, 1000, 1090, 0, 1000)});
+  ASSERT_EQ(set.instances.size(), 2u);
+  EXPECT_EQ(set.instances[0], (MotifInstance{0, 100}));
+  EXPECT_EQ(set.instances[1], (MotifInstance{1000, 1090}));
+  ASSERT_EQ(set.links.size(), 1u);
+  EXPECT_EQ(set.links[0], (InstanceLink{0, 1}));
+  EXPECT_EQ(set.stats.raw_instances, 2u);
+}
+
+TEST(BuildInstancesTest, MergesOverlapsOfThreeQuartersIntoTheUnionAndCarriesLinks) {
+  InstanceSet set = BuildInstances({
+      Path(0, 100, 1000, 1100, 0, 1000),
+      Path(20, 120, 2000, 2100, 20, 2000),   // top overlaps the first top by 80 of 100: merged
+      Path(500, 600, 3000, 3100, 500, 3000),
+      Path(530, 630, 4000, 4100, 530, 4000), // overlaps [500, 600) by 70 of 100: kept apart
+  });
+  ASSERT_EQ(set.instances.size(), 7u);
+  EXPECT_EQ(set.instances[0], (MotifInstance{0, 120}));
+  EXPECT_EQ(set.instances[1], (MotifInstance{500, 600}));
+  EXPECT_EQ(set.instances[2], (MotifInstance{530, 630}));
+  EXPECT_EQ(set.instances[3], (MotifInstance{1000, 1100}));
+  EXPECT_EQ(set.instances[4], (MotifInstance{2000, 2100}));
+  // [0, 120) carries both paths' links.
+  EXPECT_EQ(set.links, (std::vector<InstanceLink>{{0, 3}, {0, 4}, {1, 5}, {2, 6}}));
+  EXPECT_EQ(set.stats.instances, 7u);
+  EXPECT_EQ(set.stats.links, 4u);
+}
+
+TEST(BuildInstancesTest, ChainedMergesTakeTheUnion) {
+  // [0,100) ~ [20,120) ~ [40,140): the first and last overlap by only 60, but the chain joins them.
+  InstanceSet set = BuildInstances({
+      Path(0, 100, 1000, 1100, 0, 1000),
+      Path(20, 120, 1020, 1120, 20, 1020),
+      Path(40, 140, 1040, 1140, 40, 1040),
+  });
+  ASSERT_EQ(set.instances.size(), 2u);
+  EXPECT_EQ(set.instances[0], (MotifInstance{0, 140}));
+  EXPECT_EQ(set.instances[1], (MotifInstance{1000, 1140}));
+  EXPECT_EQ(set.links, (std::vector<InstanceLink>{{0, 1}}));  // three paths, one distinct link
+}
+
+TEST(BuildInstancesTest, APathMatchingItselfLeavesNoLink) {
+  // A periodic motion: the matched segment is the top segment shifted by 10 frames.
+  InstanceSet set = BuildInstances({Path(0, 100, 10, 110, 0, 10)});
+  ASSERT_EQ(set.instances.size(), 1u);
+  EXPECT_EQ(set.instances[0], (MotifInstance{0, 110}));
+  EXPECT_TRUE(set.links.empty());
+  EXPECT_EQ(set.stats.self_links, 1u);
+}
+
+TEST(BuildInstancesTest, DeduplicatesRootsBeforeMerging) {
+  InstanceSet set = BuildInstances({
+      Path(0, 60, 1000, 1060, 0, 1000),
+      Path(0, 200, 1000, 1200, 0, 1000),  // same tree, longer: the only one kept
+  });
+  EXPECT_EQ(set.stats.kept_paths, 1u);
+  EXPECT_EQ(set.instances, (std::vector<MotifInstance>{{0, 200}, {1000, 1200}}));
+}
+
+// The sweep finds the same sets as comparing all pairs.
+TEST(BuildInstancesTest, SweepMatchesAllPairsOnRandomPaths) {
+  std::mt19937_64 random(5);
+  for (int round = 0; round < 20; ++round) {
+    std::vector<PathCandidate> candidates;
+    for (int idx = 0; idx < 80; ++idx) {
+      const uint64_t top = random() % 2000;
+      const uint64_t match = random() % 2000;
+      candidates.push_back(Path(top, top + 20 + random() % 100, match, match + 20 + random() % 100,
+                                top, match));
+    }
+    const InstanceSet set = BuildInstances(candidates);
+    // Brute force: all pairs, transitive closure, unions.
+    std::vector<PathCandidate> kept = KeepLongestPathPerRoot(candidates);
+    std::vector<MotifInstance> raw;
+    for (const PathCandidate& path : kept) {
+      raw.push_back({path.top_start, path.top_end});
+      raw.push_back({path.match_start, path.match_end});
+    }
+    std::vector<size_t> label(raw.size());
+    for (size_t idx = 0; idx < raw.size(); ++idx) label[idx] = idx;
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (size_t a = 0; a < raw.size(); ++a) {
+        for (size_t b = 0; b < raw.size(); ++b) {
+          if (label[a] != label[b] && OverlapsEnough(raw[a], raw[b], 0.75)) {
+            const size_t low = std::min(label[a], label[b]);
+            label[a] = label[b] = low;
+            changed = true;
+          }
+        }
+      }
+    }
+    std::vector<MotifInstance> expected;
+    for (size_t idx = 0; idx < raw.size(); ++idx) {
+      if (label[idx] != idx) continue;
+      MotifInstance merged = raw[idx];
+      for (size_t other = 0; other < raw.size(); ++other) {
+        if (label[other] != idx) continue;
+        merged.start = std::min(merged.start, raw[other].start);
+        merged.end = std::max(merged.end, raw[other].end);
+      }
+      expected.push_back(merged);
+    }
+    std::sort(expected.begin(), expected.end(), [](const MotifInstance& a, const MotifInstance& b) {
+      return a.start != b.start ? a.start < b.start : a.end < b.end;
+    });
+    expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+    EXPECT_EQ(set.instances, expected) << "round " << round;
+  }
+}
+
+}  // namespace
+}  // namespace motif

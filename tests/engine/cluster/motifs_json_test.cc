@@ -1,0 +1,153 @@
+#include "engine/cluster/motifs_json.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/file_util.h"
+#include "tests/testing/temp_dir.h"
+
+namespace motif {
+namespace {
+
+std::vector<ClipInfo> TwoClips() {
+  std::vector<ClipInfo> clips(2);
+  clips[0].name = "05_01";
+  clips[0].source_path = "/data/05_01.bvh";
+  clips[0].first_frame = 0;
+  clips[0].frame_count = 1000;
+  clips[0].fps = 120;
+  clips[1].name = "07_02";
+  clips[1].source_path = "/data/07_02.amc";
+  clips[1].first_frame = 1000;
+  clips[1].frame_count = 500;
+  clips[1].fps = 120;
+  return clips;
+}
+
+// Motif 0: [100, 220) of 05_01 and [50, 170) of 07_02; motif 1: two pieces of 05_01.
+ClusterResult SmallResult() {
+  ClusterResult result;
+  result.instances = {{100, 220}, {400, 460}, {700, 760}, {1050, 1170}};
+  result.motifs.push_back({{0, 3}, 240});
+  result.motifs.push_back({{1, 2}, 120});
+  result.report.covered_frames = 360;
+  return result;
+}
+
+MotifsJsonParams Params() { return {1.05, 256, 4, 60, 0, 7}; }
+
+TEST(MotifsJsonTest, DocumentMapsGlobalFramesToClips) {
+  auto document = MakeMotifsDocument(SmallResult(), "a.mfs", 1500, TwoClips(), Params());
+  ASSERT_TRUE(document.ok()) << document.status().ToString();
+  ASSERT_EQ(document->motifs.size(), 2u);
+  EXPECT_EQ(document->motifs[0].id, 0u);
+  EXPECT_EQ(document->motifs[0].instances[0], (MotifsJsonInstance{"05_01", 100, 220, 100}));
+  EXPECT_EQ(document->motifs[0].instances[1], (MotifsJsonInstance{"07_02", 50, 170, 1050}));
+  EXPECT_EQ(document->motifs[1].id, 1u);
+  ASSERT_EQ(document->clips.size(), 2u);
+  EXPECT_EQ(document->clips[1], (MotifsJsonClip{"07_02", "/data/07_02.amc", 500, 120, 1000}));
+
+  ClusterResult crossing = SmallResult();
+  crossing.instances[3] = {950, 1070};  // spans the two clips
+  EXPECT_TRUE(MakeMotifsDocument(crossing, "a.mfs", 1500, TwoClips(), Params())
+                  .status()
+                  .IsInvalidArgument());
+}
+
+TEST(MotifsJsonTest, ExactFieldNamesOfTheContract) {
+  auto document = MakeMotifsDocument(SmallResult(), "a.mfs", 1500, TwoClips(), Params());
+  ASSERT_TRUE(document.ok());
+  const nlohmann::json json = nlohmann::json::parse(MotifsJsonText(*document));
+  EXPECT_EQ(json["version"], 1);
+  EXPECT_EQ(json["archive"], "a.mfs");
+  EXPECT_EQ(json["frames"], 1500);
+  const nlohmann::json& clip = json["clips"][1];
+  EXPECT_EQ(clip["name"], "07_02");
+  EXPECT_EQ(clip["source"], "/data/07_02.amc");
+  EXPECT_EQ(clip["frames"], 500);
+  EXPECT_EQ(clip["fps"], 120.0);
+  EXPECT_EQ(clip["first_frame"], 1000);
+  const nlohmann::json& params = json["params"];
+  EXPECT_DOUBLE_EQ(params["eps"].get<double>(), 1.05);
+  EXPECT_EQ(params["kmax"], 256);
+  EXPECT_EQ(params["branch"], 4);
+  EXPECT_EQ(params["min_length"], 60);
+  EXPECT_EQ(params["groups"], "auto");
+  EXPECT_EQ(params["seed"], 7);
+  const nlohmann::json& motif = json["motifs"][0];
+  EXPECT_EQ(motif["id"], 0);
+  EXPECT_EQ(motif["instance_count"], 2);
+  EXPECT_DOUBLE_EQ(motif["mean_length"].get<double>(), 120.0);
+  EXPECT_DOUBLE_EQ(motif["mean_seconds"].get<double>(), 1.0);
+  EXPECT_EQ(motif["score"], 240);
+  const nlohmann::json& instance = motif["instances"][1];
+  EXPECT_EQ(instance["clip"], "07_02");
+  EXPECT_EQ(instance["start"], 50);
+  EXPECT_EQ(instance["end"], 170);
+  EXPECT_EQ(instance["frame"], 1050);
+  EXPECT_EQ(instance["length"], 120);
+  EXPECT_EQ(json["summary"]["covered_frames"], 360);
+
+  MotifsDocument given = *document;
+  given.params.groups = 12;
+  EXPECT_EQ(nlohmann::json::parse(MotifsJsonText(given))["params"]["groups"], 12);
+}
+
+TEST(MotifsJsonTest, WritesAtomicallyAndReadsBack) {
+  testing::TempDir dir;
+  auto document = MakeMotifsDocument(SmallResult(), "a.mfs", 1500, TwoClips(), Params());
+  ASSERT_TRUE(document.ok());
+  for (uint32_t groups : {0u, 5u}) {
+    document->params.groups = groups;
+    ASSERT_TRUE(WriteMotifsJson(dir.File("motifs.json"), *document).ok());
+    auto read = ReadMotifsJson(dir.File("motifs.json"));
+    ASSERT_TRUE(read.ok()) << read.status().ToString();
+    EXPECT_EQ(*read, *document);
+    EXPECT_EQ(read->covered_frames, 360u);
+  }
+  // An empty result is a valid file too.
+  MotifsDocument empty;
+  empty.archive = "e.mfs";
+  ASSERT_TRUE(WriteMotifsJson(dir.File("empty.json"), empty).ok());
+  auto read = ReadMotifsJson(dir.File("empty.json"));
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  EXPECT_EQ(*read, empty);
+}
+
+TEST(MotifsJsonTest, ReaderNamesWhatIsWrong) {
+  auto document = MakeMotifsDocument(SmallResult(), "a.mfs", 1500, TwoClips(), Params());
+  ASSERT_TRUE(document.ok());
+  const nlohmann::json good = nlohmann::json::parse(MotifsJsonText(*document));
+  auto parse = [](const nlohmann::json& json) { return ParseMotifsJson(json.dump(), "m.json"); };
+  EXPECT_TRUE(parse(good).ok());
+  EXPECT_TRUE(ParseMotifsJson("{not json", "m.json").status().IsInvalidArgument());
+
+  nlohmann::json changed = good;
+  changed["version"] = 2;
+  EXPECT_EQ(parse(changed).status().code(), Status::Code::kNotSupported);
+  changed = good;
+  changed["motifs"][0]["instances"][0].erase("end");
+  Status status = parse(changed).status();
+  EXPECT_TRUE(status.IsInvalidArgument());
+  EXPECT_NE(status.message().find("motifs[0].instances[0]: missing \"end\""), std::string::npos)
+      << status.message();
+  changed = good;
+  changed["motifs"][1]["instances"][0]["clip"] = "nope";
+  EXPECT_TRUE(parse(changed).status().IsInvalidArgument());
+  changed = good;
+  changed["params"]["kmax"] = "many";
+  EXPECT_TRUE(parse(changed).status().IsInvalidArgument());
+  changed = good;
+  changed["motifs"][0]["instances"][0]["end"] = 100;  // = start
+  EXPECT_TRUE(parse(changed).status().IsInvalidArgument());
+  // Unknown fields are ignored; the extra fields are optional.
+  changed = good;
+  changed["future"] = {1, 2};
+  changed["motifs"][0]["instances"][0].erase("frame");
+  auto lenient = parse(changed);
+  ASSERT_TRUE(lenient.ok());
+  EXPECT_EQ(lenient->motifs[0].instances[0].frame, 100u);  // from the clip table
+}
+
+}  // namespace
+}  // namespace motif
