@@ -62,5 +62,6 @@ int RunGrow(const std::vector<std::string>& args);
 int RunCluster(const std::vector<std::string>& args);
 int RunExportMotif(const std::vector<std::string>& args);
 int RunReport(const std::vector<std::string>& args);
+int RunMine(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

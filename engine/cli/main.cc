@@ -17,6 +17,7 @@ struct Command {
 };
 
 const Command kCommands[] = {
+    {"mine", motif::cli::RunMine, "the whole job: trellis, paths, motifs and report (synthetic demo without INPUT)"},
     {"import", motif::cli::RunImport, "import BVH or ASF/AMC takes into an archive (creates or appends)"},
     {"info", motif::cli::RunInfo, "describe an archive: clips, frames, skeleton, size"},
     {"verify", motif::cli::RunVerify, "check every checksum of an archive"},

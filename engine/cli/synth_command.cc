@@ -4,6 +4,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/synth/truth_json_reader.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/frame_file/frame_file_writer.h"
 #include "formats/import/take_importer.h"
@@ -15,13 +16,6 @@ namespace motif::cli {
 namespace po = boost::program_options;
 
 namespace {
-
-// OUT.mfs -> OUT.truth.json
-std::string TruthPathFor(const std::string& archive_path) {
-  std::filesystem::path path(archive_path);
-  if (path.extension() == ".mfs") path.replace_extension("");
-  return path.string() + ".truth.json";
-}
 
 // Imports the real takes to re-sequence, all mapped to the first one's skeleton and at `fps`.
 Result<std::vector<Take>> LoadSourceTakes(const std::vector<std::string>& paths, double fps,

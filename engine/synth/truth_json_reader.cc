@@ -1,5 +1,7 @@
 #include "engine/synth/truth_json_reader.h"
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include "common/file_util.h"
@@ -74,6 +76,12 @@ Result<TruthFile> ParseTruthJson(const std::string& text, const std::string& nam
 Result<TruthFile> ReadTruthJson(const std::string& path) {
   MOTIF_ASSIGN_OR_RETURN(std::string text, ReadFileToString(path));
   return ParseTruthJson(text, path);
+}
+
+std::string TruthPathFor(const std::string& archive_path) {
+  std::filesystem::path path(archive_path);
+  if (path.extension() == ".mfs") path.replace_extension("");
+  return path.string() + ".truth.json";
 }
 
 }  // namespace motif

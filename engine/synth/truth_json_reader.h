@@ -26,4 +26,7 @@ struct TruthFile {
 Result<TruthFile> ParseTruthJson(const std::string& text, const std::string& name);
 Result<TruthFile> ReadTruthJson(const std::string& path);
 
+// Where an archive's truth is written: OUT.mfs -> OUT.truth.json.
+std::string TruthPathFor(const std::string& archive_path);
+
 }  // namespace motif

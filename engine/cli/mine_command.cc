@@ -1,0 +1,475 @@
+// `motifmine mine [INPUT...] --out DIR`: the whole job, end to end. INPUT is an archive (.mfs),
+// or BVH / ASF+AMC takes and folders (imported into DIR/archive.mfs); with no INPUT, a built-in
+// synthetic archive with planted motifs is written to DIR/archive.mfs (and its truth). Then the
+// trellis (DIR/trellis.mtr), the paths (DIR/paths.mpa), the motifs (DIR/motifs.json) and the
+// report (DIR/report.html), with one progress display across the stages and a one-screen
+// summary.
+//
+// Resumable and incremental by stage: the trellis and the paths record the archive identity and
+// their parameters and are reused when they match (an interrupted trellis resumes after its last
+// block); clustering is reused when DIR/mine_state.json says it ran on the same paths file with
+// the same options; the synthetic archive when its truth has the same options; an import skips
+// takes already in the archive. Changing one parameter reruns only the stages after it.
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/file_util.h"
+#include "engine/cli/cli_common.h"
+#include "engine/cluster/motif_clusterer.h"
+#include "engine/cluster/motifs_json.h"
+#include "engine/cluster/planted_motif_score.h"
+#include "engine/grow/paths_builder.h"
+#include "engine/ingest/archive_import.h"
+#include "engine/report/report_html.h"
+#include "engine/synth/motion_synthesizer.h"
+#include "engine/synth/truth_json_reader.h"
+#include "engine/trellis/trellis_builder.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/frame_file/frame_file_writer.h"
+#include "formats/paths_file/paths_file_reader.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Peak resident memory of this process, bytes.
+uint64_t PeakRss() {
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<uint64_t>(usage.ru_maxrss) * 1024;
+}
+
+std::string Mebibytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1 << 20));
+  return text;
+}
+
+std::string Join(const std::filesystem::path& dir, const char* name) {
+  return (dir / name).string();
+}
+
+// "60" frames or "0.5s" seconds.
+Status ParseLength(const std::string& text, uint64_t* frames, double* seconds) {
+  const bool in_seconds = !text.empty() && text.back() == 's';
+  const std::string number = in_seconds ? text.substr(0, text.size() - 1) : text;
+  char* end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) ||
+      !(value > 0) || (!in_seconds && value != std::floor(value))) {
+    return Status::InvalidArgument("--min-length must be a whole number of frames (60) or "
+                                   "seconds with an s (0.5s), not '" + text + "'");
+  }
+  *frames = in_seconds ? 0 : static_cast<uint64_t>(value);
+  *seconds = in_seconds ? value : 0;
+  return Status::Ok();
+}
+
+struct StageTime {
+  std::string stage;
+  double seconds = 0;
+  bool reused = false;
+};
+
+// The synthetic archive of a run with no INPUT: reused when its truth says it was made with the
+// same options.
+Status MakeSyntheticArchive(const std::string& archive, const SynthOptions& options,
+                            ProgressReporter* progress, bool* reused) {
+  const std::string truth_path = TruthPathFor(archive);
+  std::error_code error;
+  if (std::filesystem::exists(archive, error)) {
+    Result<TruthFile> truth = ReadTruthJson(truth_path);
+    if (truth.ok() && truth->frames == options.frames && truth->seed == options.seed &&
+        truth->motifs == options.motifs && FrameFileReader::Open(archive).ok()) {
+      *reused = true;
+      return Status::Ok();
+    }
+  }
+  *reused = false;
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
+                         MotionSynthesizer::Create(options));
+  // Written beside the archive and renamed over it when complete.
+  const std::string staging = TemporaryPathFor(archive);
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
+                         FrameFileWriter::Create(staging, synthesizer->skeleton(), options.fps,
+                                                 FrameFileWriterOptions{}));
+  progress->BeginStage("synth", options.frames, "frames");
+  uint64_t frames_done = 0;
+  Status status = synthesizer->Run([&](const ClipFrames& clip) {
+    MOTIF_RETURN_IF_ERROR(writer->AppendClip(clip));
+    frames_done += clip.info.frame_count;
+    progress->Update(frames_done);
+    return Status::Ok();
+  });
+  if (status.ok()) status = writer->Commit();
+  writer.reset();
+  progress->EndStage();
+  if (status.ok()) status = PosixFileSystem()->Rename(staging, archive);
+  if (!status.ok()) {
+    PosixFileSystem()->Remove(staging);
+    return status;
+  }
+  return WriteTruthJson(truth_path, archive, frames_done, options, synthesizer->truth());
+}
+
+// The key under which DIR/mine_state.json remembers a clustering: the paths file's checksum and
+// every option that changes the result.
+Result<std::string> ClusterKey(const std::string& paths_path, const ClusterOptions& options) {
+  MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadFileToString(paths_path));
+  std::ostringstream key;
+  key << "paths=" << std::hash<std::string>{}(bytes) << ":" << bytes.size()
+      << " groups=" << options.cut.groups << " max_ncut=" << options.cut.max_ncut
+      << " min_similarity=" << options.similarity.min_similarity << " seed=" << options.seed;
+  return key.str();
+}
+
+std::string StoredClusterKey(const std::string& state_path) {
+  Result<std::string> text = ReadFileToString(state_path);
+  if (!text.ok()) return "";
+  const nlohmann::json state = nlohmann::json::parse(*text, nullptr, /*allow_exceptions=*/false);
+  if (!state.is_object() || !state.contains("cluster_key") || !state["cluster_key"].is_string()) {
+    return "";
+  }
+  return state["cluster_key"].get<std::string>();
+}
+
+}  // namespace
+
+int RunMine(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "mine";
+  spec.usage = "motifmine mine [INPUT...] --out DIR [options]";
+  spec.summary =
+      "Mines the recurring motions of an archive end to end: the matching trellis (eps-NN of\n"
+      "every frame), the continuous paths through it, their clustering into motifs, and a\n"
+      "report. INPUT is an archive (.mfs) or BVH / ASF+AMC takes and folders (imported into\n"
+      "DIR/archive.mfs); with no INPUT a built-in synthetic archive with planted motifs is\n"
+      "mined and the planted motifs are scored. Writes DIR/motifs.json, DIR/report.html and a\n"
+      "summary. A second run reuses every stage whose inputs and parameters did not change.";
+  spec.options.add_options()
+      ("out", po::value<std::string>(), "output folder (created if missing)")
+      ("eps", po::value<float>()->default_value(0), "pose distance threshold; 0: mu - 2 sigma")
+      ("kmax", po::value<uint32_t>()->default_value(256), "neighbours kept per frame, nearest")
+      ("exclusion", po::value<uint32_t>()->default_value(0),
+       "same-clip exclusion radius in frames; 0: half the minimum length")
+      ("search", po::value<std::string>()->default_value("auto"),
+       "neighbour search: auto (exact on small archives), lsh or exact")
+      ("branch", po::value<uint32_t>()->default_value(PathsOptions{}.branch),
+       "branching factor B of the path grower")
+      ("min-length", po::value<std::string>()->default_value("0.5s"),
+       "least motif length: frames (60) or seconds (0.5s)")
+      ("groups", po::value<std::string>()->default_value("auto"), "number of motifs, or auto")
+      ("seed", po::value<uint64_t>()->default_value(1), "seed of every random choice")
+      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
+      ("synth-frames", po::value<uint64_t>()->default_value(120000),
+       "no INPUT: frames of the synthetic archive")
+      ("synth-motifs", po::value<uint32_t>()->default_value(12),
+       "no INPUT: planted motifs of the synthetic archive")
+      ("skip-bad", "import: report malformed takes and import the others")
+      ("no-report", "do not write report.html");
+  AddProgressOptions(spec);
+  spec.positional = {{"input", -1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  if (!vm.count("out")) {
+    std::fprintf(stderr, "motifmine mine: error: --out DIR is required\nusage: %s\n",
+                 spec.usage.c_str());
+    return kExitUsage;
+  }
+  const std::filesystem::path out_dir = vm["out"].as<std::string>();
+  const std::vector<std::string> inputs =
+      vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  const uint64_t seed = vm["seed"].as<uint64_t>();
+  const int threads = vm["threads"].as<int>();
+  const auto fail = [](const Status& status) { return ReportError("mine", status); };
+
+  // Every parameter is checked before any work.
+  TrellisOptions trellis_options;
+  trellis_options.eps = vm["eps"].as<float>();
+  trellis_options.k_max = vm["kmax"].as<uint32_t>();
+  trellis_options.exclusion_frames = vm["exclusion"].as<uint32_t>();
+  trellis_options.seed = seed;
+  trellis_options.threads = threads;
+  Result<TrellisSearchMode> search = ParseTrellisSearchMode(vm["search"].as<std::string>());
+  if (!search.ok()) return fail(search.status());
+  trellis_options.search = *search;
+  PathsOptions paths_options;
+  paths_options.branch = vm["branch"].as<uint32_t>();
+  if (Status status = ParseLength(vm["min-length"].as<std::string>(),
+                                  &paths_options.min_length_frames,
+                                  &paths_options.min_length_seconds);
+      !status.ok()) {
+    return fail(status);
+  }
+  ClusterOptions cluster_options;
+  cluster_options.seed = seed;
+  cluster_options.threads = threads;
+  const std::string groups_text = vm["groups"].as<std::string>();
+  if (groups_text != "auto") {
+    char* end = nullptr;
+    const unsigned long groups = std::strtoul(groups_text.c_str(), &end, 10);
+    if (groups_text.empty() || *end != '\0' || groups == 0 || groups > 1000000 ||
+        groups_text[0] == '-') {
+      return fail(Status::InvalidArgument("--groups must be auto or a positive number, not '" +
+                                          groups_text + "'"));
+    }
+    cluster_options.cut.groups = static_cast<uint32_t>(groups);
+  }
+  if (trellis_options.eps < 0 || !std::isfinite(trellis_options.eps)) {
+    return fail(Status::InvalidArgument("--eps must be >= 0 (0: mu - 2 sigma)"));
+  }
+  if (trellis_options.k_max == 0) return fail(Status::InvalidArgument("--kmax must be > 0"));
+  if (paths_options.branch == 0) return fail(Status::InvalidArgument("--branch must be > 0"));
+
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  if (error) {
+    return fail(Status::IOError("cannot create " + out_dir.string() + ": " + error.message()));
+  }
+  ProgressReporter progress(ProgressModeFrom(vm));
+  std::vector<StageTime> times;
+  const Clock::time_point job_start = Clock::now();
+
+  // Stage 1: the archive.
+  std::string archive = Join(out_dir, "archive.mfs");
+  std::string truth_path;
+  Clock::time_point start = Clock::now();
+  if (inputs.empty()) {
+    SynthOptions synth;
+    synth.frames = vm["synth-frames"].as<uint64_t>();
+    synth.motifs = vm["synth-motifs"].as<uint32_t>();
+    synth.seed = seed;
+    synth.threads = threads > 0 ? static_cast<uint32_t>(threads) : 0;
+    bool reused = false;
+    if (Status status = MakeSyntheticArchive(archive, synth, &progress, &reused); !status.ok()) {
+      return fail(status);
+    }
+    truth_path = TruthPathFor(archive);
+    times.push_back({"synth", SecondsSince(start), reused});
+  } else if (inputs.size() == 1 && std::filesystem::path(inputs[0]).extension() == ".mfs") {
+    archive = inputs[0];
+    if (std::filesystem::exists(TruthPathFor(archive), error)) truth_path = TruthPathFor(archive);
+  } else {
+    ArchiveImportOptions import_options;
+    import_options.skip_bad = vm.count("skip-bad") > 0;
+    import_options.threads = threads;
+    import_options.note = [&](const std::string& message) { progress.Note(message); };
+    bool began = false;
+    import_options.progress = [&](uint64_t done, uint64_t total) {
+      if (!began) progress.BeginStage("import", total, "takes");
+      began = true;
+      progress.Update(done);
+    };
+    Result<ArchiveImportResult> imported = ImportIntoArchive(archive, inputs, import_options);
+    if (began) progress.EndStage();
+    if (!imported.ok()) return fail(imported.status());
+    times.push_back({"import", SecondsSince(start), imported->takes_imported == 0});
+  }
+  Result<std::unique_ptr<FrameFileReader>> frames = FrameFileReader::Open(archive);
+  if (!frames.ok()) return fail(frames.status());
+
+  // Stage 2: the matching trellis.
+  const std::string trellis_path = Join(out_dir, "trellis.mtr");
+  std::string trellis_stage;
+  trellis_options.min_length_seconds =
+      paths_options.min_length_frames > 0
+          ? static_cast<double>(paths_options.min_length_frames) / (*frames)->fps()
+          : paths_options.min_length_seconds;
+  trellis_options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+    if (stage != trellis_stage) {
+      if (!trellis_stage.empty()) progress.EndStage();
+      trellis_stage = stage;
+      progress.BeginStage(stage == "trellis" ? "trellis" : "trellis " + stage, total,
+                          stage == "eps" ? "pairs" : stage == "trellis" ? "columns" : "frames");
+    }
+    progress.Update(done);
+  };
+  trellis_options.note = [&](const std::string& message) { progress.Note(message); };
+  start = Clock::now();
+  Result<TrellisReport> trellis = BuildTrellis(archive, trellis_path, trellis_options);
+  if (!trellis_stage.empty()) progress.EndStage();
+  if (!trellis.ok()) return fail(trellis.status());
+  times.push_back({"trellis", SecondsSince(start), trellis->reused});
+
+  // Stage 3: the paths.
+  const std::string paths_path = Join(out_dir, "paths.mpa");
+  bool grow_began = false;
+  paths_options.progress = [&](uint64_t done, uint64_t total) {
+    if (!grow_began) progress.BeginStage("grow", total, "columns");
+    grow_began = true;
+    progress.Update(done);
+  };
+  start = Clock::now();
+  Result<PathsReport> paths = BuildPaths(archive, trellis_path, paths_path, paths_options);
+  if (grow_began) progress.EndStage();
+  if (!paths.ok()) return fail(paths.status());
+  times.push_back({"grow", SecondsSince(start), paths->reused});
+
+  // Stage 4: clustering, reused when the same paths were clustered with the same options.
+  const std::string motifs_path = Join(out_dir, "motifs.json");
+  const std::string state_path = Join(out_dir, "mine_state.json");
+  Result<std::string> cluster_key = ClusterKey(paths_path, cluster_options);
+  if (!cluster_key.ok()) return fail(cluster_key.status());
+  start = Clock::now();
+  Result<std::unique_ptr<TrellisFileReader>> trellis_reader = TrellisFileReader::Open(trellis_path);
+  if (!trellis_reader.ok()) return fail(trellis_reader.status());
+  MotifsDocument document;
+  bool cluster_reused = false;
+  if (StoredClusterKey(state_path) == *cluster_key) {
+    Result<MotifsDocument> stored = ReadMotifsJson(motifs_path);
+    if (stored.ok() && stored->frames == (*frames)->frame_count()) {
+      document = std::move(stored.value());
+      cluster_reused = true;
+    }
+  }
+  if (!cluster_reused) {
+    Result<std::unique_ptr<PathsFileReader>> candidates = PathsFileReader::Open(paths_path);
+    if (!candidates.ok()) return fail(candidates.status());
+    bool began = false;
+    cluster_options.progress = [&](const std::string&, uint64_t done, uint64_t total) {
+      if (!began) progress.BeginStage("cluster", total, "columns");
+      began = true;
+      progress.Update(done);
+    };
+    Result<ClusterResult> clustered =
+        ClusterMotifs((*candidates)->candidates(), **trellis_reader, cluster_options);
+    if (began) progress.EndStage();
+    if (!clustered.ok()) return fail(clustered.status());
+    MotifsJsonParams params;
+    params.eps = trellis->params.eps;
+    params.kmax = trellis->params.k_max;
+    params.branch = paths->params.branch;
+    params.min_length = paths->params.min_length;
+    params.groups = cluster_options.cut.groups;
+    params.seed = seed;
+    Result<MotifsDocument> made = MakeMotifsDocument(*clustered, archive, (*frames)->frame_count(),
+                                                     (*frames)->clips(), params);
+    if (!made.ok()) return fail(made.status());
+    document = std::move(made.value());
+    if (Status status = WriteMotifsJson(motifs_path, document); !status.ok()) return fail(status);
+    const nlohmann::json state = {{"version", 1}, {"cluster_key", *cluster_key}};
+    if (Status status = AtomicWriteFile(state_path, state.dump(2) + "\n"); !status.ok()) {
+      return fail(status);
+    }
+  }
+  times.push_back({"cluster", SecondsSince(start), cluster_reused});
+
+  // The planted motifs, when the archive is synthetic.
+  std::optional<PlantedMotifScore> score;
+  std::vector<PlantedInstance> planted;
+  if (!truth_path.empty()) {
+    Result<TruthFile> truth = ReadTruthJson(truth_path);
+    if (!truth.ok()) return fail(truth.status());
+    planted = truth->instances;
+    std::vector<FoundInstance> found;
+    for (const MotifsJsonMotif& motif : document.motifs) {
+      for (const MotifsJsonInstance& instance : motif.instances) {
+        found.push_back({instance.clip, instance.start, instance.end, motif.id});
+      }
+    }
+    score = ScorePlantedMotifs(found, planted);
+  }
+
+  // Stage 5: the report.
+  const std::string report_path = Join(out_dir, "report.html");
+  if (!vm.count("no-report")) {
+    start = Clock::now();
+    ReportInfo info;
+    info.archive_path = archive;
+    std::ostringstream parameters;
+    parameters << "eps " << trellis->params.eps << " (mu " << trellis->params.mu << ", sigma "
+               << trellis->params.sigma << "), k_max " << trellis->params.k_max << ", B "
+               << paths->params.branch << ", min length " << paths->params.min_length
+               << " frames, groups " << groups_text << ", seed " << seed << ", search "
+               << TrellisSearchModeName(trellis->search);
+    info.parameters_text = parameters.str();
+    for (const StageTime& time : times) info.timings.push_back({time.stage, time.seconds});
+    info.peak_memory_bytes = PeakRss();
+    info.planted_score = score;
+    info.truth_path = truth_path;
+    if (Status status = WriteReportHtml(report_path, document, **frames, info); !status.ok()) {
+      return fail(status);
+    }
+    times.push_back({"report", SecondsSince(start), false});
+  }
+
+  // The summary.
+  uint64_t instances = 0;
+  uint64_t instance_frames = 0;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    instances += motif.instances.size();
+    for (const MotifsJsonInstance& instance : motif.instances) instance_frames += instance.length();
+  }
+  const double fps = (*frames)->fps();
+  const uint64_t total_frames = (*frames)->frame_count();
+  std::printf("motifmine mine: %s\n", archive.c_str());
+  std::printf("  archive      %s frames (%.1f min at %g fps) in %s clips\n",
+              WithCommas(total_frames).c_str(), static_cast<double>(total_frames) / fps / 60.0,
+              fps, WithCommas((*frames)->clips().size()).c_str());
+  std::printf("  trellis      eps %.3f (mu %.3f, sigma %.3f), mean K %.1f of k_max %u, %s search\n",
+              trellis->params.eps, trellis->params.mu, trellis->params.sigma, trellis->mean_k,
+              trellis->params.k_max, TrellisSearchModeName(trellis->search));
+  std::printf("  paths        %s candidates (B %u, min length %llu frames)\n",
+              WithCommas(paths->candidates).c_str(), paths->params.branch,
+              static_cast<unsigned long long>(paths->params.min_length));
+  std::printf("  motifs       %s motifs, %s instances, mean %.1f s, covering %.1f%% of the "
+              "archive\n",
+              WithCommas(document.motifs.size()).c_str(), WithCommas(instances).c_str(),
+              instances ? static_cast<double>(instance_frames) / instances / fps : 0.0,
+              total_frames ? 100.0 * static_cast<double>(document.covered_frames) /
+                                 static_cast<double>(total_frames)
+                           : 0.0);
+  for (size_t rank = 0; rank < std::min<size_t>(5, document.motifs.size()); ++rank) {
+    const MotifsJsonMotif& motif = document.motifs[rank];
+    uint64_t length = 0;
+    for (const MotifsJsonInstance& instance : motif.instances) length += instance.length();
+    std::printf("    motif %-4zu %3zu instances, mean %.2f s, e.g. %s [%llu, %llu)\n", rank,
+                motif.instances.size(),
+                static_cast<double>(length) / static_cast<double>(motif.instances.size()) / fps,
+                motif.instances.front().clip.c_str(),
+                static_cast<unsigned long long>(motif.instances.front().start),
+                static_cast<unsigned long long>(motif.instances.front().end));
+  }
+  std::string timing;
+  for (const StageTime& time : times) {
+    char part[96];
+    std::snprintf(part, sizeof part, "%s%s %.1fs%s", timing.empty() ? "" : ", ",
+                  time.stage.c_str(), time.seconds, time.reused ? " (reused)" : "");
+    timing += part;
+  }
+  std::printf("  time         %s; total %.1fs\n", timing.c_str(), SecondsSince(job_start));
+  std::printf("  memory       peak resident %s\n", Mebibytes(PeakRss()).c_str());
+  if (score) {
+    std::printf("  planted      %u motifs as %s instances (%s)\n", score->planted_motifs,
+                WithCommas(score->planted).c_str(), truth_path.c_str());
+    std::printf("  recall       %.3f  (%s of %s planted instances found)\n", score->recall,
+                WithCommas(score->planted_hit).c_str(), WithCommas(score->planted).c_str());
+    std::printf("  precision    %.3f  (%s of %s found instances are planted ones)\n",
+                score->precision, WithCommas(score->found_hitting).c_str(),
+                WithCommas(score->found).c_str());
+    std::printf("  grouping     ARI %.3f  (found motif vs planted motif of the hit instances)\n",
+                score->adjusted_rand_index);
+  }
+  std::printf("  wrote        %s", motifs_path.c_str());
+  if (!vm.count("no-report")) std::printf(", %s (open it in a browser)", report_path.c_str());
+  std::printf("\n");
+  return kExitOk;
+}
+
+}  // namespace motif::cli
