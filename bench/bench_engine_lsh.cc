@@ -204,7 +204,7 @@ const Archive& ArchiveOf(const std::string& data, uint64_t frames) {
 }
 
 // Defaults, or for tuning sweeps the environment's MOTIF_LSH_PROBES, MOTIF_LSH_MAX_CANDIDATES,
-// MOTIF_LSH_MAX_ENTRIES and MOTIF_LSH_WIDTH_PER_HASH.
+// MOTIF_LSH_MAX_ENTRIES, MOTIF_LSH_WIDTH_PER_HASH and MOTIF_LSH_RANKING (sort|code).
 LshOptions OptionsFor(uint32_t threads) {
   LshOptions options;
   options.threads = static_cast<int>(threads);
@@ -215,6 +215,7 @@ LshOptions OptionsFor(uint32_t threads) {
   from_env("MOTIF_LSH_MAX_CANDIDATES", &options.max_candidates);
   from_env("MOTIF_LSH_MAX_ENTRIES", &options.max_entries);
   from_env("MOTIF_LSH_WIDTH_PER_HASH", &options.width_per_hash);
+  if (const char* ranking = std::getenv("MOTIF_LSH_RANKING")) ParseLshRanking(ranking, &options.ranking);
   return options;
 }
 

@@ -19,7 +19,7 @@ int ArenaThreads(int threads) { return threads > 0 ? threads : tbb::task_arena::
 }  // namespace
 
 Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily& family,
-                                 uint32_t shard_frames, int threads) {
+                                 uint32_t shard_frames, int threads, bool position_codes) {
   const uint64_t frame_count = features.frame_count();
   if (frame_count >= (uint64_t{1} << 32)) {
     return Status::InvalidArgument("lsh index: " + std::to_string(frame_count) +
@@ -37,7 +37,7 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
     table.keys.resize(frame_count);
     table.sort_values.resize(frame_count);
     table.frames.resize(frame_count);
-    table.codes.resize(frame_count);
+    if (position_codes) table.codes.resize(frame_count);
   }
   const uint64_t shard_count = (frame_count + shard_frames - 1) / shard_frames;
   std::vector<uint64_t> run_starts(shard_count + 1);
@@ -57,7 +57,8 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                           for (uint32_t table_idx = 0; table_idx < table_count; ++table_idx) {
                             LshTableEntries& table = index.tables_[table_idx];
                             slices[table_idx] = {&table.keys[first], &table.sort_values[first],
-                                                 &table.frames[first], &table.codes[first]};
+                                                 &table.frames[first],
+                                                 position_codes ? &table.codes[first] : nullptr};
                           }
                           builder.Build(first, count, slices);
                         }
@@ -90,7 +91,8 @@ void LshIndex::MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_st
   out.keys.resize(total);
   out.sort_values.resize(total);
   out.frames.resize(total);
-  out.codes.resize(total);
+  const bool with_codes = !in.codes.empty();
+  if (with_codes) out.codes.resize(total);
   struct Head {
     uint32_t key;
     int16_t sort_value;
@@ -121,7 +123,7 @@ void LshIndex::MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_st
       out.keys[written] = in.keys[position];
       out.sort_values[written] = in.sort_values[position];
       out.frames[written] = in.frames[position];
-      out.codes[written] = in.codes[position];
+      if (with_codes) out.codes[written] = in.codes[position];
       ++written;
       ++position;
       if (position == head.run_end) break;

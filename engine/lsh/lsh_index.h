@@ -37,8 +37,10 @@ class LshIndex {
   // Hashes all frames of `features` with `family` in shards of `shard_frames` frames on
   // `threads` threads (0: all cores). InvalidArgument for shard_frames 0 or an archive of 2^32
   // frames or more.
+  // Without `position_codes` the tables hold no codes (LshRanking::kSortValue does not read
+  // them), 4 bytes per frame per table less.
   static Result<LshIndex> Build(const PoseFeatures& features, const HashFamily& family,
-                                uint32_t shard_frames, int threads);
+                                uint32_t shard_frames, int threads, bool position_codes = true);
 
   uint32_t table_count() const { return static_cast<uint32_t>(tables_.size()); }
   uint64_t frame_count() const { return frame_count_; }

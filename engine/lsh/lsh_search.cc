@@ -410,6 +410,94 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
     batch_size = 0;
   };
 
+  // Breadth first: every probed bucket is scanned outward from the query's sort value in rounds
+  // of growing depth, so the budget goes to the entries nearest the query in all tables before
+  // the far ends of the first buckets. Probes are in increasing lower bound; a probe whose bound
+  // exceeds the current radius ends the column's probing (nothing left can enter).
+  auto scan_by_sort_value = [&](size_t first_probe) {
+    cursors_.clear();
+    uint32_t depth = options.first_round_scan;
+    size_t probe_limit = probes_.size();
+    while (!budget_spent) {
+      bool more = false;  // some bucket still has entries within the radius
+      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !budget_spent; ++probe_idx) {
+        const Probe& probe = probes_[probe_idx];
+        if (probe.score > (bound + kBoundSlack) * (bound + kBoundSlack)) {
+          probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
+          bound_stopped = true;
+          break;
+        }
+        if (probe_idx - first_probe == cursors_.size()) {
+          ++local.probes;
+          cursors_.push_back(OpenBucket(probe));
+        }
+        Cursor& cursor = cursors_[probe_idx - first_probe];
+        if (cursor.done) continue;
+        const LshTableEntries& table = index.table(probe.table_idx);
+        const int16_t* sort_values = table.sort_values.data();
+        const uint32_t* frames = table.frames.data();
+        const uint32_t round_limit = std::min(depth, cursor.scan_limit);
+        while (!cursor.done && cursor.examined < round_limit) {
+          // Gather new, allowed candidates, nearest sort value first, into the batch (which
+          // continues across buckets, so the eight-wide verification stays full).
+          const uint64_t room = options.max_candidates - evaluations - pending_size;
+          const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
+          while (batch_size < batch_limit && cursor.examined < round_limit) {
+            const bool has_up = cursor.up < cursor.end;
+            const bool has_down = !cursor.linear && cursor.down > cursor.begin;
+            if (!has_up && !has_down) {
+              cursor.done = true;
+              break;
+            }
+            // The side whose next sort value is nearer; ties go up (ascending frames within equal
+            // sort values, so exact duplicates come lowest frame first).
+            const int32_t up_gap =
+                has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
+            const int32_t down_gap =
+                has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
+            const bool take_up = up_gap <= down_gap;
+            const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
+            const float limit = bound + kBoundSlack;
+            if (probe.score + gap * gap > limit * limit) {
+              if (!cursor.linear) {  // scanning outward: both sides only get farther
+                cursor.done = true;
+                break;
+              }
+              ++cursor.up;  // stored order: only this entry is out of reach
+              ++cursor.examined;
+              ++local.entries_examined;
+              continue;
+            }
+            const uint32_t position = take_up ? cursor.up++ : --cursor.down;
+            ++cursor.examined;
+            ++local.entries_examined;
+            const uint32_t frame = frames[position];
+            const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+            if (frame_gap < rules.exclusion_frames &&
+                rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
+              continue;
+            }
+            if (!visited_.Insert(frame)) continue;
+            distance_.Prefetch(frame);
+            batch[batch_size++] = frame;
+          }
+          if (batch_size == batch_limit) flush();
+          if (evaluations + pending_size + batch_size >= options.max_candidates) {
+            budget_spent = true;
+            break;
+          }
+        }
+        if (!cursor.done && cursor.examined == cursor.scan_limit) {
+          cursor.done = true;
+          if (cursor.scan_limit < cursor.end - cursor.begin) ++local.bucket_scans_capped;
+        }
+        more = more || !cursor.done;
+      }
+      if (!more || depth >= options.max_bucket_scan) break;
+      depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+    }
+  };
+
   // Gather, rank, verify. The entries of the probed buckets within reach (the probe's lower
   // bound plus the sort-value gap within the radius) are read breadth first, in rounds of growing
   // depth outward from the query's sort value, up to max_entries per column. Each gets an
@@ -419,7 +507,7 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
   // on kRankBins bins; within a bin, gathering order), up to max_candidates. Ordering by the
   // code is what keeps recall on large archives, where a column's probed buckets hold ten times
   // more frames than the budget can verify (docs/design/lsh.md).
-  auto scan = [&](size_t first_probe) {
+  auto scan_by_code = [&](size_t first_probe) {
     cursors_.clear();
     gathered_.clear();
     const float limit = bound + kBoundSlack;
@@ -536,6 +624,15 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
     }
   };
 
+  const bool by_code = options.ranking == LshRanking::kPositionCode;
+  auto scan = [&](size_t first_probe) {
+    if (by_code) {
+      scan_by_code(first_probe);
+    } else {
+      scan_by_sort_value(first_probe);
+    }
+  };
+
   // Sparse columns: when the probes are used up before the budget and the column is not full,
   // or its k_max-th neighbour is much farther than the archive's typical one (the cells were
   // sized for the typical column), more distant buckets are probed: 4x the probes per table,
@@ -621,7 +718,8 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& feature
   HashFamily family = HashFamily::Draw(features.weights(), used.tables, used.hashes_per_table,
                                        used.bucket_width, used.seed);
   MOTIF_ASSIGN_OR_RETURN(LshIndex index,
-                         LshIndex::Build(features, family, used.shard_frames, used.threads));
+                         LshIndex::Build(features, family, used.shard_frames, used.threads,
+                                         used.ranking == LshRanking::kPositionCode));
   const float extension_radius = options.sparse_radius_factor * scale.radius;
   return std::unique_ptr<LshSearch>(new LshSearch(features, std::move(rules), std::move(used),
                                                   std::move(family), std::move(index),

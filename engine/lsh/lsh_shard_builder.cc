@@ -51,7 +51,7 @@ void LshShardBuilder::Build(uint64_t first_frame, uint64_t frame_count,
       slice.keys[rank] = table_keys[offset];
       slice.sort_values[rank] = table_sort[offset];
       slice.frames[rank] = static_cast<uint32_t>(first_frame + offset);
-      slice.codes[rank] = codes[table_idx * frame_count + offset];
+      if (slice.codes != nullptr) slice.codes[rank] = codes[table_idx * frame_count + offset];
     }
   }
 }

@@ -17,7 +17,7 @@
 namespace motif {
 
 // One table's entries: parallel arrays sorted by (keys[i], sort_values[i], frames[i]); codes[i]
-// is the entry's HashFamily::PositionCode.
+// is the entry's HashFamily::PositionCode (empty when the index keeps no codes).
 struct LshTableEntries {
   std::vector<uint32_t> keys;
   std::vector<int16_t> sort_values;
@@ -32,7 +32,7 @@ struct LshShardSlice {
   uint32_t* keys = nullptr;
   int16_t* sort_values = nullptr;
   uint32_t* frames = nullptr;
-  uint32_t* codes = nullptr;
+  uint32_t* codes = nullptr;  // null: the index keeps no position codes
 };
 
 class LshShardBuilder {

@@ -101,6 +101,46 @@ TEST_F(LshSearchTest, RecallOnSyntheticArchive) {
             measured.stats.columns * features_->frame_count() / 5);
 }
 
+// Ranking the gathered entries by position code: at least the recall of the sort-value scan
+// with the same verification budget, on the same columns.
+TEST_F(LshSearchTest, RankingByPositionCodeKeepsRecallWithHalfTheBudget) {
+  LshOptions by_code;
+  by_code.ranking = LshRanking::kPositionCode;
+  by_code.max_candidates = 2048;
+  LshOptions by_sort = by_code;
+  by_sort.ranking = LshRanking::kSortValue;
+  auto code_search = CreateSearch(*features_, *rules_, by_code);
+  auto sort_search = CreateSearch(*features_, *rules_, by_sort);
+  ASSERT_NE(code_search, nullptr);
+  ASSERT_NE(sort_search, nullptr);
+  EXPECT_FALSE(code_search->index().table(0).codes.empty());
+  EXPECT_TRUE(sort_search->index().table(0).codes.empty()) << "codes only when they are used";
+  const Measured code = MeasureRecall(*code_search, *features_, *rules_, 200, 5);
+  const Measured sort = MeasureRecall(*sort_search, *features_, *rules_, 200, 5);
+  Report("synthetic 30k, ranked by code, budget 2048", code, *code_search);
+  Report("synthetic 30k, sort-value scan, budget 2048", sort, *sort_search);
+  EXPECT_GE(code.recall.pooled(), 0.95);
+  EXPECT_GE(code.recall.pooled(), sort.recall.pooled() - 0.005);
+  EXPECT_LE(code.stats.distance_evaluations, code.stats.columns * 2048);
+  // Deterministic across thread counts too.
+  LshOptions two = by_code;
+  two.threads = 2;
+  two.shard_frames = 7000;
+  by_code.threads = 1;
+  auto one_thread = CreateSearch(*features_, *rules_, by_code);
+  auto two_threads = CreateSearch(*features_, *rules_, two);
+  ASSERT_NE(one_thread, nullptr);
+  ASSERT_NE(two_threads, nullptr);
+  std::vector<std::vector<Neighbour>> a;
+  std::vector<std::vector<Neighbour>> b;
+  SearchStats stats_a;
+  SearchStats stats_b;
+  ASSERT_TRUE(one_thread->SearchColumns(2000, 1000, &a, &stats_a).ok());
+  ASSERT_TRUE(two_threads->SearchColumns(2000, 1000, &b, &stats_b).ok());
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(stats_a.distance_evaluations, stats_b.distance_evaluations);
+}
+
 TEST(LshSearchRealTakes, RecallOnRealCmuTakes) {
   MOTIF_REQUIRE_MOCAP_DATA();
   auto features = testing::RealTakeFeatures(::motif::testing::MocapDir() + "/bvh");
@@ -212,7 +252,7 @@ TEST_F(LshSearchTest, SameColumnsForOneAndTwoThreads) {
 // lands in one bucket of every table. The work per column must stay within the caps, the
 // static frames' columns must still be exact (distance 0, lowest frames first), and the other
 // columns must not slow down.
-TEST(LshSearchHeavyBucket, StaticPoseRepeatedThousandsOfTimes) {
+void CheckHeavyBucket(LshRanking ranking) {
   const uint64_t motion_frames = 12000;
   const uint64_t static_frames = 6000;
   SynthOptions options;
@@ -256,6 +296,7 @@ TEST(LshSearchHeavyBucket, StaticPoseRepeatedThousandsOfTimes) {
   LshOptions lsh_options;
   lsh_options.max_candidates = 2048;
   lsh_options.max_bucket_scan = 1024;
+  lsh_options.ranking = ranking;
   auto search = CreateSearch(features, rules, lsh_options);
   NeighbourRules plain_rules = rules;
   auto plain_search = CreateSearch(plain, plain_rules, lsh_options);
@@ -325,6 +366,14 @@ TEST(LshSearchHeavyBucket, StaticPoseRepeatedThousandsOfTimes) {
       1e6 * plain_seconds / plain.frame_count());
   EXPECT_LE(all_stats.distance_evaluations, all_stats.columns * lsh_options.max_candidates);
   EXPECT_LE(heavy_per_column, 1.5 * plain_per_column + 64);
+}
+
+TEST(LshSearchHeavyBucket, StaticPoseRepeatedThousandsOfTimes) {
+  CheckHeavyBucket(LshRanking::kSortValue);
+}
+
+TEST(LshSearchHeavyBucket, StaticPoseRepeatedThousandsOfTimesRankedByCode) {
+  CheckHeavyBucket(LshRanking::kPositionCode);
 }
 
 TEST_F(LshSearchTest, QuaternionSignFlipGivesTheSameColumns) {
