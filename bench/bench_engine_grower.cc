@@ -11,7 +11,7 @@
 // make up half of each column, uniform random noise nodes the rest. They are written once per
 // (N, K) to $TMPDIR (or /tmp) outside the timed loop and removed at exit. The reference is run
 // only where it fits: at most 2^24 entries in memory and N·K² at most 2^33.
-// Run: bench/bench_engine_grower --benchmark_min_time=0.2s (the command in docs/benchmarks_grower.md).
+// Run: bench/bench_engine_grower --benchmark_min_time=0.2s (the command in docs/benchmarks.md).
 #include <unistd.h>
 
 #include <algorithm>

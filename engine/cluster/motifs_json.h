@@ -1,4 +1,4 @@
-// motifs.json: the mined motifs, the contract other tools read (docs/guide_cluster.md).
+// motifs.json: the mined motifs, the contract other tools read (docs/guide.md, section cluster).
 //
 //   {"version": 1, "archive": "...", "frames": N,
 //    "clips": [{"name": "05_01", "source": "...", "frames": 1234, "fps": 120.0,

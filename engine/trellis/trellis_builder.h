@@ -35,7 +35,7 @@ const char* TrellisSearchModeName(TrellisSearchMode mode);
 Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name);
 
 // Below this many frames kAuto uses the exact search. Measured with bench_engine_trellis (whole
-// builds, 2 threads, CPU time; docs/benchmarks_trellis.md): the exact build grows as N^2 and the
+// builds, 2 threads, CPU time; docs/benchmarks.md): the exact build grows as N^2 and the
 // LSH build about as N; they cross near 77,000 frames (procedural synthetic) and 88,000
 // (re-sequenced real takes). Up to this threshold the exact build costs at most ~16 % more than
 // LSH, and it has recall 1. Rerun scripts/bench_trellis.sh after changing the LSH search.
