@@ -4,7 +4,9 @@
 # oneTBB (parallel import and LSH shards), zstd (block compression), xxHash (XXH3 block
 # checksums), nlohmann-json (motifs.json, truth files, --json output), Spectra (header-only
 # sparse Lanczos eigensolver: normalized cut on large instance graphs, engine/cluster/), Google
-# Benchmark and GoogleTest/GoogleMock (bench/ and tests/).
+# Benchmark and GoogleTest/GoogleMock (bench/ and tests/), chromium (headless: the test that
+# opens report.html in a browser, tests/engine/cli/report_browser_test.cc, checks that its script
+# runs without errors and draws every figure, and saves a screenshot; it skips without it).
 set -euo pipefail
 
 packages=(
@@ -13,6 +15,7 @@ packages=(
   libeigen3-dev libtbb-dev libzstd-dev libxxhash-dev nlohmann-json3-dev
   libspectra-dev
   libbenchmark-dev libgtest-dev libgmock-dev
+  chromium
 )
 
 missing=()

@@ -9,9 +9,13 @@
 // their parameters and are reused when they match (an interrupted trellis resumes after its last
 // block); clustering is reused when DIR/mine_state.json says it ran on the same paths file with
 // the same options; the synthetic archive when its truth has the same options; an import skips
-// takes already in the archive. Changing one parameter reruns only the stages after it.
+// takes already in the archive. Changing one parameter reruns only the stages after it. A run
+// killed at any point (SIGKILL included) and started again gives the same motifs.json; it first
+// removes the temporary files a dead run left in DIR (RemoveStaleTemporaries).
+#include <signal.h>
 #include <sys/resource.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -128,6 +132,33 @@ Status MakeSyntheticArchive(const std::string& archive, const SynthOptions& opti
   return WriteTruthJson(truth_path, archive, frames_done, options, synthesizer->truth());
 }
 
+// Removes what a killed run left in DIR: the temporary files ("<name>.tmp-<pid>-<n>", see
+// TemporaryPathFor, and the writer's own "<name>.tmp-<pid>-<n>.tmp-<pid>-<m>") of the files this
+// command writes there, when the process that made them is gone. A killed synth stage leaves
+// the whole half-written archive behind, and no later run would ever reuse or remove it. Files of
+// a process that still runs (pid alive) are left alone.
+void RemoveStaleTemporaries(const std::filesystem::path& dir) {
+  static const char* const kOwned[] = {"archive.mfs", "archive.truth.json", "trellis.mtr",
+                                       "paths.mpa",   "motifs.json",        "mine_state.json",
+                                       "report.html"};
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+    const std::string name = entry.path().filename().string();
+    for (const char* owned : kOwned) {
+      const std::string prefix = std::string(owned) + ".tmp-";
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      char* end = nullptr;
+      const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
+      if (pid <= 0 || end == name.c_str() + prefix.size() || *end != '-') break;
+      if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+        std::error_code ignored;  // best effort: a file that cannot be removed does no harm
+        std::filesystem::remove(entry.path(), ignored);
+      }
+      break;
+    }
+  }
+}
+
 // The key under which DIR/mine_state.json remembers a clustering: the paths file's checksum and
 // every option that changes the result.
 Result<std::string> ClusterKey(const std::string& paths_path, const ClusterOptions& options) {
@@ -242,6 +273,7 @@ int RunMine(const std::vector<std::string>& args) {
   if (error) {
     return fail(Status::IOError("cannot create " + out_dir.string() + ": " + error.message()));
   }
+  RemoveStaleTemporaries(out_dir);
   ProgressReporter progress(ProgressModeFrom(vm));
   std::vector<StageTime> times;
   const Clock::time_point job_start = Clock::now();
@@ -256,6 +288,9 @@ int RunMine(const std::vector<std::string>& args) {
     synth.motifs = vm["synth-motifs"].as<uint32_t>();
     synth.seed = seed;
     synth.threads = threads > 0 ? static_cast<uint32_t>(threads) : 0;
+    // Background that does not repeat within eps, so the planted motifs are the only long
+    // repeats and precision against them means something (docs/guide.md, synth).
+    synth.background_variation_degrees = kRecommendedBackgroundVariation;
     bool reused = false;
     if (Status status = MakeSyntheticArchive(archive, synth, &progress, &reused); !status.ok()) {
       return fail(status);

@@ -71,6 +71,10 @@ int RunSynth(const std::vector<std::string>& args) {
        "planted instances per motif")
       ("noise-degrees", po::value<double>()->default_value(defaults.noise_degrees),
        "noise added to each planted instance (degrees, std dev)")
+      ("background-variation",
+       po::value<double>()->default_value(kRecommendedBackgroundVariation),
+       "procedural: smooth variation of each background segment (degrees, std dev), so the "
+       "background does not repeat")
       ("gap-seconds", po::value<double>()->default_value(defaults.gap_seconds),
        "least untouched background between planted instances")
       ("threads", po::value<uint32_t>()->default_value(0),
@@ -95,6 +99,7 @@ int RunSynth(const std::vector<std::string>& args) {
   options.instances_max = vm["instances-max"].as<uint32_t>();
   options.noise_degrees = vm["noise-degrees"].as<double>();
   options.gap_seconds = vm["gap-seconds"].as<double>();
+  options.background_variation_degrees = vm["background-variation"].as<double>();
   options.threads = vm["threads"].as<uint32_t>();
   const std::string out = vm["out"].as<std::string>();
   const bool force = vm.count("force") > 0;

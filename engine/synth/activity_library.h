@@ -5,8 +5,10 @@
 // rate, jumps) consistent with it: a walk moves forward at stride length * cadence, a squat stays
 // put and lowers the root through the legs' bend. A library of `count` activities is drawn from
 // the built-in archetypes with seeded variations (amplitudes, phases, style gestures, cadence),
-// and every background segment is a further perturbed copy of one library entry, so the
-// background is full of near-repeats, as real archives are.
+// and every background segment is a further perturbed copy of one library entry. A periodic
+// activity repeats itself cycle after cycle, so the procedural generator adds each segment its
+// own smooth variation (SynthOptions::background_variation_degrees): without it the background
+// repeats within eps for longer than lambda and the planted motifs are not the only repeats.
 // Thread-safety: a built library is immutable; const methods are safe from many threads.
 #pragma once
 

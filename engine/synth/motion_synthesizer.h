@@ -1,6 +1,7 @@
 // MotionSynthesizer: synthetic motion archives with planted motifs, the project's ground truth.
 // Writes plausible skeletal motion on the canonical CMU skeleton (smooth, joint-limited, built of
-// varied activities with near-repeats, not white noise), cut into clips, in which `motifs`
+// varied activities, each background segment with its own variation so that the planted
+// instances are the only long repeats; not white noise), cut into clips, in which `motifs`
 // motifs of varied lengths (0.5 to 5 s) are planted several times each with uniform and
 // non-uniform time warps (0.7x to 1.4x) and small noise. A second mode re-sequences real takes
 // (random segments, warps and noise) into a large archive of realistic neighbour density, with
@@ -21,6 +22,10 @@
 #include "formats/motion/take.h"
 
 namespace motif {
+
+// The background variation `motifmine synth` uses (degrees): the smallest that kept precision
+// >= 0.8 on every planted archive measured (docs/benchmarks_planted.md).
+inline constexpr double kRecommendedBackgroundVariation = 12.0;
 
 struct SynthOptions {
   uint64_t frames = 120 * 600;   // total frames in the archive
@@ -43,6 +48,14 @@ struct SynthOptions {
   uint32_t activities = 16;         // procedural: size of the activity library
   double segment_seconds_min = 1;   // background segments: a perturbed activity (procedural) or
   double segment_seconds_max = 10;  // a piece of a source take (re-sequencing)
+  // Procedural: std dev (degrees) of the smooth variation each background segment adds to every
+  // DOF (its own realisation per segment, 0.3 to 2 Hz): cycle-to-cycle and take-to-take
+  // variability, so the background does not repeat within eps for lambda frames and the planted
+  // instances stay the only long repeats (docs/benchmarks_planted.md). `motifmine synth` uses
+  // kRecommendedBackgroundVariation; the library default 0 keeps the archives every other
+  // stage's tests were calibrated on (their LSH recall and density thresholds assume eps near
+  // 1, and the variation raises eps = mu - 2 sigma to about 1.7).
+  double background_variation_degrees = 0.0;
   double source_warp_min = 0.8;     // re-sequencing: uniform speed factor of background segments
   double source_warp_max = 1.25;
   // Clips generated in parallel (0: all cores); the output does not depend on it.

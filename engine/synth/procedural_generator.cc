@@ -47,9 +47,12 @@ class BackgroundTrack {
     int64_t frames = 0;     // including the crossfade into the next segment
     int64_t crossfade = 0;  // frames shared with the next segment
     double time_offset_s = 0;
+    std::shared_ptr<const SmoothNoise> variation;  // this segment's own variation, or null
 
     void Evaluate(int64_t frame, double fps, double* params) const {
-      spec.Evaluate(static_cast<double>(frame - start) / fps + time_offset_s, params);
+      const double time_s = static_cast<double>(frame - start) / fps + time_offset_s;
+      spec.Evaluate(time_s, params);
+      if (variation) variation->Add(time_s, params);
     }
   };
 
@@ -68,6 +71,10 @@ class BackgroundTrack {
         std::clamp<int64_t>(std::llround(random_->Uniform(0.4, 0.8) * fps), 1, segment.frames / 2);
     segment.frames = std::max(segment.frames, overlap + segment.crossfade + 1);
     segment.time_offset_s = random_->Uniform(0, 1.0 / segment.spec.frequency_hz);
+    if (options_.background_variation_degrees > 0) {
+      segment.variation = std::make_shared<const SmoothNoise>(
+          random_->Next(), CmuBodyModel::Get().dof_count(), options_.background_variation_degrees);
+    }
     return segment;
   }
 

@@ -1,6 +1,9 @@
 // ProceduralGenerator: makes one clip of the procedural mode as a Take. The background is a
 // sequence of segments (segment_seconds_min..max long), each a perturbed copy of a random
-// library activity, crossfaded into the next over 0.4 to 0.8 s. Planted instances replace the
+// library activity plus its own smooth variation (a SmoothNoise of
+// background_variation_degrees on every DOF: cycle-to-cycle and take-to-take variability, so
+// the background does not repeat within eps for lambda frames), crossfaded into the next over
+// 0.4 to 0.8 s. Planted instances replace the
 // background inside their truth range and blend with it over crossfade_frames on both sides;
 // an instance plays its motif through its time warp, plus its own smooth noise. All blending is
 // done on the body parameters (raw DOF angles, speeds, turn rate) before the joint limits are

@@ -142,6 +142,11 @@ Status ValidateSynthOptions(const SynthOptions& options) {
   if (!(options.noise_degrees >= 0) || !(options.noise_degrees <= 20)) {
     return Invalid("noise_degrees must be in [0, 20], got " + Number(options.noise_degrees));
   }
+  if (!(options.background_variation_degrees >= 0) ||
+      !(options.background_variation_degrees <= 20)) {
+    return Invalid("background_variation_degrees must be in [0, 20], got " +
+                   Number(options.background_variation_degrees));
+  }
   if (!(options.crossfade_seconds >= 0) || !std::isfinite(options.crossfade_seconds)) {
     return Invalid("crossfade_seconds must be non-negative, got " +
                    Number(options.crossfade_seconds));
