@@ -1,6 +1,9 @@
 #include "engine/cli/cli_common.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -91,6 +94,68 @@ std::string WithCommas(uint64_t value) {
     out += digits[idx];
   }
   return out;
+}
+
+std::string FormatBytes(uint64_t bytes) {
+  char text[32];
+  if (bytes < 1000000) {
+    std::snprintf(text, sizeof(text), "%.1f KB", static_cast<double>(bytes) / 1e3);
+  } else {
+    std::snprintf(text, sizeof(text), "%.1f MB", static_cast<double>(bytes) / 1e6);
+  }
+  return text;
+}
+
+std::string Percent(uint64_t part, uint64_t whole) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f%%",
+                whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0);
+  return text;
+}
+
+uint64_t PeakResidentBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      uint64_t kilobytes = 0;
+      status >> kilobytes;
+      return kilobytes * 1024;
+    }
+    std::getline(status, key);
+  }
+  return 0;
+}
+
+Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds) {
+  const bool in_seconds = !text.empty() && text.back() == 's';
+  const std::string number = in_seconds ? text.substr(0, text.size() - 1) : text;
+  char* end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  const bool parsed = !number.empty() && end == number.c_str() + number.size() &&
+                      std::isfinite(value) && value > 0;
+  if (!parsed || (!in_seconds && (value != std::floor(value) || value > 4294967296.0))) {
+    return Status::InvalidArgument("--min-length must be a whole number of frames (60) or "
+                                   "seconds with an s (0.5s), not '" + text + "'");
+  }
+  *frames = in_seconds ? 0 : static_cast<uint64_t>(value);
+  *seconds = in_seconds ? value : 0;
+  return Status::Ok();
+}
+
+Status ParseGroups(const std::string& text, uint32_t* groups) {
+  if (text == "auto") {
+    *groups = 0;
+    return Status::Ok();
+  }
+  char* end = nullptr;
+  const unsigned long value = std::strtoul(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || value == 0 || value > 1000000 || text[0] == '-') {
+    return Status::InvalidArgument("--groups must be auto or a positive number, not '" + text +
+                                   "'");
+  }
+  *groups = static_cast<uint32_t>(value);
+  return Status::Ok();
 }
 
 }  // namespace motif::cli

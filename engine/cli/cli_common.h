@@ -50,6 +50,18 @@ ProgressMode ProgressModeFrom(const boost::program_options::variables_map& vm);
 
 // Thousands separators: 40346 -> "40,346".
 std::string WithCommas(uint64_t value);
+// "24.0 KB", "1.6 MB".
+std::string FormatBytes(uint64_t bytes);
+// part / whole as "57.2%" (0.0% when whole is 0).
+std::string Percent(uint64_t part, uint64_t whole);
+// Peak resident memory of this process so far (VmHWM), 0 if unknown.
+uint64_t PeakResidentBytes();
+
+// --min-length: "60" is 60 frames (*frames = 60, *seconds = 0); "0.5s" is half a second at the
+// archive's rate (*frames = 0, *seconds = 0.5). InvalidArgument otherwise.
+Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds);
+// --groups: "auto" (*groups = 0) or a positive number. InvalidArgument otherwise.
+Status ParseGroups(const std::string& text, uint32_t* groups);
 
 int RunImport(const std::vector<std::string>& args);
 int RunInfo(const std::vector<std::string>& args);

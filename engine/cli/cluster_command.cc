@@ -38,39 +38,10 @@ Result<LoadedPaths> LoadPathCandidates(const std::string& paths_path,
   return LoadedPaths{reader->candidates(), reader->params()};
 }
 
-// "auto" -> 0, else a positive whole number.
-Status ParseGroups(const std::string& text, uint32_t* groups) {
-  if (text == "auto") {
-    *groups = 0;
-    return Status::Ok();
-  }
-  char* end = nullptr;
-  const unsigned long value = std::strtoul(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || value == 0 || value > 1000000 || text[0] == '-') {
-    return Status::InvalidArgument("--groups must be auto or a positive number, not '" + text +
-                                   "'");
-  }
-  *groups = static_cast<uint32_t>(value);
-  return Status::Ok();
-}
-
-std::string Percent(uint64_t part, uint64_t whole) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f%%",
-                whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0);
-  return text;
-}
-
 int PrintTruthScore(const std::string& truth_path, const MotifsDocument& document) {
   Result<TruthFile> truth = ReadTruthJson(truth_path);
   if (!truth.ok()) return ReportError("cluster", truth.status());
-  std::vector<FoundInstance> found;
-  for (const MotifsJsonMotif& motif : document.motifs) {
-    for (const MotifsJsonInstance& instance : motif.instances) {
-      found.push_back({instance.clip, instance.start, instance.end, motif.id});
-    }
-  }
-  const PlantedMotifScore score = ScorePlantedMotifs(found, truth->instances);
+  const PlantedMotifScore score = ScoreMotifsDocument(document, truth->instances);
   std::printf("  truth        %s: %u planted motifs, %s instances\n", truth_path.c_str(),
               score.planted_motifs, WithCommas(score.planted).c_str());
   std::printf("  recall       %.4f  (%s of %s planted instances hit)\n", score.recall,

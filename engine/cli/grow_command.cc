@@ -13,57 +13,6 @@ namespace motif::cli {
 
 namespace po = boost::program_options;
 
-namespace {
-
-// "60" is 60 frames; "0.5s" is half a second at the archive's rate.
-Status ParseMinLength(const std::string& text, PathsOptions* options) {
-  const bool seconds = !text.empty() && text.back() == 's';
-  const std::string number = seconds ? text.substr(0, text.size() - 1) : text;
-  char* end = nullptr;
-  const double value = std::strtod(number.c_str(), &end);
-  const bool parsed = !number.empty() && end == number.c_str() + number.size() &&
-                      std::isfinite(value) && value > 0;
-  if (!parsed || (!seconds && (value != std::floor(value) || value > 4294967296.0))) {
-    return Status::InvalidArgument("--min-length must be a whole number of frames (60) or "
-                                   "seconds with an s (0.5s), not '" + text + "'");
-  }
-  if (seconds) {
-    options->min_length_seconds = value;
-    options->min_length_frames = 0;
-  } else {
-    options->min_length_frames = static_cast<uint64_t>(value);
-  }
-  return Status::Ok();
-}
-
-// Peak resident memory of this process (VmHWM), 0 if unknown.
-uint64_t PeakResidentBytes() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmHWM:") {
-      uint64_t kilobytes = 0;
-      status >> kilobytes;
-      return kilobytes * 1024;
-    }
-    std::getline(status, key);
-  }
-  return 0;
-}
-
-// "24.0 KB", "1.6 MB".
-std::string Bytes(uint64_t bytes) {
-  char text[32];
-  if (bytes < 1000000) {
-    std::snprintf(text, sizeof(text), "%.1f KB", static_cast<double>(bytes) / 1e3);
-  } else {
-    std::snprintf(text, sizeof(text), "%.1f MB", static_cast<double>(bytes) / 1e6);
-  }
-  return text;
-}
-
-}  // namespace
-
 int RunGrow(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "grow";
@@ -98,7 +47,9 @@ int RunGrow(const std::vector<std::string>& args) {
   PathsOptions options;
   options.branch = vm["branch"].as<uint32_t>();
   options.all_branches = vm.count("all-branches") > 0;
-  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(), &options);
+  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(),
+                                                 &options.min_length_frames,
+                                                 &options.min_length_seconds);
       !status.ok()) {
     return ReportError("grow", status);
   }
@@ -137,8 +88,8 @@ int RunGrow(const std::vector<std::string>& args) {
                     ? static_cast<double>(stats.entries) / report->grow_seconds / 1e6
                     : 0.0,
                 report->write_seconds);
-    std::printf("  memory       grower %s, peak resident %s\n", Bytes(stats.memory_bytes).c_str(),
-                Bytes(PeakResidentBytes()).c_str());
+    std::printf("  memory       grower %s, peak resident %s\n", FormatBytes(stats.memory_bytes).c_str(),
+                FormatBytes(PeakResidentBytes()).c_str());
   }
   return kExitOk;
 }

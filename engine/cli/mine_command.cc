@@ -13,7 +13,6 @@
 // killed at any point (SIGKILL included) and started again gives the same motifs.json; it first
 // removes the temporary files a dead run left in DIR (RemoveStaleTemporaries).
 #include <signal.h>
-#include <sys/resource.h>
 
 #include <cerrno>
 #include <chrono>
@@ -21,12 +20,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/synthetic_archive.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/planted_motif_score.h"
@@ -52,37 +51,8 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Peak resident memory of this process, bytes.
-uint64_t PeakRss() {
-  struct rusage usage {};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<uint64_t>(usage.ru_maxrss) * 1024;
-}
-
-std::string Mebibytes(uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1 << 20));
-  return text;
-}
-
 std::string Join(const std::filesystem::path& dir, const char* name) {
   return (dir / name).string();
-}
-
-// "60" frames or "0.5s" seconds.
-Status ParseLength(const std::string& text, uint64_t* frames, double* seconds) {
-  const bool in_seconds = !text.empty() && text.back() == 's';
-  const std::string number = in_seconds ? text.substr(0, text.size() - 1) : text;
-  char* end = nullptr;
-  const double value = std::strtod(number.c_str(), &end);
-  if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) ||
-      !(value > 0) || (!in_seconds && value != std::floor(value))) {
-    return Status::InvalidArgument("--min-length must be a whole number of frames (60) or "
-                                   "seconds with an s (0.5s), not '" + text + "'");
-  }
-  *frames = in_seconds ? 0 : static_cast<uint64_t>(value);
-  *seconds = in_seconds ? value : 0;
-  return Status::Ok();
 }
 
 struct StageTime {
@@ -108,28 +78,9 @@ Status MakeSyntheticArchive(const std::string& archive, const SynthOptions& opti
   *reused = false;
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
                          MotionSynthesizer::Create(options));
-  // Written beside the archive and renamed over it when complete.
-  const std::string staging = TemporaryPathFor(archive);
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
-                         FrameFileWriter::Create(staging, synthesizer->skeleton(), options.fps,
-                                                 FrameFileWriterOptions{}));
-  progress->BeginStage("synth", options.frames, "frames");
-  uint64_t frames_done = 0;
-  Status status = synthesizer->Run([&](const ClipFrames& clip) {
-    MOTIF_RETURN_IF_ERROR(writer->AppendClip(clip));
-    frames_done += clip.info.frame_count;
-    progress->Update(frames_done);
-    return Status::Ok();
-  });
-  if (status.ok()) status = writer->Commit();
-  writer.reset();
-  progress->EndStage();
-  if (status.ok()) status = PosixFileSystem()->Rename(staging, archive);
-  if (!status.ok()) {
-    PosixFileSystem()->Remove(staging);
-    return status;
-  }
-  return WriteTruthJson(truth_path, archive, frames_done, options, synthesizer->truth());
+  return WriteSyntheticArchive(archive, *synthesizer, options, FrameFileWriterOptions{}.block_frames,
+                               progress)
+      .status();
 }
 
 // Removes what a killed run left in DIR: the temporary files ("<name>.tmp-<pid>-<n>", see
@@ -159,13 +110,15 @@ void RemoveStaleTemporaries(const std::filesystem::path& dir) {
   }
 }
 
-// The key under which DIR/mine_state.json remembers a clustering: the paths file's checksum and
-// every option that changes the result.
-Result<std::string> ClusterKey(const std::string& paths_path, const ClusterOptions& options) {
-  MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadFileToString(paths_path));
+// The key under which DIR/mine_state.json remembers a clustering: what determines the paths
+// (the grower is deterministic: the trellis, itself identified with its archive, and the grow
+// parameters) and every option that changes the result.
+std::string ClusterKey(const PathsReport& paths, const ClusterOptions& options) {
   std::ostringstream key;
-  key << "paths=" << std::hash<std::string>{}(bytes) << ":" << bytes.size()
-      << " groups=" << options.cut.groups << " max_ncut=" << options.cut.max_ncut
+  key << "trellis=" << paths.params.trellis_identity << " branch=" << paths.params.branch
+      << " min_length=" << paths.params.min_length << " all_branches=" << paths.params.all_branches
+      << " candidates=" << paths.candidates << " groups=" << options.cut.groups
+      << " max_ncut=" << options.cut.max_ncut
       << " min_similarity=" << options.similarity.min_similarity << " seed=" << options.seed;
   return key.str();
 }
@@ -242,7 +195,7 @@ int RunMine(const std::vector<std::string>& args) {
   trellis_options.search = *search;
   PathsOptions paths_options;
   paths_options.branch = vm["branch"].as<uint32_t>();
-  if (Status status = ParseLength(vm["min-length"].as<std::string>(),
+  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(),
                                   &paths_options.min_length_frames,
                                   &paths_options.min_length_seconds);
       !status.ok()) {
@@ -252,15 +205,8 @@ int RunMine(const std::vector<std::string>& args) {
   cluster_options.seed = seed;
   cluster_options.threads = threads;
   const std::string groups_text = vm["groups"].as<std::string>();
-  if (groups_text != "auto") {
-    char* end = nullptr;
-    const unsigned long groups = std::strtoul(groups_text.c_str(), &end, 10);
-    if (groups_text.empty() || *end != '\0' || groups == 0 || groups > 1000000 ||
-        groups_text[0] == '-') {
-      return fail(Status::InvalidArgument("--groups must be auto or a positive number, not '" +
-                                          groups_text + "'"));
-    }
-    cluster_options.cut.groups = static_cast<uint32_t>(groups);
+  if (Status status = ParseGroups(groups_text, &cluster_options.cut.groups); !status.ok()) {
+    return fail(status);
   }
   if (trellis_options.eps < 0 || !std::isfinite(trellis_options.eps)) {
     return fail(Status::InvalidArgument("--eps must be >= 0 (0: mu - 2 sigma)"));
@@ -359,14 +305,11 @@ int RunMine(const std::vector<std::string>& args) {
   // Stage 4: clustering, reused when the same paths were clustered with the same options.
   const std::string motifs_path = Join(out_dir, "motifs.json");
   const std::string state_path = Join(out_dir, "mine_state.json");
-  Result<std::string> cluster_key = ClusterKey(paths_path, cluster_options);
-  if (!cluster_key.ok()) return fail(cluster_key.status());
+  const std::string cluster_key = ClusterKey(*paths, cluster_options);
   start = Clock::now();
-  Result<std::unique_ptr<TrellisFileReader>> trellis_reader = TrellisFileReader::Open(trellis_path);
-  if (!trellis_reader.ok()) return fail(trellis_reader.status());
   MotifsDocument document;
   bool cluster_reused = false;
-  if (StoredClusterKey(state_path) == *cluster_key) {
+  if (StoredClusterKey(state_path) == cluster_key) {
     Result<MotifsDocument> stored = ReadMotifsJson(motifs_path);
     if (stored.ok() && stored->frames == (*frames)->frame_count()) {
       document = std::move(stored.value());
@@ -374,6 +317,9 @@ int RunMine(const std::vector<std::string>& args) {
     }
   }
   if (!cluster_reused) {
+    Result<std::unique_ptr<TrellisFileReader>> trellis_reader =
+        TrellisFileReader::Open(trellis_path);
+    if (!trellis_reader.ok()) return fail(trellis_reader.status());
     Result<std::unique_ptr<PathsFileReader>> candidates = PathsFileReader::Open(paths_path);
     if (!candidates.ok()) return fail(candidates.status());
     bool began = false;
@@ -398,7 +344,7 @@ int RunMine(const std::vector<std::string>& args) {
     if (!made.ok()) return fail(made.status());
     document = std::move(made.value());
     if (Status status = WriteMotifsJson(motifs_path, document); !status.ok()) return fail(status);
-    const nlohmann::json state = {{"version", 1}, {"cluster_key", *cluster_key}};
+    const nlohmann::json state = {{"version", 1}, {"cluster_key", cluster_key}};
     if (Status status = AtomicWriteFile(state_path, state.dump(2) + "\n"); !status.ok()) {
       return fail(status);
     }
@@ -407,18 +353,10 @@ int RunMine(const std::vector<std::string>& args) {
 
   // The planted motifs, when the archive is synthetic.
   std::optional<PlantedMotifScore> score;
-  std::vector<PlantedInstance> planted;
   if (!truth_path.empty()) {
     Result<TruthFile> truth = ReadTruthJson(truth_path);
     if (!truth.ok()) return fail(truth.status());
-    planted = truth->instances;
-    std::vector<FoundInstance> found;
-    for (const MotifsJsonMotif& motif : document.motifs) {
-      for (const MotifsJsonInstance& instance : motif.instances) {
-        found.push_back({instance.clip, instance.start, instance.end, motif.id});
-      }
-    }
-    score = ScorePlantedMotifs(found, planted);
+    score = ScoreMotifsDocument(document, truth->instances);
   }
 
   // Stage 5: the report.
@@ -435,7 +373,7 @@ int RunMine(const std::vector<std::string>& args) {
                << TrellisSearchModeName(trellis->search);
     info.parameters_text = parameters.str();
     for (const StageTime& time : times) info.timings.push_back({time.stage, time.seconds});
-    info.peak_memory_bytes = PeakRss();
+    info.peak_memory_bytes = PeakResidentBytes();
     info.planted_score = score;
     info.truth_path = truth_path;
     if (Status status = WriteReportHtml(report_path, document, **frames, info); !status.ok()) {
@@ -463,13 +401,10 @@ int RunMine(const std::vector<std::string>& args) {
   std::printf("  paths        %s candidates (B %u, min length %llu frames)\n",
               WithCommas(paths->candidates).c_str(), paths->params.branch,
               static_cast<unsigned long long>(paths->params.min_length));
-  std::printf("  motifs       %s motifs, %s instances, mean %.1f s, covering %.1f%% of the "
-              "archive\n",
+  std::printf("  motifs       %s motifs, %s instances, mean %.1f s, covering %s of the archive\n",
               WithCommas(document.motifs.size()).c_str(), WithCommas(instances).c_str(),
               instances ? static_cast<double>(instance_frames) / instances / fps : 0.0,
-              total_frames ? 100.0 * static_cast<double>(document.covered_frames) /
-                                 static_cast<double>(total_frames)
-                           : 0.0);
+              Percent(document.covered_frames, total_frames).c_str());
   for (size_t rank = 0; rank < std::min<size_t>(5, document.motifs.size()); ++rank) {
     const MotifsJsonMotif& motif = document.motifs[rank];
     uint64_t length = 0;
@@ -489,7 +424,7 @@ int RunMine(const std::vector<std::string>& args) {
     timing += part;
   }
   std::printf("  time         %s; total %.1fs\n", timing.c_str(), SecondsSince(job_start));
-  std::printf("  memory       peak resident %s\n", Mebibytes(PeakRss()).c_str());
+  std::printf("  memory       peak resident %s\n", FormatBytes(PeakResidentBytes()).c_str());
   if (score) {
     std::printf("  planted      %u motifs as %s instances (%s)\n", score->planted_motifs,
                 WithCommas(score->planted).c_str(), truth_path.c_str());

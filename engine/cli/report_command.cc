@@ -64,13 +64,7 @@ int RunReport(const std::vector<std::string>& args) {
   if (!info.truth_path.empty()) {
     Result<TruthFile> truth = ReadTruthJson(info.truth_path);
     if (!truth.ok()) return ReportError("report", truth.status());
-    std::vector<FoundInstance> found;
-    for (const MotifsJsonMotif& motif : mined->document.motifs) {
-      for (const MotifsJsonInstance& instance : motif.instances) {
-        found.push_back({instance.clip, instance.start, instance.end, motif.id});
-      }
-    }
-    info.planted_score = ScorePlantedMotifs(found, truth->instances);
+    info.planted_score = ScoreMotifsDocument(mined->document, truth->instances);
   }
   std::string out = vm["out"].as<std::string>();
   if (out.empty()) {

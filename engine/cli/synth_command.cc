@@ -4,6 +4,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/synthetic_archive.h"
 #include "engine/synth/truth_json_reader.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/frame_file/frame_file_writer.h"
@@ -125,34 +126,12 @@ int RunSynth(const std::vector<std::string>& args) {
     synthesizer = std::move(created.value());
   }
 
-  // Written beside OUT and renamed over it only when complete, so --force never leaves OUT half
-  // written.
-  const std::string staging = force ? TemporaryPathFor(out) : out;
-  FrameFileWriterOptions writer_options;
-  writer_options.block_frames = vm["block-frames"].as<uint32_t>();
-  Result<std::unique_ptr<FrameFileWriter>> writer =
-      FrameFileWriter::Create(staging, synthesizer->skeleton(), options.fps, writer_options);
-  if (!writer.ok()) return ReportError("synth", writer.status());
-  progress.BeginStage("synth", options.frames, "frames");
-  uint64_t frames_done = 0;
-  Status status = synthesizer->Run([&](const ClipFrames& clip) {
-    MOTIF_RETURN_IF_ERROR((*writer)->AppendClip(clip));
-    frames_done += clip.info.frame_count;
-    progress.Update(frames_done);
-    return Status::Ok();
-  });
-  if (status.ok()) status = (*writer)->Commit();
-  progress.EndStage();
-  if (status.ok() && force) status = PosixFileSystem()->Rename(staging, out);
-  if (!status.ok()) {
-    if (force) PosixFileSystem()->Remove(staging);
-    return ReportError("synth", status);
-  }
+  Result<uint64_t> frames_done = WriteSyntheticArchive(
+      out, *synthesizer, options, vm["block-frames"].as<uint32_t>(), &progress);
+  if (!frames_done.ok()) return ReportError("synth", frames_done.status());
   const std::string truth_path = TruthPathFor(out);
-  status = WriteTruthJson(truth_path, out, frames_done, options, synthesizer->truth());
-  if (!status.ok()) return ReportError("synth", status);
   std::printf("wrote %s: %s frames in %s clips at %g fps, %u motifs planted as %zu instances\n",
-              out.c_str(), WithCommas(frames_done).c_str(),
+              out.c_str(), WithCommas(*frames_done).c_str(),
               WithCommas(synthesizer->clip_count()).c_str(), options.fps, options.motifs,
               synthesizer->truth().size());
   std::printf("wrote %s: the planted instances (ground truth)\n", truth_path.c_str());

@@ -128,4 +128,15 @@ double AdjustedRandIndex(const std::vector<uint32_t>& labels_a,
   return (index - expected) / (maximum - expected);
 }
 
+PlantedMotifScore ScoreMotifsDocument(const MotifsDocument& document,
+                                      const std::vector<PlantedInstance>& planted) {
+  std::vector<FoundInstance> found;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      found.push_back({instance.clip, instance.start, instance.end, motif.id});
+    }
+  }
+  return ScorePlantedMotifs(found, planted);
+}
+
 }  // namespace motif

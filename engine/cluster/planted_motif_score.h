@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/cluster/motifs_json.h"
 #include "engine/synth/motion_synthesizer.h"
 
 namespace motif {
@@ -45,6 +46,10 @@ bool InstancesHit(uint64_t a_start, uint64_t a_end, uint64_t b_start, uint64_t b
 
 PlantedMotifScore ScorePlantedMotifs(const std::vector<FoundInstance>& found,
                                      const std::vector<PlantedInstance>& planted);
+
+// The same, for every instance of every motif of a motifs.json document.
+PlantedMotifScore ScoreMotifsDocument(const MotifsDocument& document,
+                                      const std::vector<PlantedInstance>& planted);
 
 // The adjusted Rand index of two labelings of the same items (equal sizes). With fewer than two
 // items, or when both put every item in one cluster or both put each item alone, it is 1 (the

@@ -96,23 +96,10 @@ uint32_t PoseFeatures::ClipOf(uint64_t frame_idx) const {
 float PoseDistance(const PoseFeatures& features, uint64_t frame_a, uint64_t frame_b) {
   const int16_t* a = features.frame(frame_a);
   const int16_t* b = features.frame(frame_b);
-  const float inverse = 1.0f / PoseFeatures::kQuantScale;
   float total = 0;
   const uint32_t joint_count = features.weighted_joint_count();
   for (uint32_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
-    float dot = 0;
-    float norm_a = 0;
-    float norm_b = 0;
-    for (int component = 0; component < 4; ++component) {
-      const float qa = a[4 * joint_idx + component] * inverse;
-      const float qb = b[4 * joint_idx + component] * inverse;
-      dot += qa * qb;
-      norm_a += qa * qa;
-      norm_b += qb * qb;
-    }
-    // min(|a - b|, |a + b|)^2 = |a|^2 + |b|^2 - 2 |a.b|
-    total += features.weights()[joint_idx] *
-             std::sqrt(std::max(0.0f, norm_a + norm_b - 2.0f * std::abs(dot)));
+    total += features.weights()[joint_idx] * JointTerm(a, b, joint_idx);
   }
   return total;
 }

@@ -121,8 +121,26 @@ class LshSearch::Query {
     int16_t query_sort_value = 0;
     bool done = true;
     bool linear = false;  // a small bucket: read in stored order, all of it in the first round
+
+    // After a round of the scan: a cursor that read up to its scan limit is done (counted in
+    // *capped when that left entries of the bucket unread). True if it has entries left.
+    bool EndRound(uint64_t* capped) {
+      if (!done && examined == scan_limit) {
+        done = true;
+        if (scan_limit < end - begin) ++*capped;
+      }
+      return !done;
+    }
   };
   Cursor OpenBucket(const Probe& probe) const;
+  // One step of a bucket's outward scan: the side whose next sort value is nearer (ties go up,
+  // so equal sort values come lowest frame first). kEntry: the entry at *position, whose
+  // sort-value gap is *gap, is within `limit_squared` (probe score + gap^2); kSkipped: a linear
+  // cursor's entry beyond it (stored order: only that entry is out of reach); kDone: nothing
+  // left within reach. kEntry and kSkipped count as examined.
+  enum class Step { kEntry, kSkipped, kDone };
+  static Step NextEntry(Cursor* cursor, float score, const int16_t* sort_values, float sort_step,
+                        float limit_squared, uint32_t* position, float* gap);
 
   const LshSearch& search_;
   std::vector<Cursor> cursors_;
@@ -160,8 +178,7 @@ class LshSearch::Query {
 // distance (in cells) from the query's position x_i to the centre of the entry's quarter of its
 // cell (the probe's cell is the query's, one below or one above along i); coordinates beyond
 // the coded ones add the squared distance to the crossed boundary, if any (in the first table).
-__attribute__((noinline)) void LshSearch::Query::FillEstimateTable(const Probe& probe,
-                                                                   size_t cursor_idx) {
+void LshSearch::Query::FillEstimateTable(const Probe& probe, size_t cursor_idx) {
   const HashFamily& family = search_.family_;
   const uint32_t hashes = family.hashes_per_table();
   const uint32_t coded = std::min(hashes, HashFamily::kCodedHashes);
@@ -281,6 +298,36 @@ void LshSearch::Query::ListProbes(uint32_t table_idx, const float* coordinates, 
     }
     ++emitted;
   }
+}
+
+LshSearch::Query::Step LshSearch::Query::NextEntry(Cursor* cursor, float score,
+                                                   const int16_t* sort_values, float sort_step,
+                                                   float limit_squared, uint32_t* position,
+                                                   float* gap) {
+  const bool has_up = cursor->up < cursor->end;
+  const bool has_down = !cursor->linear && cursor->down > cursor->begin;
+  if (!has_up && !has_down) {
+    cursor->done = true;
+    return Step::kDone;
+  }
+  const int32_t up_gap =
+      has_up ? std::abs(sort_values[cursor->up] - cursor->query_sort_value) : INT32_MAX;
+  const int32_t down_gap =
+      has_down ? cursor->query_sort_value - sort_values[cursor->down - 1] : INT32_MAX;
+  const bool take_up = up_gap <= down_gap;
+  *gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
+  if (score + *gap * *gap > limit_squared) {
+    if (!cursor->linear) {  // scanning outward: both sides only get farther
+      cursor->done = true;
+      return Step::kDone;
+    }
+    ++cursor->up;
+    ++cursor->examined;
+    return Step::kSkipped;
+  }
+  *position = take_up ? cursor->up++ : --cursor->down;
+  ++cursor->examined;
+  return Step::kEntry;
 }
 
 LshSearch::Query::Cursor LshSearch::Query::OpenBucket(const Probe& probe) const {
@@ -410,6 +457,13 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
     batch_size = 0;
   };
 
+  // The column itself and its own clip's temporal neighbourhood are never candidates.
+  auto excluded = [&](uint32_t frame) {
+    const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+    return frame_gap < rules.exclusion_frames &&
+           rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame));
+  };
+
   // Breadth first: every probed bucket is scanned outward from the query's sort value in rounds
   // of growing depth, so the budget goes to the entries nearest the query in all tables before
   // the far ends of the first buckets. Probes are in increasing lower bound; a probe whose bound
@@ -443,40 +497,16 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
           const uint64_t room = options.max_candidates - evaluations - pending_size;
           const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
           while (batch_size < batch_limit && cursor.examined < round_limit) {
-            const bool has_up = cursor.up < cursor.end;
-            const bool has_down = !cursor.linear && cursor.down > cursor.begin;
-            if (!has_up && !has_down) {
-              cursor.done = true;
-              break;
-            }
-            // The side whose next sort value is nearer; ties go up (ascending frames within equal
-            // sort values, so exact duplicates come lowest frame first).
-            const int32_t up_gap =
-                has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
-            const int32_t down_gap =
-                has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
-            const bool take_up = up_gap <= down_gap;
-            const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
             const float limit = bound + kBoundSlack;
-            if (probe.score + gap * gap > limit * limit) {
-              if (!cursor.linear) {  // scanning outward: both sides only get farther
-                cursor.done = true;
-                break;
-              }
-              ++cursor.up;  // stored order: only this entry is out of reach
-              ++cursor.examined;
-              ++local.entries_examined;
-              continue;
-            }
-            const uint32_t position = take_up ? cursor.up++ : --cursor.down;
-            ++cursor.examined;
+            uint32_t position = 0;
+            float gap = 0;
+            const Step step = NextEntry(&cursor, probe.score, sort_values, sort_step,
+                                        limit * limit, &position, &gap);
+            if (step == Step::kDone) break;
             ++local.entries_examined;
+            if (step == Step::kSkipped) continue;
             const uint32_t frame = frames[position];
-            const uint64_t frame_gap = frame > column ? frame - column : column - frame;
-            if (frame_gap < rules.exclusion_frames &&
-                rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
-              continue;
-            }
+            if (excluded(frame)) continue;
             if (!visited_.Insert(frame)) continue;
             distance_.Prefetch(frame);
             batch[batch_size++] = frame;
@@ -487,11 +517,7 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
             break;
           }
         }
-        if (!cursor.done && cursor.examined == cursor.scan_limit) {
-          cursor.done = true;
-          if (cursor.scan_limit < cursor.end - cursor.begin) ++local.bucket_scans_capped;
-        }
-        more = more || !cursor.done;
+        more = cursor.EndRound(&local.bucket_scans_capped) || more;
       }
       if (!more || depth >= options.max_bucket_scan) break;
       depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
@@ -542,40 +568,16 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
         const uint16_t* estimates = &estimate_tables_[cursor_idx * kEstimateTableSize];
         const uint32_t round_limit = std::min(depth, cursor.scan_limit);
         while (cursor.examined < round_limit) {
-          const bool has_up = cursor.up < cursor.end;
-          const bool has_down = !cursor.linear && cursor.down > cursor.begin;
-          if (!has_up && !has_down) {
-            cursor.done = true;
-            break;
-          }
-          // The side whose next sort value is nearer; ties go up (ascending frames within equal
-          // sort values, so exact duplicates come lowest frame first).
-          const int32_t up_gap =
-              has_up ? std::abs(sort_values[cursor.up] - cursor.query_sort_value) : INT32_MAX;
-          const int32_t down_gap =
-              has_down ? cursor.query_sort_value - sort_values[cursor.down - 1] : INT32_MAX;
-          const bool take_up = up_gap <= down_gap;
-          const float gap = static_cast<float>(take_up ? up_gap : down_gap) * sort_step;
-          const float lower_squared = probe.score + gap * gap;
-          if (lower_squared > limit_squared) {
-            if (!cursor.linear) {  // scanning outward: both sides only get farther
-              cursor.done = true;
-              break;
-            }
-            ++cursor.up;  // stored order: only this entry is out of reach
-            ++cursor.examined;
-            ++local.entries_examined;
-            continue;
-          }
-          const uint32_t position = take_up ? cursor.up++ : --cursor.down;
-          ++cursor.examined;
+          uint32_t position = 0;
+          float gap = 0;
+          const Step step = NextEntry(&cursor, probe.score, sort_values, sort_step, limit_squared,
+                                      &position, &gap);
+          if (step == Step::kDone) break;
           ++local.entries_examined;
+          if (step == Step::kSkipped) continue;
+          const float lower_squared = probe.score + gap * gap;
           const uint32_t frame = frames[position];
-          const uint64_t frame_gap = frame > column ? frame - column : column - frame;
-          if (frame_gap < rules.exclusion_frames &&
-              rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame))) {
-            continue;
-          }
+          if (excluded(frame)) continue;
           const uint32_t code = codes[position];
           uint32_t estimate = 0;
           for (uint32_t nibble = 0; nibble < 8; ++nibble) {
@@ -590,11 +592,7 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
             break;
           }
         }
-        if (!cursor.done && cursor.examined == cursor.scan_limit) {
-          cursor.done = true;
-          if (cursor.scan_limit < cursor.end - cursor.begin) ++local.bucket_scans_capped;
-        }
-        more = more || !cursor.done;
+        more = cursor.EndRound(&local.bucket_scans_capped) || more;
       }
       if (!more || depth >= options.max_bucket_scan) break;
       depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;

@@ -16,10 +16,12 @@ void LshShardBuilder::Build(uint64_t first_frame, uint64_t frame_count,
   const uint32_t hashes = family_.hashes_per_table();
   const uint32_t rows_per_table = hashes + 1;
 
-  // Key and sort value of every frame, table-major, in frame order.
+  // Key, sort value (and position code, if the index keeps them) of every frame, table-major,
+  // in frame order.
+  const bool with_codes = slices[0].codes != nullptr;
   std::vector<uint32_t> keys(static_cast<size_t>(table_count) * frame_count);
   std::vector<int16_t> sort_values(static_cast<size_t>(table_count) * frame_count);
-  std::vector<uint32_t> codes(static_cast<size_t>(table_count) * frame_count);
+  std::vector<uint32_t> codes(with_codes ? static_cast<size_t>(table_count) * frame_count : 0);
   std::vector<float> embedding(family_.embedding_dims());
   std::vector<float> projections(static_cast<size_t>(table_count) * rows_per_table);
   for (uint64_t offset = 0; offset < frame_count; ++offset) {
@@ -30,7 +32,7 @@ void LshShardBuilder::Build(uint64_t first_frame, uint64_t frame_count,
       keys[table_idx * frame_count + offset] = family_.KeyOfCoordinates(coordinates);
       sort_values[table_idx * frame_count + offset] =
           family_.QuantiseSortValue(coordinates[hashes]);
-      codes[table_idx * frame_count + offset] = family_.PositionCode(coordinates);
+      if (with_codes) codes[table_idx * frame_count + offset] = family_.PositionCode(coordinates);
     }
   }
 
@@ -51,7 +53,7 @@ void LshShardBuilder::Build(uint64_t first_frame, uint64_t frame_count,
       slice.keys[rank] = table_keys[offset];
       slice.sort_values[rank] = table_sort[offset];
       slice.frames[rank] = static_cast<uint32_t>(first_frame + offset);
-      if (slice.codes != nullptr) slice.codes[rank] = codes[table_idx * frame_count + offset];
+      if (with_codes) slice.codes[rank] = codes[table_idx * frame_count + offset];
     }
   }
 }

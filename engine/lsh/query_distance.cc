@@ -109,18 +109,7 @@ float QueryDistance::To(uint64_t frame, float limit) const {
   }
 #endif
   for (; joint_idx < joint_count_; ++joint_idx) {
-    float dot = 0;
-    float norm_a = 0;
-    float norm_b = 0;
-    for (int component = 0; component < 4; ++component) {
-      const float qa = a[4 * joint_idx + component] * inverse;
-      const float qb = b[4 * joint_idx + component] * inverse;
-      dot += qa * qb;
-      norm_a += qa * qa;
-      norm_b += qb * qb;
-    }
-    total += features_.weights()[joint_idx] *
-             std::sqrt(std::max(0.0f, norm_a + norm_b - 2.0f * std::abs(dot)));
+    total += features_.weights()[joint_idx] * JointTerm(a, b, joint_idx);
   }
   return total;
 }

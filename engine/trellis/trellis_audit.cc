@@ -6,11 +6,11 @@
 #include <random>
 #include <set>
 
-#include <xxhash.h>
 
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_search.h"
+#include "engine/trellis/trellis_builder.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
@@ -46,7 +46,7 @@ Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::str
   }
   MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
                          LoadDistanceWeights(reader->skeleton(), options.weights_path));
-  if (XXH3_64bits(weights.data(), weights.size() * sizeof(float)) != params.weights_hash) {
+  if (WeightsHash(weights) != params.weights_hash) {
     return Status::InvalidArgument(trellis_path +
                                    " was built with other joint weights: pass the same --weights");
   }

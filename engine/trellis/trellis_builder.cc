@@ -6,8 +6,8 @@
 #include <future>
 #include <memory>
 
-#include <xxhash.h>
 
+#include "common/byte_coding.h"
 #include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
@@ -20,10 +20,6 @@ namespace {
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-uint64_t HashWeights(const std::vector<float>& weights) {
-  return XXH3_64bits(weights.data(), weights.size() * sizeof(float));
 }
 
 }  // namespace
@@ -46,6 +42,10 @@ Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name) {
     if (name == TrellisSearchModeName(mode)) return mode;
   }
   return Status::InvalidArgument("--search must be auto, lsh or exact, not '" + name + "'");
+}
+
+uint64_t WeightsHash(const std::vector<float>& weights) {
+  return Checksum64(weights.data(), weights.size() * sizeof(float));
 }
 
 std::string DefaultTrellisPath(const std::string& archive_path) {
@@ -119,7 +119,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   params.exclusion_frames = rules.exclusion_frames;
   params.search_mode = exact ? 0 : 1;
   params.seed = options.seed;
-  params.weights_hash = HashWeights(weights);
+  params.weights_hash = WeightsHash(weights);
   start = std::chrono::steady_clock::now();
   if (options.eps > 0) {
     params.eps = options.eps;

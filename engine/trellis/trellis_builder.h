@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "common/status.h"
 #include "engine/distance/neighbour_search.h"
@@ -34,11 +35,11 @@ const char* TrellisSearchModeName(TrellisSearchMode mode);
 // The inverse; InvalidArgument for anything else.
 Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name);
 
-// Below this many frames kAuto uses the exact search. Measured with bench_engine_trellis (whole
-// builds, 2 threads, CPU time; docs/benchmarks.md): the exact build grows as N^2 and the
-// LSH build about as N; they cross near 77,000 frames (procedural synthetic) and 88,000
-// (re-sequenced real takes). Up to this threshold the exact build costs at most ~16 % more than
-// LSH, and it has recall 1. Rerun scripts/bench_trellis.sh after changing the LSH search.
+// Below this many frames kAuto uses the exact search (recall 1). Chosen where the exact and LSH
+// builds crossed with the position-code ranking of an earlier engine (77,000-88,000 frames);
+// with the default sort-value ranking they cross near 45,000 frames, and at 65,536 frames the
+// exact build takes 1.5x the LSH one (docs/benchmarks.md, "Exact against LSH"). Rerun
+// scripts/bench_trellis.sh after changing the LSH search.
 inline constexpr uint64_t kAutoExactMaxFrames = 90000;
 
 struct TrellisOptions {
@@ -83,6 +84,9 @@ struct TrellisReport {
   double write_wait_seconds = 0;    // time the search waited for the writer
   uint64_t feature_bytes = 0;
 };
+
+// The trellis file's weights_hash of per-joint distance weights (XXH3-64 of the floats).
+uint64_t WeightsHash(const std::vector<float>& weights);
 
 // "<archive without .mfs>.mtr": where `motifmine trellis` writes an archive's trellis.
 std::string DefaultTrellisPath(const std::string& archive_path);

@@ -1,15 +1,8 @@
 #include "formats/frame_file/block_codec.h"
 
+#include "common/byte_coding.h"
+
 namespace motif::frame_file {
-namespace {
-
-uint32_t LoadU32(const uint8_t* bytes) {
-  return static_cast<uint32_t>(bytes[0]) | static_cast<uint32_t>(bytes[1]) << 8 |
-         static_cast<uint32_t>(bytes[2]) << 16 | static_cast<uint32_t>(bytes[3]) << 24;
-}
-
-}  // namespace
-
 BlockEncoder::BlockEncoder(std::vector<ColumnSpec> columns, uint32_t joint_count, int zstd_level)
     : columns_(std::move(columns)),
       stride_(FrameLayout{joint_count}.stride()),

@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 
+#include "common/byte_coding.h"
 #include "common/status.h"
 
 namespace motif::frame_file {
@@ -50,17 +51,19 @@ inline constexpr uint64_t kMaxBlockFrames = 1u << 22;
 inline constexpr uint64_t kMaxJoints = 4096;
 inline constexpr uint64_t kMaxBlockRawBytes = 1ull << 30;
 
-// XXH3-64 with seed 0: the checksum of every structure in the file.
-uint64_t Checksum64(const void* data, size_t size);
-
-// Little-endian appends.
-void PutU8(std::string* out, uint8_t value);
-void PutU16(std::string* out, uint16_t value);
-void PutU32(std::string* out, uint32_t value);
-void PutU64(std::string* out, uint64_t value);
-void PutF32(std::string* out, float value);
-void PutF64(std::string* out, double value);
-void PutString(std::string* out, std::string_view value);  // u32 length + bytes
+// The byte coding of common/byte_coding.h.
+using ::motif::Checksum64;
+using ::motif::Hex;
+using ::motif::LoadU16;
+using ::motif::LoadU32;
+using ::motif::LoadU64;
+using ::motif::PutF32;
+using ::motif::PutF64;
+using ::motif::PutString;
+using ::motif::PutU16;
+using ::motif::PutU32;
+using ::motif::PutU64;
+using ::motif::PutU8;
 
 // Bounds-checked little-endian reads over a byte range. Each Get returns false (and reads
 // nothing) once the range is exhausted; position() says where a problem was found.
@@ -85,9 +88,6 @@ class ByteReader {
   size_t size_;
   size_t pos_ = 0;
 };
-
-// "0x3f000"
-std::string Hex(uint64_t value);
 
 // One of the header's two commit slots. All 40 bytes zero: empty (never written).
 struct CommitSlot {

@@ -1,16 +1,9 @@
 #include "formats/frame_file/frame_file_reader.h"
 
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <filesystem>
-#include <optional>
-#include <system_error>
 
-#include <boost/interprocess/file_mapping.hpp>
-#include <boost/interprocess/mapped_region.hpp>
 
+#include "common/mapped_file.h"
 #include "formats/frame_file/archive_loader.h"
 #include "formats/frame_file/block_codec.h"
 
@@ -24,8 +17,7 @@ class FrameFileReader::Impl {
   class Stream;
 
   std::string path;
-  std::optional<boost::interprocess::file_mapping> mapping;
-  std::optional<boost::interprocess::mapped_region> region;
+  std::unique_ptr<MappedFile> file;
   const uint8_t* data = nullptr;
   uint64_t size = 0;
   frame_file::LoadedArchive archive;
@@ -55,16 +47,8 @@ class FrameFileReader::Impl {
   // Gives the whole pages of file bytes [begin_offset, end_offset) back to the kernel (the
   // stream has decoded them) and returns the page-aligned end actually released. The pages
   // are re-read from the file if touched again, so sharing a page with the next block is safe.
-  // posix_madvise (what boost's advice_dontneed calls) is a no-op in glibc: use madvise.
   uint64_t ReleasePages(uint64_t begin_offset, uint64_t end_offset) const {
-    static const uint64_t page_bytes = static_cast<uint64_t>(::sysconf(_SC_PAGESIZE));
-    const uint64_t begin = begin_offset / page_bytes * page_bytes;
-    const uint64_t end = end_offset / page_bytes * page_bytes;
-    if (end <= begin) return begin;
-#if defined(__linux__)
-    ::madvise(const_cast<uint8_t*>(data) + begin, end - begin, MADV_DONTNEED);  // best effort
-#endif
-    return end;
+    return file->ReleasePages(begin_offset, end_offset);
   }
 };
 
@@ -113,28 +97,11 @@ class FrameFileReader::Impl::Stream final : public FrameStream {
 };
 
 Result<std::unique_ptr<FrameFileReader>> FrameFileReader::Open(const std::string& path) {
-  std::error_code error;
-  const std::filesystem::file_status status = std::filesystem::status(path, error);
-  if (!std::filesystem::exists(status)) return Status::NotFound(path + ": no such file");
-  if (!std::filesystem::is_regular_file(status)) {
-    return Status::IOError(path + ": not a regular file");
-  }
-  const uint64_t size = std::filesystem::file_size(path, error);
-  if (error) return Status::IOError(path + ": cannot read the size: " + error.message());
-
   auto impl = std::make_unique<Impl>();
   impl->path = path;
-  if (size > 0) {
-    try {
-      namespace bip = boost::interprocess;
-      impl->mapping.emplace(path.c_str(), bip::read_only);
-      impl->region.emplace(*impl->mapping, bip::read_only);  // the whole file
-    } catch (const std::exception& exception) {
-      return Status::IOError(path + ": cannot map: " + exception.what());
-    }
-    impl->data = static_cast<const uint8_t*>(impl->region->get_address());
-    impl->size = impl->region->get_size();
-  }
+  MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
+  impl->data = impl->file->data();
+  impl->size = impl->file->size();
   MOTIF_ASSIGN_OR_RETURN(impl->archive, frame_file::LoadArchive(path, impl->data, impl->size));
   return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
 }

@@ -3,19 +3,9 @@
 #include <cstring>
 #include <tuple>
 
-#include <xxhash.h>
 
-#include "formats/trellis_file/trellis_file_format.h"
 
 namespace motif::paths_file {
-
-using trellis_file::Hex;
-using trellis_file::LoadU16;
-using trellis_file::LoadU32;
-using trellis_file::LoadU64;
-using trellis_file::PutU16;
-using trellis_file::PutU32;
-using trellis_file::PutU64;
 
 namespace {
 
@@ -99,8 +89,6 @@ std::string OrderProblem(const PathsParams& params, const PathCandidate& previou
 }
 
 }  // namespace
-
-uint64_t Checksum64(const void* data, size_t size) { return XXH3_64bits(data, size); }
 
 std::string ParamsProblem(const PathsParams& params) {
   if (params.frame_count > kMaxFrameCount) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "common/byte_coding.h"
 #include "common/status.h"
 #include "engine/grow/path_candidate.h"
 #include "formats/paths_file/paths_file_writer.h"
@@ -39,8 +40,7 @@ inline constexpr size_t kMaxRecordBytes = 60;    // six varints of ten bytes
 // of a given size can expand to, checked before allocating.
 inline constexpr uint64_t kZstdMaxBlockBytes = 128 * 1024;
 
-// XXH3-64 with seed 0.
-uint64_t Checksum64(const void* data, size_t size);
+using ::motif::Checksum64;  // common/byte_coding.h: XXH3-64 with seed 0
 
 // The file header at offset 0.
 struct FileHeader {

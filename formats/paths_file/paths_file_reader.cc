@@ -7,11 +7,8 @@
 
 #include "common/file_util.h"
 #include "formats/paths_file/paths_file_format.h"
-#include "formats/trellis_file/trellis_file_format.h"
 
 namespace motif {
-
-using trellis_file::Hex;
 
 struct PathsFileReader::Contents {
   std::string path;

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstring>
 
-#include <xxhash.h>
 
 namespace motif {
 
@@ -23,46 +22,6 @@ bool TrellisParams::operator==(const TrellisParams& other) const {
 
 namespace trellis_file {
 
-uint64_t Checksum64(const void* data, size_t size) { return XXH3_64bits(data, size); }
-
-void PutU16(std::string* out, uint16_t value) {
-  for (int byte_idx = 0; byte_idx < 2; ++byte_idx) {
-    out->push_back(static_cast<char>((value >> (8 * byte_idx)) & 0xFF));
-  }
-}
-
-void PutU32(std::string* out, uint32_t value) {
-  for (int byte_idx = 0; byte_idx < 4; ++byte_idx) {
-    out->push_back(static_cast<char>((value >> (8 * byte_idx)) & 0xFF));
-  }
-}
-
-void PutU64(std::string* out, uint64_t value) {
-  for (int byte_idx = 0; byte_idx < 8; ++byte_idx) {
-    out->push_back(static_cast<char>((value >> (8 * byte_idx)) & 0xFF));
-  }
-}
-
-void PutF32(std::string* out, float value) { PutU32(out, std::bit_cast<uint32_t>(value)); }
-
-uint16_t LoadU16(const uint8_t* bytes) {
-  return static_cast<uint16_t>(bytes[0] | bytes[1] << 8);
-}
-
-uint32_t LoadU32(const uint8_t* bytes) {
-  return static_cast<uint32_t>(bytes[0]) | static_cast<uint32_t>(bytes[1]) << 8 |
-         static_cast<uint32_t>(bytes[2]) << 16 | static_cast<uint32_t>(bytes[3]) << 24;
-}
-
-uint64_t LoadU64(const uint8_t* bytes) {
-  return static_cast<uint64_t>(LoadU32(bytes)) | static_cast<uint64_t>(LoadU32(bytes + 4)) << 32;
-}
-
-std::string Hex(uint64_t value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "0x%llx", static_cast<unsigned long long>(value));
-  return buffer;
-}
 
 // Params, 60 bytes + search_params:
 //   0 frame_count u64 | 8 archive_identity u64 | 16 eps f32 | 20 mu f32 | 24 sigma f32

@@ -22,6 +22,7 @@
 #include <string>
 #include <string_view>
 
+#include "common/byte_coding.h"
 #include "common/status.h"
 #include "formats/trellis_file/trellis_file_writer.h"
 
@@ -54,20 +55,19 @@ inline constexpr uint32_t kMaxBlockNeighbours = 1u << 28;   // distances: 512 Mi
 inline constexpr uint32_t kMaxParamsBytes = 1u << 20;
 inline constexpr uint32_t kMaxSearchParamsBytes = 1u << 16;  // the writer's limit
 
-// XXH3-64 with seed 0: the checksum of every structure in the file.
-uint64_t Checksum64(const void* data, size_t size);
-
-// Little-endian appends and loads.
-void PutU16(std::string* out, uint16_t value);
-void PutU32(std::string* out, uint32_t value);
-void PutU64(std::string* out, uint64_t value);
-void PutF32(std::string* out, float value);
-uint16_t LoadU16(const uint8_t* bytes);
-uint32_t LoadU32(const uint8_t* bytes);
-uint64_t LoadU64(const uint8_t* bytes);
-
-// "0x3f000"
-std::string Hex(uint64_t value);
+// The byte coding of common/byte_coding.h.
+using ::motif::Checksum64;
+using ::motif::Hex;
+using ::motif::LoadU16;
+using ::motif::LoadU32;
+using ::motif::LoadU64;
+using ::motif::PutF32;
+using ::motif::PutF64;
+using ::motif::PutString;
+using ::motif::PutU16;
+using ::motif::PutU32;
+using ::motif::PutU64;
+using ::motif::PutU8;
 
 // Encodes the params as stored in the header (kParamsFixedBytes + search_params bytes).
 void EncodeParams(const TrellisParams& params, std::string* out);

@@ -1,17 +1,10 @@
 #include "formats/trellis_file/trellis_file_reader.h"
 
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstring>
-#include <filesystem>
-#include <optional>
-#include <system_error>
 
-#include <boost/interprocess/file_mapping.hpp>
-#include <boost/interprocess/mapped_region.hpp>
 
+#include "common/mapped_file.h"
 #include "formats/trellis_file/trellis_block_codec.h"
 #include "formats/trellis_file/trellis_file_format.h"
 
@@ -33,8 +26,7 @@ trellis_file::BlockDecoder& ThreadDecoder() {
 class TrellisFileReader::Impl {
  public:
   std::string path;
-  std::optional<boost::interprocess::file_mapping> mapping;
-  std::optional<boost::interprocess::mapped_region> region;
+  std::unique_ptr<MappedFile> file;
   const uint8_t* data = nullptr;
   uint64_t size = 0;
   trellis_file::FileHeader header;
@@ -153,43 +145,18 @@ class TrellisFileReader::Impl {
   }
 
   // Gives the whole pages of file bytes [begin_offset, end_offset) back to the kernel and
-  // returns the page-aligned end released. Pages are re-read from the file if touched again.
-  // posix_madvise (what boost's advice_dontneed calls) is a no-op in glibc: use madvise.
+  // returns the page-aligned end released.
   uint64_t ReleasePages(uint64_t begin_offset, uint64_t end_offset) const {
-    static const uint64_t page_bytes = static_cast<uint64_t>(::sysconf(_SC_PAGESIZE));
-    const uint64_t begin = begin_offset / page_bytes * page_bytes;
-    const uint64_t end = end_offset / page_bytes * page_bytes;
-    if (end <= begin) return begin;
-#if defined(__linux__)
-    ::madvise(const_cast<uint8_t*>(data) + begin, end - begin, MADV_DONTNEED);  // best effort
-#endif
-    return end;
+    return file->ReleasePages(begin_offset, end_offset);
   }
 };
 
 Result<std::unique_ptr<TrellisFileReader>> TrellisFileReader::Open(const std::string& path) {
-  std::error_code error;
-  const std::filesystem::file_status status = std::filesystem::status(path, error);
-  if (!std::filesystem::exists(status)) return Status::NotFound(path + ": no such file");
-  if (!std::filesystem::is_regular_file(status)) {
-    return Status::IOError(path + ": not a regular file");
-  }
-  const uint64_t size = std::filesystem::file_size(path, error);
-  if (error) return Status::IOError(path + ": cannot read the size: " + error.message());
-
   auto impl = std::make_unique<Impl>();
   impl->path = path;
-  if (size > 0) {
-    try {
-      namespace bip = boost::interprocess;
-      impl->mapping.emplace(path.c_str(), bip::read_only);
-      impl->region.emplace(*impl->mapping, bip::read_only);  // the whole file
-    } catch (const std::exception& exception) {
-      return Status::IOError(path + ": cannot map: " + exception.what());
-    }
-    impl->data = static_cast<const uint8_t*>(impl->region->get_address());
-    impl->size = impl->region->get_size();
-  }
+  MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
+  impl->data = impl->file->data();
+  impl->size = impl->file->size();
   MOTIF_RETURN_IF_ERROR(impl->Validate());
   return std::unique_ptr<TrellisFileReader>(new TrellisFileReader(std::move(impl)));
 }

@@ -14,7 +14,6 @@
 // rotation's error as an angle (at most twice the chord). The root height is stored with step
 // 1e-4: within 5e-5 of the source's decoded value, plus the text (5e-7) and float rounding.
 // Measured (printed by the test): joints 2.2e-5 of 3.2e-5, root 3.7e-6, heading 4.9e-6, height 0.
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdio>
@@ -30,33 +29,20 @@
 #include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/motion/quaternion_math.h"
+#include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
 
 namespace motif {
 namespace {
 
+using testing::RunResult;
+using testing::RunShell;
+using testing::RunTool;
+
 constexpr double kRotationStep = 1.0 / 32768.0;  // 2^-15, the default quaternion step
 const double kJointBound = std::asin(kRotationStep) + 1e-6;
 const double kHeadingBound = 5e-6 + 2 * kJointBound;
 constexpr double kHeightBound = 5e-5 + 5e-7 + 4e-6;
-
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-RunResult RunTool(const std::string& arguments) {
-  RunResult result;
-  const std::string command = std::string(MOTIF_TOOL) + " " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  size_t read = 0;
-  while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, read);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
 
 Eigen::Quaterniond QuaternionAt(const std::vector<float>& rows, size_t row, size_t stride,
                                 size_t offset) {

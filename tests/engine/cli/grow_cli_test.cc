@@ -1,6 +1,5 @@
 // End-to-end test of `motifmine grow`: synthesise a small archive, build its trellis, grow it,
 // as a user would, with the built binary.
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -10,28 +9,15 @@
 #include <gtest/gtest.h>
 
 #include "formats/paths_file/paths_file_reader.h"
+#include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
 
 namespace motif {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-RunResult RunTool(const std::string& arguments) {
-  RunResult result;
-  const std::string command = std::string(MOTIF_TOOL) + " " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  size_t read = 0;
-  while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, read);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using testing::RunResult;
+using testing::RunShell;
+using testing::RunTool;
 
 TEST(MotifmineGrow, SynthTrellisGrowThenReuse) {
   testing::TempDir dir;

@@ -10,7 +10,6 @@
 // (--enable-logging=stderr) is searched for "Uncaught" as well.
 // Skips when no Chromium is installed (Debian: apt-get install chromium; scripts/install_deps.sh
 // installs it). $MOTIF_CHROMIUM names another browser binary.
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -26,31 +25,15 @@
 #include "engine/cluster/motifs_json.h"
 #include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_reader.h"
+#include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
 
 namespace motif {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-};
-
-RunResult Shell(const std::string& command) {
-  RunResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  size_t read = 0;
-  while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, read);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-RunResult RunTool(const std::string& arguments) {
-  return Shell(std::string(MOTIF_TOOL) + " " + arguments + " 2>&1");
-}
+using testing::RunResult;
+using testing::RunShell;
+using testing::RunTool;
 
 // The browser binary, or "" when there is none.
 std::string FindChromium() {
@@ -58,7 +41,7 @@ std::string FindChromium() {
     return named;
   }
   for (const char* name : {"chromium", "chromium-browser", "google-chrome"}) {
-    RunResult found = Shell(std::string("command -v ") + name + " 2>/dev/null");
+    RunResult found = RunShell(std::string("command -v ") + name + " 2>/dev/null");
     if (found.exit_code == 0 && !found.output.empty()) {
       return found.output.substr(0, found.output.find('\n'));
     }
@@ -158,7 +141,7 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
   // The page after its scripts ran.
   const std::string command = ChromiumCommand(chromium, dir.File("profile")) + "--dump-dom 'file://" +
                               instrumented + "' 2>'" + dir.File("chromium.log") + "'";
-  RunResult dom = Shell("timeout 180 " + command);
+  RunResult dom = RunShell("timeout 180 " + command);
   auto log = ReadFileToString(dir.File("chromium.log"));
   ASSERT_EQ(dom.exit_code, 0) << (log.ok() ? *log : "");
   const size_t marker = dom.output.find("<pre id=\"e2e-result\"");
@@ -186,7 +169,7 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
   std::filesystem::create_directories(artefacts);
   const std::string png = (artefacts / "report.png").string();
   std::filesystem::remove(png);
-  RunResult shot = Shell("timeout 180 " + ChromiumCommand(chromium, dir.File("profile2")) +
+  RunResult shot = RunShell("timeout 180 " + ChromiumCommand(chromium, dir.File("profile2")) +
                          "--window-size=1200,3000 --screenshot='" + png + "' 'file://" +
                          instrumented + "' >/dev/null 2>&1");
   ASSERT_EQ(shot.exit_code, 0);

@@ -1,6 +1,5 @@
 // End-to-end tests of `motifmine export-motif` and `motifmine report` with the built binary, on
 // a small synthetic archive whose planted instances are written as the mined motifs.
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -13,28 +12,15 @@
 #include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/import/bvh_parser.h"
+#include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
 
 namespace motif {
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-RunResult RunTool(const std::string& arguments) {
-  RunResult result;
-  const std::string command = std::string(MOTIF_TOOL) + " " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  size_t read = 0;
-  while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, read);
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using testing::RunResult;
+using testing::RunShell;
+using testing::RunTool;
 
 class ReportCliTest : public ::testing::Test {
  protected:

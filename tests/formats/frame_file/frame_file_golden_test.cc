@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/golden_hexdump.h"
+
 #include "formats/frame_file/archive_loader.h"
 #include "formats/frame_file/frame_file_format.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -24,8 +26,6 @@ namespace {
 const std::string kSourceDir = MOTIF_SOURCE_DIR;
 const std::string kFixture = kSourceDir + "/tests/data/frame_file/tiny.mfs.golden";
 const std::string kSpec = kSourceDir + "/docs/formats/frame_file.md";
-const char kBegin[] = "<!-- golden-hexdump:begin -->";
-const char kEnd[] = "<!-- golden-hexdump:end -->";
 
 // The worked example: one joint, 30 fps, one clip of 3 frames, blocks of 2 frames.
 std::string WriteTinyArchive(const TempDir& dir) {
@@ -67,27 +67,6 @@ std::string WriteTinyArchive(const TempDir& dir) {
   return path;
 }
 
-// Bytes [offset, offset + size) as one or more "OOOOOOOO: hh hh ..  | note" lines of at most
-// 16 bytes; the note goes on the first line.
-void Dump(const std::string& bytes, size_t offset, size_t size, const std::string& note,
-          std::ostringstream* out) {
-  for (size_t line = 0; line < size; line += 16) {
-    char prefix[16];
-    std::snprintf(prefix, sizeof(prefix), "%08zx:", offset + line);
-    std::string text = prefix;
-    for (size_t byte_idx = line; byte_idx < std::min(size, line + 16); ++byte_idx) {
-      char hex[4];
-      std::snprintf(hex, sizeof(hex), " %02x", static_cast<uint8_t>(bytes[offset + byte_idx]));
-      text += hex;
-    }
-    if (line == 0 && !note.empty()) {
-      text.resize(std::max<size_t>(text.size(), 58), ' ');
-      text += "| " + note;
-    }
-    *out << text << "\n";
-  }
-}
-
 // The annotated hexdump of the spec's worked example.
 std::string AnnotatedHexdump(const std::string& bytes) {
   auto loaded = frame_file::LoadArchive("tiny.mfs", reinterpret_cast<const uint8_t*>(bytes.data()),
@@ -97,23 +76,23 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   const frame_file::ArchiveMetadata& metadata = loaded->metadata;
   std::ostringstream out;
   out << "# File header (128 bytes)\n";
-  Dump(bytes, 0, 8, "magic \"\\x89MFS\\r\\n\\x1a\\n\"", &out);
-  Dump(bytes, 8, 8, "format_major 1, format_minor 0, header_bytes 128", &out);
-  Dump(bytes, 16, 24, "reserved (3 x u64, zero)", &out);
-  Dump(bytes, 40, 8, "header_checksum: XXH3-64 of bytes [0x00, 0x28)", &out);
-  Dump(bytes, 48, 8, "slot 0: generation 1", &out);
-  Dump(bytes, 56, 8, "slot 0: footer_offset", &out);
-  Dump(bytes, 64, 8, "slot 0: committed_length", &out);
-  Dump(bytes, 72, 8, "slot 0: reserved", &out);
-  Dump(bytes, 80, 8, "slot 0: checksum of [0x30, 0x48)", &out);
-  Dump(bytes, 88, 40, "slot 1: empty (all zero)", &out);
+  DumpHexLines(bytes, 0, 8, "magic \"\\x89MFS\\r\\n\\x1a\\n\"", &out);
+  DumpHexLines(bytes, 8, 8, "format_major 1, format_minor 0, header_bytes 128", &out);
+  DumpHexLines(bytes, 16, 24, "reserved (3 x u64, zero)", &out);
+  DumpHexLines(bytes, 40, 8, "header_checksum: XXH3-64 of bytes [0x00, 0x28)", &out);
+  DumpHexLines(bytes, 48, 8, "slot 0: generation 1", &out);
+  DumpHexLines(bytes, 56, 8, "slot 0: footer_offset", &out);
+  DumpHexLines(bytes, 64, 8, "slot 0: committed_length", &out);
+  DumpHexLines(bytes, 72, 8, "slot 0: reserved", &out);
+  DumpHexLines(bytes, 80, 8, "slot 0: checksum of [0x30, 0x48)", &out);
+  DumpHexLines(bytes, 88, 40, "slot 1: empty (all zero)", &out);
   for (size_t block_idx = 0; block_idx < metadata.blocks.size(); ++block_idx) {
     const frame_file::BlockHandle& block = metadata.blocks[block_idx];
     out << "# Block " << block_idx << ": frames [" << block.first_frame << ", "
         << block.first_frame + block.frame_count << "), " << block.bytes << " bytes\n";
-    Dump(bytes, block.offset, 8, "\"MFBK\", column_count 4", &out);
-    Dump(bytes, block.offset + 8, 8, "first_frame", &out);
-    Dump(bytes, block.offset + 16, 8, "frame_count, reserved", &out);
+    DumpHexLines(bytes, block.offset, 8, "\"MFBK\", column_count 4", &out);
+    DumpHexLines(bytes, block.offset + 8, 8, "first_frame", &out);
+    DumpHexLines(bytes, block.offset + 16, 8, "frame_count, reserved", &out);
     size_t chunk_offset = block.offset + frame_file::kBlockHeaderBytes +
                           frame_file::kChunkEntryBytes * metadata.columns.size();
     std::vector<uint32_t> chunk_bytes;
@@ -126,13 +105,13 @@ std::string AnnotatedHexdump(const std::string& bytes) {
       reader.GetU32(&compressed);
       reader.GetU32(&raw);
       chunk_bytes.push_back(compressed);
-      Dump(bytes, entry, 8,
+      DumpHexLines(bytes, entry, 8,
            "chunk " + std::to_string(column_idx) + " (" + kColumnNames[column_idx] + "): " +
                std::to_string(compressed) + " bytes, raw " + std::to_string(raw),
            &out);
     }
     for (size_t column_idx = 0; column_idx < metadata.columns.size(); ++column_idx) {
-      Dump(bytes, chunk_offset, chunk_bytes[column_idx],
+      DumpHexLines(bytes, chunk_offset, chunk_bytes[column_idx],
            "chunk " + std::to_string(column_idx) + ": zstd frame", &out);
       chunk_offset += chunk_bytes[column_idx];
     }
@@ -151,60 +130,32 @@ std::string AnnotatedHexdump(const std::string& bytes) {
     reader.GetU32(&reserved);
     reader.GetU64(&length);
     reader.Skip(length);
-    Dump(bytes, section, 16,
+    DumpHexLines(bytes, section, 16,
          std::string("section ") + kSectionNames[tag] + ": tag " + std::to_string(tag) +
              ", reserved, payload_bytes " + std::to_string(length),
          &out);
     if (tag == 3) {  // COLUMNS: one line per entry
-      Dump(bytes, section + 16, 8, "column_count 4, entry_bytes 24", &out);
+      DumpHexLines(bytes, section + 16, 8, "column_count 4, entry_bytes 24", &out);
       for (size_t column_idx = 0; column_idx < 4; ++column_idx) {
-        Dump(bytes, section + 24 + 24 * column_idx, 24,
+        DumpHexLines(bytes, section + 24 + 24 * column_idx, 24,
              "column " + std::to_string(column_idx) + " entry", &out);
       }
     } else {
-      Dump(bytes, section + 16, length, std::string(kSectionNames[tag]) + " payload", &out);
+      DumpHexLines(bytes, section + 16, length, std::string(kSectionNames[tag]) + " payload", &out);
     }
   }
   out << "# Footer (64 bytes)\n";
   const size_t footer_offset = loaded->slot.footer_offset;
-  Dump(bytes, footer_offset, 8, "magic \"\\x89MFSEND\\n\"", &out);
-  Dump(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64", &out);
-  Dump(bytes, footer_offset + 16, 8, "generation 1", &out);
-  Dump(bytes, footer_offset + 24, 8, "metadata_offset", &out);
-  Dump(bytes, footer_offset + 32, 8, "metadata_bytes", &out);
-  Dump(bytes, footer_offset + 40, 8, "metadata_checksum", &out);
-  Dump(bytes, footer_offset + 48, 8, "reserved", &out);
-  Dump(bytes, footer_offset + 56, 8, "footer_checksum: XXH3-64 of the footer's first 56 bytes",
+  DumpHexLines(bytes, footer_offset, 8, "magic \"\\x89MFSEND\\n\"", &out);
+  DumpHexLines(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64", &out);
+  DumpHexLines(bytes, footer_offset + 16, 8, "generation 1", &out);
+  DumpHexLines(bytes, footer_offset + 24, 8, "metadata_offset", &out);
+  DumpHexLines(bytes, footer_offset + 32, 8, "metadata_bytes", &out);
+  DumpHexLines(bytes, footer_offset + 40, 8, "metadata_checksum", &out);
+  DumpHexLines(bytes, footer_offset + 48, 8, "reserved", &out);
+  DumpHexLines(bytes, footer_offset + 56, 8, "footer_checksum: XXH3-64 of the footer's first 56 bytes",
        &out);
   return out.str();
-}
-
-// The bytes of the spec's hexdump (lines "offset: hh hh ... | note"; "#" lines are comments).
-std::string BytesFromSpec(std::string* error) {
-  const std::string spec = ReadBytes(kSpec);
-  const size_t begin = spec.find(kBegin);
-  const size_t end = spec.find(kEnd);
-  if (begin == std::string::npos || end == std::string::npos || end < begin) {
-    *error = kSpec + ": no golden hexdump markers";
-    return "";
-  }
-  std::istringstream lines(spec.substr(begin + sizeof(kBegin), end - begin - sizeof(kBegin)));
-  std::string line, bytes;
-  while (std::getline(lines, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == '`') continue;
-    const size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;
-    const size_t offset = std::stoul(line.substr(0, colon), nullptr, 16);
-    if (offset != bytes.size()) {
-      *error = "hexdump line at offset " + line.substr(0, colon) + " does not follow byte " +
-               std::to_string(bytes.size());
-      return "";
-    }
-    std::istringstream hex(line.substr(colon + 1, line.find('|') - colon - 1));
-    std::string pair;
-    while (hex >> pair) bytes.push_back(static_cast<char>(std::stoul(pair, nullptr, 16)));
-  }
-  return bytes;
 }
 
 TEST(FrameFileGolden, TinyArchiveMatchesTheFixtureAndTheSpecHexdump) {
@@ -213,11 +164,11 @@ TEST(FrameFileGolden, TinyArchiveMatchesTheFixtureAndTheSpecHexdump) {
   ASSERT_FALSE(written.empty());
   if (std::getenv("MOTIF_UPDATE_GOLDEN") != nullptr) {
     WriteBytes(kFixture, written);
-    std::printf("%s\n%s%s\n", kBegin, AnnotatedHexdump(written).c_str(), kEnd);
+    std::printf("%s\n%s%s\n", kGoldenBegin, AnnotatedHexdump(written).c_str(), kGoldenEnd);
   }
   EXPECT_EQ(written, ReadBytes(kFixture)) << "the writer's bytes differ from " << kFixture;
   std::string error;
-  const std::string from_spec = BytesFromSpec(&error);
+  const std::string from_spec = BytesFromSpecHexdump(kSpec, &error);
   ASSERT_TRUE(error.empty()) << error;
   EXPECT_EQ(written, from_spec) << "the writer's bytes differ from the hexdump in " << kSpec;
 }

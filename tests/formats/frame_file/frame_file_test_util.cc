@@ -222,26 +222,6 @@ void ExpectWithinQuantisationBound(const std::vector<float>& written,
   EXPECT_LE(worst_angle, 4 * options.quaternion_step);
 }
 
-std::string ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-void WriteBytes(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
-void CopyFile(const std::string& from, const std::string& to) { WriteBytes(to, ReadBytes(from)); }
-
-void PatchByte(const std::string& path, uint64_t offset, char value) {
-  std::fstream file(path, std::ios::binary | std::ios::in | std::ios::out);
-  file.seekp(static_cast<std::streamoff>(offset));
-  file.put(value);
-}
-
 std::vector<std::string> ListDir(const std::string& dir) {
   std::vector<std::string> names;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {

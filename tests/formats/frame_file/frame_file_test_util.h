@@ -17,6 +17,8 @@
 #include "formats/motion/pose_frames.h"
 #include "formats/motion/skeleton.h"
 
+#include "tests/testing/byte_files.h"
+
 namespace motif::testing {
 
 // prefix + index ("c" + std::to_string(i) trips GCC 12's -Wrestrict false positive).
@@ -61,12 +63,6 @@ void ExpectWithinQuantisationBound(const std::vector<float>& written,
                                    const std::vector<float>& decoded, uint32_t joint_count,
                                    const FrameFileWriterOptions& options = {});
 
-std::string ReadBytes(const std::string& path);
-void WriteBytes(const std::string& path, const std::string& bytes);
-void CopyFile(const std::string& from, const std::string& to);
-// Overwrites one byte in place (no truncation: rewriting a file with O_TRUNC makes ext4 flush it
-// on close, which would make the byte-flipping tests slow).
-void PatchByte(const std::string& path, uint64_t offset, char value);
 // Names of the files in `dir`, sorted.
 std::vector<std::string> ListDir(const std::string& dir);
 

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/golden_hexdump.h"
+
 #include "common/file_util.h"
 #include "formats/paths_file/paths_file_format.h"
 #include "formats/paths_file/paths_file_reader.h"
@@ -18,8 +20,6 @@ namespace motif::testing {
 namespace {
 
 const std::string kSpec = std::string(MOTIF_SOURCE_DIR) + "/docs/formats/paths_file.md";
-const char kBegin[] = "<!-- golden-hexdump:begin -->";
-const char kEnd[] = "<!-- golden-hexdump:end -->";
 
 PathsParams ExampleParams() {
   PathsParams params;
@@ -39,42 +39,23 @@ std::vector<PathCandidate> ExampleCandidates() {
           {500, 570, 100, 180, 500, 100}};
 }
 
-void Dump(const std::string& bytes, size_t offset, size_t size, const std::string& note,
-          std::ostringstream* out) {
-  for (size_t line = 0; line < size; line += 16) {
-    char prefix[16];
-    std::snprintf(prefix, sizeof(prefix), "%08zx:", offset + line);
-    std::string text = prefix;
-    for (size_t byte_idx = line; byte_idx < std::min(size, line + 16); ++byte_idx) {
-      char hex[4];
-      std::snprintf(hex, sizeof(hex), " %02x", static_cast<uint8_t>(bytes[offset + byte_idx]));
-      text += hex;
-    }
-    if (line == 0 && !note.empty()) {
-      text.resize(std::max<size_t>(text.size(), 58), ' ');
-      text += "| " + note;
-    }
-    *out << text << "\n";
-  }
-}
-
 std::string AnnotatedHexdump(const std::string& bytes) {
   std::ostringstream out;
   out << "```\n# Header (96 bytes)\n";
-  Dump(bytes, 0x00, 8, "magic \"\\x89MPA\\r\\n\\x1a\\n\"", &out);
-  Dump(bytes, 0x08, 8, "format_major 1, format_minor 0, header_bytes 96", &out);
-  Dump(bytes, 0x10, 8, "trellis_identity", &out);
-  Dump(bytes, 0x18, 8, "archive_identity", &out);
-  Dump(bytes, 0x20, 8, "frame_count 1000", &out);
-  Dump(bytes, 0x28, 8, "branch 5, flags 1 (all_branches)", &out);
-  Dump(bytes, 0x30, 8, "min_length 60", &out);
-  Dump(bytes, 0x38, 8, "candidate_count 3", &out);
-  Dump(bytes, 0x40, 8, "records_raw_bytes", &out);
-  Dump(bytes, 0x48, 8, "records_bytes", &out);
-  Dump(bytes, 0x50, 8, "records_checksum: XXH3-64 of the records section", &out);
-  Dump(bytes, 0x58, 8, "header_checksum: XXH3-64 of bytes [0x00, 0x58)", &out);
+  DumpHexLines(bytes, 0x00, 8, "magic \"\\x89MPA\\r\\n\\x1a\\n\"", &out);
+  DumpHexLines(bytes, 0x08, 8, "format_major 1, format_minor 0, header_bytes 96", &out);
+  DumpHexLines(bytes, 0x10, 8, "trellis_identity", &out);
+  DumpHexLines(bytes, 0x18, 8, "archive_identity", &out);
+  DumpHexLines(bytes, 0x20, 8, "frame_count 1000", &out);
+  DumpHexLines(bytes, 0x28, 8, "branch 5, flags 1 (all_branches)", &out);
+  DumpHexLines(bytes, 0x30, 8, "min_length 60", &out);
+  DumpHexLines(bytes, 0x38, 8, "candidate_count 3", &out);
+  DumpHexLines(bytes, 0x40, 8, "records_raw_bytes", &out);
+  DumpHexLines(bytes, 0x48, 8, "records_bytes", &out);
+  DumpHexLines(bytes, 0x50, 8, "records_checksum: XXH3-64 of the records section", &out);
+  DumpHexLines(bytes, 0x58, 8, "header_checksum: XXH3-64 of bytes [0x00, 0x58)", &out);
   out << "# Records section (" << bytes.size() - 96 << " bytes): one zstd frame\n";
-  Dump(bytes, 0x60, bytes.size() - 0x60, "zstd frame", &out);
+  DumpHexLines(bytes, 0x60, bytes.size() - 0x60, "zstd frame", &out);
   out << "```\n";
   return out.str();
 }
@@ -87,11 +68,11 @@ TEST(PathsFileGolden, TheSpecsHexdumpIsTheEncodedExample) {
   if (update != nullptr && std::string(update) == "1") std::printf("%s", dump.c_str());
   auto spec = ReadFileToString(kSpec);
   ASSERT_TRUE(spec.ok()) << spec.status().ToString();
-  const size_t begin = spec->find(kBegin);
-  const size_t end = spec->find(kEnd);
+  const size_t begin = spec->find(kGoldenBegin);
+  const size_t end = spec->find(kGoldenEnd);
   ASSERT_NE(begin, std::string::npos);
   ASSERT_NE(end, std::string::npos);
-  const size_t body = begin + sizeof(kBegin) - 1 + 1;  // after the marker's newline
+  const size_t body = begin + sizeof(kGoldenBegin) - 1 + 1;  // after the marker's newline
   EXPECT_EQ(spec->substr(body, end - body), dump)
       << "docs/formats/paths_file.md is out of date; run with MOTIF_UPDATE_GOLDEN=1";
   auto reader = PathsFileReader::FromBytes(*bytes, "example.mpa");

@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/testing/golden_hexdump.h"
+
 #include "formats/trellis_file/trellis_block_codec.h"
 #include "formats/trellis_file/trellis_file_format.h"
 #include "formats/trellis_file/trellis_file_reader.h"
@@ -22,8 +24,6 @@ namespace {
 const std::string kSourceDir = MOTIF_SOURCE_DIR;
 const std::string kFixture = kSourceDir + "/tests/data/trellis_file/tiny.mtr.golden";
 const std::string kSpec = kSourceDir + "/docs/formats/trellis_file.md";
-const char kBegin[] = "<!-- golden-hexdump:begin -->";
-const char kEnd[] = "<!-- golden-hexdump:end -->";
 
 TrellisParams TinyParams() {
   TrellisParams params;
@@ -62,27 +62,6 @@ std::string WriteTiny(const TempDir& dir) {
   return path;
 }
 
-// Bytes [offset, offset + size) as one or more "OOOOOOOO: hh hh ..  | note" lines of at most
-// 16 bytes; the note goes on the first line.
-void Dump(const std::string& bytes, size_t offset, size_t size, const std::string& note,
-          std::ostringstream* out) {
-  for (size_t line = 0; line < size; line += 16) {
-    char prefix[16];
-    std::snprintf(prefix, sizeof(prefix), "%08zx:", offset + line);
-    std::string text = prefix;
-    for (size_t byte_idx = line; byte_idx < std::min(size, line + 16); ++byte_idx) {
-      char hex[4];
-      std::snprintf(hex, sizeof(hex), " %02x", static_cast<uint8_t>(bytes[offset + byte_idx]));
-      text += hex;
-    }
-    if (line == 0 && !note.empty()) {
-      text.resize(std::max<size_t>(text.size(), 58), ' ');
-      text += "| " + note;
-    }
-    *out << text << "\n";
-  }
-}
-
 // The annotated hexdump of the spec's worked example.
 std::string AnnotatedHexdump(const std::string& bytes) {
   const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
@@ -94,21 +73,21 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   EXPECT_TRUE(trellis_file::Footer::DecodeFrom(data + footer_offset, &footer).ok());
   std::ostringstream out;
   out << "# File header (" << header_bytes << " bytes)\n";
-  Dump(bytes, 0x00, 8, "magic \"\\x89MTR\\r\\n\\x1a\\n\"", &out);
-  Dump(bytes, 0x08, 8, "format_major 1, format_minor 0, header_bytes " +
+  DumpHexLines(bytes, 0x00, 8, "magic \"\\x89MTR\\r\\n\\x1a\\n\"", &out);
+  DumpHexLines(bytes, 0x08, 8, "format_major 1, format_minor 0, header_bytes " +
                            std::to_string(header_bytes), &out);
-  Dump(bytes, 0x10, 8, "block_columns 4, params_bytes " +
+  DumpHexLines(bytes, 0x10, 8, "block_columns 4, params_bytes " +
                            std::to_string(header_bytes - 40), &out);
-  Dump(bytes, 0x18, 8, "reserved", &out);
-  Dump(bytes, 0x20, 8, "params: frame_count 6", &out);
-  Dump(bytes, 0x28, 8, "params: archive_identity", &out);
-  Dump(bytes, 0x30, 12, "params: eps 1.0, mu 3.0, sigma 1.0 (f32)", &out);
-  Dump(bytes, 0x3c, 12, "params: k_max 4, exclusion_frames 2, search_mode 0", &out);
-  Dump(bytes, 0x48, 8, "params: seed 42", &out);
-  Dump(bytes, 0x50, 8, "params: weights_hash", &out);
-  Dump(bytes, 0x58, 4 + header.params.search_params.size(),
+  DumpHexLines(bytes, 0x18, 8, "reserved", &out);
+  DumpHexLines(bytes, 0x20, 8, "params: frame_count 6", &out);
+  DumpHexLines(bytes, 0x28, 8, "params: archive_identity", &out);
+  DumpHexLines(bytes, 0x30, 12, "params: eps 1.0, mu 3.0, sigma 1.0 (f32)", &out);
+  DumpHexLines(bytes, 0x3c, 12, "params: k_max 4, exclusion_frames 2, search_mode 0", &out);
+  DumpHexLines(bytes, 0x48, 8, "params: seed 42", &out);
+  DumpHexLines(bytes, 0x50, 8, "params: weights_hash", &out);
+  DumpHexLines(bytes, 0x58, 4 + header.params.search_params.size(),
        "params: search_params \"" + header.params.search_params + "\"", &out);
-  Dump(bytes, header_bytes - 8, 8,
+  DumpHexLines(bytes, header_bytes - 8, 8,
        "header_checksum: XXH3-64 of bytes [0x00, " + trellis_file::Hex(header_bytes - 8) + ")",
        &out);
   std::vector<trellis_file::BlockHandle> blocks;
@@ -123,21 +102,21 @@ std::string AnnotatedHexdump(const std::string& bytes) {
     const uint64_t at = block.offset;
     out << "# Block " << block_idx << ": columns [" << block.first_column << ", "
         << block.first_column + block.column_count << "), " << block.bytes << " bytes\n";
-    Dump(bytes, at, 8, "\"MTBK\", column_count " + std::to_string(block.column_count), &out);
-    Dump(bytes, at + 8, 8, "first_column " + std::to_string(block.first_column), &out);
-    Dump(bytes, at + 16, 8,
+    DumpHexLines(bytes, at, 8, "\"MTBK\", column_count " + std::to_string(block.column_count), &out);
+    DumpHexLines(bytes, at + 8, 8, "first_column " + std::to_string(block.first_column), &out);
+    DumpHexLines(bytes, at + 16, 8,
          "neighbour_count " + std::to_string(block_header.neighbour_count) + ", ids_raw_bytes " +
              std::to_string(block_header.ids_raw_bytes),
          &out);
-    Dump(bytes, at + 24, 8,
+    DumpHexLines(bytes, at + 24, 8,
          "ids_bytes " + std::to_string(block_header.ids_bytes) + ", distances_bytes " +
              std::to_string(block_header.distances_bytes),
          &out);
-    Dump(bytes, at + 32, 8, "reserved", &out);
-    Dump(bytes, at + 40, block_header.ids_bytes, "id section: zstd frame", &out);
-    Dump(bytes, at + 40 + block_header.ids_bytes, block_header.distances_bytes,
+    DumpHexLines(bytes, at + 32, 8, "reserved", &out);
+    DumpHexLines(bytes, at + 40, block_header.ids_bytes, "id section: zstd frame", &out);
+    DumpHexLines(bytes, at + 40 + block_header.ids_bytes, block_header.distances_bytes,
          "distance section: zstd frame", &out);
-    Dump(bytes, at + block.bytes - 8, 8,
+    DumpHexLines(bytes, at + block.bytes - 8, 8,
          "block checksum: XXH3-64 of the block's first " + std::to_string(block.bytes - 8) +
              " bytes",
          &out);
@@ -145,51 +124,23 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   out << "# Block index (" << blocks.size() << " entries of 40 bytes)\n";
   for (size_t block_idx = 0; block_idx < blocks.size(); ++block_idx) {
     const uint64_t entry = footer.index_offset + block_idx * trellis_file::kBlockEntryBytes;
-    Dump(bytes, entry, 8, "block " + std::to_string(block_idx) + ": offset", &out);
-    Dump(bytes, entry + 8, 8, "bytes", &out);
-    Dump(bytes, entry + 16, 8, "first_column", &out);
-    Dump(bytes, entry + 24, 8, "column_count, neighbour_count", &out);
-    Dump(bytes, entry + 32, 8, "checksum (= the block's trailer)", &out);
+    DumpHexLines(bytes, entry, 8, "block " + std::to_string(block_idx) + ": offset", &out);
+    DumpHexLines(bytes, entry + 8, 8, "bytes", &out);
+    DumpHexLines(bytes, entry + 16, 8, "first_column", &out);
+    DumpHexLines(bytes, entry + 24, 8, "column_count, neighbour_count", &out);
+    DumpHexLines(bytes, entry + 32, 8, "checksum (= the block's trailer)", &out);
   }
   out << "# Footer (64 bytes)\n";
-  Dump(bytes, footer_offset, 8, "magic \"\\x89MTREND\\n\"", &out);
-  Dump(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64", &out);
-  Dump(bytes, footer_offset + 16, 8, "index_offset", &out);
-  Dump(bytes, footer_offset + 24, 8, "block_count", &out);
-  Dump(bytes, footer_offset + 32, 8, "neighbour_count", &out);
-  Dump(bytes, footer_offset + 40, 8, "index_checksum: XXH3-64 of the index", &out);
-  Dump(bytes, footer_offset + 48, 8, "header_checksum (copy)", &out);
-  Dump(bytes, footer_offset + 56, 8, "footer_checksum: XXH3-64 of the footer's first 56 bytes",
+  DumpHexLines(bytes, footer_offset, 8, "magic \"\\x89MTREND\\n\"", &out);
+  DumpHexLines(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64", &out);
+  DumpHexLines(bytes, footer_offset + 16, 8, "index_offset", &out);
+  DumpHexLines(bytes, footer_offset + 24, 8, "block_count", &out);
+  DumpHexLines(bytes, footer_offset + 32, 8, "neighbour_count", &out);
+  DumpHexLines(bytes, footer_offset + 40, 8, "index_checksum: XXH3-64 of the index", &out);
+  DumpHexLines(bytes, footer_offset + 48, 8, "header_checksum (copy)", &out);
+  DumpHexLines(bytes, footer_offset + 56, 8, "footer_checksum: XXH3-64 of the footer's first 56 bytes",
        &out);
   return out.str();
-}
-
-// The bytes of the spec's hexdump (lines "offset: hh hh ... | note"; "#" lines are comments).
-std::string BytesFromSpec(std::string* error) {
-  const std::string spec = ReadBytes(kSpec);
-  const size_t begin = spec.find(kBegin);
-  const size_t end = spec.find(kEnd);
-  if (begin == std::string::npos || end == std::string::npos || end < begin) {
-    *error = kSpec + ": no golden hexdump markers";
-    return "";
-  }
-  std::istringstream lines(spec.substr(begin + sizeof(kBegin), end - begin - sizeof(kBegin)));
-  std::string line, bytes;
-  while (std::getline(lines, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == '`') continue;
-    const size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;
-    const size_t offset = std::stoul(line.substr(0, colon), nullptr, 16);
-    if (offset != bytes.size()) {
-      *error = "hexdump line at offset " + line.substr(0, colon) + " does not follow byte " +
-               std::to_string(bytes.size());
-      return "";
-    }
-    std::istringstream hex(line.substr(colon + 1, line.find('|') - colon - 1));
-    std::string pair;
-    while (hex >> pair) bytes.push_back(static_cast<char>(std::stoul(pair, nullptr, 16)));
-  }
-  return bytes;
 }
 
 TEST(TrellisFileGolden, TinyTrellisMatchesTheFixtureAndTheSpecHexdump) {
@@ -198,11 +149,12 @@ TEST(TrellisFileGolden, TinyTrellisMatchesTheFixtureAndTheSpecHexdump) {
   ASSERT_FALSE(written.empty());
   if (std::getenv("MOTIF_UPDATE_GOLDEN") != nullptr) {
     WriteBytes(kFixture, written);
-    std::printf("%s\n```\n%s```\n%s\n", kBegin, AnnotatedHexdump(written).c_str(), kEnd);
+    std::printf("%s\n```\n%s```\n%s\n", kGoldenBegin, AnnotatedHexdump(written).c_str(),
+                kGoldenEnd);
   }
   EXPECT_EQ(written, ReadBytes(kFixture)) << "the writer's bytes differ from " << kFixture;
   std::string error;
-  const std::string from_spec = BytesFromSpec(&error);
+  const std::string from_spec = BytesFromSpecHexdump(kSpec, &error);
   ASSERT_TRUE(error.empty()) << error;
   EXPECT_EQ(written, from_spec) << "the writer's bytes differ from the hexdump in " << kSpec;
 }

@@ -137,35 +137,4 @@ FileSystem* NoSyncFileSystem() {
   return file_system;
 }
 
-std::string ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-void WriteBytes(const std::string& path, const std::string& bytes) {
-  // A new file, not a truncated one: ext4 flushes a file truncated to zero when it is closed,
-  // which makes the tests that rewrite files slow on a busy disk.
-  std::error_code error;
-  std::filesystem::remove(path, error);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
-void PatchByte(const std::string& path, uint64_t offset, char value) {
-  std::fstream file(path, std::ios::binary | std::ios::in | std::ios::out);
-  file.seekp(static_cast<std::streamoff>(offset));
-  file.put(value);
-}
-
-void TruncateFile(const std::string& path, uint64_t size) {
-  std::filesystem::resize_file(path, size);
-}
-
-bool FileExists(const std::string& path) {
-  std::error_code error;
-  return std::filesystem::exists(path, error);
-}
-
 }  // namespace motif::testing

@@ -13,6 +13,8 @@
 #include "formats/trellis_file/trellis_column.h"
 #include "formats/trellis_file/trellis_file_writer.h"
 
+#include "tests/testing/byte_files.h"
+
 namespace motif::testing {
 
 using TrellisColumns = std::vector<std::vector<Neighbour>>;
@@ -47,12 +49,5 @@ void ExpectSameWithinBound(const TrellisColumns& written, const TrellisColumns& 
 // seam (a FaultInjectingFileSystem over it counts the same steps). Lives for the whole program.
 FileSystem* NoSyncFileSystem();
 
-std::string ReadBytes(const std::string& path);
-// Replaces `path` by a new file holding `bytes`.
-void WriteBytes(const std::string& path, const std::string& bytes);
-// Overwrites one byte in place.
-void PatchByte(const std::string& path, uint64_t offset, char value);
-void TruncateFile(const std::string& path, uint64_t size);
-bool FileExists(const std::string& path);
 
 }  // namespace motif::testing
