@@ -88,6 +88,12 @@ int RunTrellis(const std::vector<std::string>& args) {
        "LSH buckets visited per table (multi-probe)")
       ("max-candidates", po::value<uint32_t>()->default_value(lsh_defaults.max_candidates),
        "LSH: at most this many exact distance evaluations a column")
+      ("chain", po::value<uint32_t>()->default_value(lsh_defaults.chain_columns),
+       "LSH: columns searched as chains of this many, each seeded with its predecessor's "
+       "neighbours (0: every column alone)")
+      ("chained-max-candidates",
+       po::value<uint32_t>()->default_value(lsh_defaults.chained_max_candidates),
+       "LSH: evaluations a chained column spends on the probed buckets after its seeds")
       ("ranking", po::value<std::string>()->default_value("sort"),
        "LSH candidate order: sort (fastest) or code (ranks gathered entries by position code: "
        "better recall on low-contrast archives, ~1.5-2.5x the time)")
@@ -110,6 +116,8 @@ int RunTrellis(const std::vector<std::string>& args) {
   lsh.probes_per_table = vm["probes"].as<uint32_t>();
   lsh.max_candidates = vm["max-candidates"].as<uint32_t>();
   lsh.max_entries = vm["max-entries"].as<uint32_t>();
+  lsh.chain_columns = vm["chain"].as<uint32_t>();
+  lsh.chained_max_candidates = vm["chained-max-candidates"].as<uint32_t>();
   if (!ParseLshRanking(vm["ranking"].as<std::string>(), &lsh.ranking)) {
     return ReportError("trellis", Status::InvalidArgument("--ranking must be sort or code, not '" +
                                                           vm["ranking"].as<std::string>() + "'"));

@@ -40,7 +40,7 @@ struct LshOptions {
   float bucket_width = 0;
   float width_per_hash = 0.03f;
   // Buckets visited per table, nearest first (multi-probe); 1 visits only the query's own.
-  uint32_t probes_per_table = 8;
+  uint32_t probes_per_table = 4;
   // Work bounds per column: exact distance evaluations, and entries examined in one bucket
   // (heavy buckets: a static pose repeated thousands of times falls into one bucket).
   uint32_t max_candidates = 4096;
@@ -57,6 +57,17 @@ struct LshOptions {
   // this many stages of 4x more probes per table, within the same max_candidates.
   uint32_t extension_stages = 2;
   float sparse_radius_factor = 2.0f;
+  // Temporal chaining. Motion is continuous: if j is a neighbour of column t, then j, j + 1 or
+  // j + 2 is most likely one of column t + 1 (the trellis's paths are exactly these runs).
+  // Columns are searched in chains of chain_columns consecutive columns, aligned on multiples of
+  // chain_columns (so a column's result does not depend on which range or thread computed it).
+  // Every column after a chain's first verifies its predecessor's neighbours advanced by
+  // 0..chain_advance frames before probing, which sets a tight radius at once, and then spends
+  // at most chained_max_candidates further evaluations on the probed buckets (new paths).
+  // chain_columns 0 or 1: every column is searched alone with max_candidates.
+  uint32_t chain_columns = 64;
+  uint32_t chain_advance = 2;
+  uint32_t chained_max_candidates = 2048;
   // Random projections and offsets are drawn from this seed; the same seed gives the same index
   // and the same columns for any thread count.
   uint64_t seed = 0x6d6f746966ull;

@@ -91,14 +91,18 @@ class LshSearch::Query {
  public:
   explicit Query(const LshSearch& search)
       : search_(search),
-        visited_(search.options_.max_candidates),
+        visited_(search.options_.max_candidates +
+                 (search.options_.chain_columns > 1
+                      ? search.rules_.k_max * (search.options_.chain_advance + 1)
+                      : 0)),
         embedding_(search.family_.embedding_dims()),
         projections_(static_cast<size_t>(search.family_.table_count()) *
                      (search.family_.hashes_per_table() + 1)),
         distance_(search.features_) {}
 
-  void Run(uint64_t column, std::vector<Neighbour>* out, SearchStats* stats,
-           LshQueryStats* lsh_stats);
+  // `previous`: the neighbours of column - 1 in the same chain (seeds), or null.
+  void Run(uint64_t column, const std::vector<Neighbour>* previous, std::vector<Neighbour>* out,
+           SearchStats* stats, LshQueryStats* lsh_stats);
   // Hashes the column and lists its probes (sorted) in probes_.
   void Prepare(uint64_t column);
   // Appends the probes of rank [skip, wanted) of every table, sorted among themselves.
@@ -395,7 +399,8 @@ std::vector<LshSearch::ProbeInfo> LshSearch::ProbeSequence(uint64_t column) cons
   return sequence;
 }
 
-void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchStats* stats,
+void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previous,
+                           std::vector<Neighbour>* out, SearchStats* stats,
                            LshQueryStats* lsh_stats) {
   const HashFamily& family = search_.family_;
   const LshIndex& index = search_.index_;
@@ -416,6 +421,8 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
   float bound = eps;  // nothing farther than this can enter the column
   bool budget_spent = false;
   bool bound_stopped = false;
+  // Evaluations allowed in all: the probed buckets' budget, after the seeds of a chained column.
+  uint64_t max_evaluations = options.max_candidates;
   LshQueryStats local;
 
   distance_.SetQuery(column);
@@ -494,7 +501,7 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
         while (!cursor.done && cursor.examined < round_limit) {
           // Gather new, allowed candidates, nearest sort value first, into the batch (which
           // continues across buckets, so the eight-wide verification stays full).
-          const uint64_t room = options.max_candidates - evaluations - pending_size;
+          const uint64_t room = max_evaluations - evaluations - pending_size;
           const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
           while (batch_size < batch_limit && cursor.examined < round_limit) {
             const float limit = bound + kBoundSlack;
@@ -512,7 +519,7 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
             batch[batch_size++] = frame;
           }
           if (batch_size == batch_limit) flush();
-          if (evaluations + pending_size + batch_size >= options.max_candidates) {
+          if (evaluations + pending_size + batch_size >= max_evaluations) {
             budget_spent = true;
             break;
           }
@@ -609,7 +616,7 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
     }
 
     for (const Ranked& candidate : ranked_) {
-      if (evaluations + pending_size + batch_size >= options.max_candidates) {
+      if (evaluations + pending_size + batch_size >= max_evaluations) {
         budget_spent = true;
         break;
       }
@@ -630,6 +637,30 @@ void LshSearch::Query::Run(uint64_t column, std::vector<Neighbour>* out, SearchS
       scan_by_sort_value(first_probe);
     }
   };
+
+  // Seeds of a chained column: the predecessor's neighbours advanced by 0..chain_advance frames
+  // (in frame order: neighbours come in runs, so consecutive seeds share cache lines). Verified
+  // first, they give the radius of a nearly finished column, which prunes most probes and
+  // entries by their lower bounds; the probed buckets then get chained_max_candidates.
+  if (previous != nullptr) {
+    const uint64_t frame_count = features.frame_count();
+    for (const Neighbour& neighbour : *previous) {
+      for (uint32_t advance = 0; advance <= options.chain_advance; ++advance) {
+        const uint64_t frame = uint64_t{neighbour.frame} + advance;
+        if (frame >= frame_count) break;
+        const uint32_t candidate = static_cast<uint32_t>(frame);
+        if (excluded(candidate) || !visited_.Insert(candidate)) continue;
+        distance_.Prefetch(candidate);
+        batch[batch_size++] = candidate;
+        if (batch_size == kBatch) flush();
+      }
+    }
+    flush();
+    flush();
+    prune();
+    local.seed_evaluations += evaluations;
+    max_evaluations = evaluations + options.chained_max_candidates;
+  }
 
   // Sparse columns: when the probes are used up before the budget and the column is not full,
   // or its k_max-th neighbour is much farther than the archive's typical one (the cells were
@@ -710,6 +741,10 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& feature
   if (options.first_round_scan == 0) return invalid("first_round_scan must be > 0");
   if (options.shard_frames == 0) return invalid("shard_frames must be > 0");
   if (!(options.sparse_radius_factor > 0)) return invalid("sparse_radius_factor must be > 0");
+  if (options.chain_advance > 16) return invalid("chain_advance must be in 0..16");
+  if (options.chain_columns > 1 && options.chained_max_candidates == 0) {
+    return invalid("chained_max_candidates must be > 0");
+  }
   const SearchScale scale = EstimateSearchScale(features, rules, options);
   LshOptions used =
       ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(), scale);
@@ -739,21 +774,45 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
                                    std::to_string(features_.frame_count()) + " frames");
   }
   if (columns->size() < count) columns->resize(count);
+  if (count == 0) return Status::Ok();
   // Integer counters: their sums do not depend on how the columns were split among threads.
   std::atomic<uint64_t> column_total{0}, evaluations{0}, neighbours{0}, capped{0};
   std::atomic<uint64_t> probes{0}, examined{0}, scans_capped{0}, budget_capped{0}, bound_stopped{0},
-      extensions{0};
-  constexpr uint64_t kGrain = 64;
+      extensions{0}, seed_evaluations{0};
+  // One task per aligned chain (or per 64 columns without chaining). A range that starts inside
+  // a chain computes the chain's earlier columns too (not returned, not counted): a column is the
+  // same whichever range asked for it.
+  const uint64_t chain = options_.chain_columns > 1 ? options_.chain_columns : 0;
+  const uint64_t grain = chain ? chain : 64;
+  const uint64_t end_column = first_column + count;
+  const uint64_t first_task = first_column / grain;
+  const uint64_t task_count = (end_column + grain - 1) / grain - first_task;
   tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(
-        tbb::blocked_range<uint64_t>(0, count, kGrain),
+        tbb::blocked_range<uint64_t>(0, task_count, 1),
         [&](const tbb::blocked_range<uint64_t>& range) {
           Query query(*this);
           SearchStats local;
           LshQueryStats local_lsh;
-          for (uint64_t column_idx = range.begin(); column_idx != range.end(); ++column_idx) {
-            query.Run(first_column + column_idx, &(*columns)[column_idx], &local, &local_lsh);
+          SearchStats warm_stats;
+          std::vector<Neighbour> previous, warm;
+          for (uint64_t task = range.begin(); task != range.end(); ++task) {
+            const uint64_t task_first = (first_task + task) * grain;
+            const uint64_t begin = chain ? task_first : std::max(task_first, first_column);
+            const uint64_t end = std::min(task_first + grain, end_column);
+            for (uint64_t column = begin; column < end; ++column) {
+              const std::vector<Neighbour>* seeds =
+                  chain && column != task_first ? &previous : nullptr;
+              if (column < first_column) {
+                query.Run(column, seeds, &warm, &warm_stats, nullptr);
+                previous.swap(warm);
+                continue;
+              }
+              std::vector<Neighbour>& out = (*columns)[column - first_column];
+              query.Run(column, seeds, &out, &local, &local_lsh);
+              if (chain) previous = out;
+            }
           }
           column_total += local.columns;
           evaluations += local.distance_evaluations;
@@ -765,6 +824,7 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
           budget_capped += local_lsh.columns_budget_capped;
           bound_stopped += local_lsh.columns_bound_stopped;
           extensions += local_lsh.extensions;
+          seed_evaluations += local_lsh.seed_evaluations;
         });
   });
   if (stats) {
@@ -780,6 +840,7 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
     lsh_stats->columns_budget_capped += budget_capped;
     lsh_stats->columns_bound_stopped += bound_stopped;
     lsh_stats->extensions += extensions;
+    lsh_stats->seed_evaluations += seed_evaluations;
   }
   return Status::Ok();
 }

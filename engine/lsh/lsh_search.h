@@ -20,7 +20,12 @@
 // column, probes_per_table x 4^extension_stages buckets per table. The work per column is thus
 // bounded by the caps, not by how many eps-neighbours exist. Heavy buckets (a static pose
 // repeated thousands of times) cost at most max_bucket_scan entries each.
-// Each column depends only on the index and f_t, so columns are the same for any thread count.
+//   0. chaining: columns go in chains of chain_columns, aligned on multiples of it; a column
+//      after its chain's first verifies its predecessor's neighbours advanced by 0..chain_advance
+//      frames first (seeds), then spends at most chained_max_candidates on the probed buckets.
+// Each column depends only on the index, f_t and the columns before it in its aligned chain
+// (computed again when a range starts inside a chain), so columns are the same for any thread
+// count and any split of the archive into ranges.
 // Thread-safety: SearchColumns is const and may run from many threads at once.
 #pragma once
 
@@ -46,6 +51,7 @@ struct LshQueryStats {
   uint64_t columns_budget_capped = 0;  // columns stopped by max_candidates
   uint64_t columns_bound_stopped = 0;  // columns stopped because nothing left could enter
   uint64_t extensions = 0;             // extra probing stages of sparse columns
+  uint64_t seed_evaluations = 0;       // evaluations of chained columns' seeds (in the total)
 
   void Add(const LshQueryStats& other) {
     probes += other.probes;
@@ -54,6 +60,7 @@ struct LshQueryStats {
     columns_budget_capped += other.columns_budget_capped;
     columns_bound_stopped += other.columns_bound_stopped;
     extensions += other.extensions;
+    seed_evaluations += other.seed_evaluations;
   }
 };
 

@@ -2,7 +2,8 @@
 // key=value arguments:
 //   data=real|synth|synthbig|reseq frames=N seed=S queries=Q k_max=K eps=E
 //   LSH options: tables= hashes= width= width_per_hash= probes= max_candidates= max_bucket_scan=
-//                first_round= stages= sparse= threads= range=(columns timed in one block)
+//                first_round= stages= sparse= chain= chain_advance= chained= threads=
+//                range=(columns timed in one block)
 //   modes: oracle (how well L2 / l1,2 embedding distances rank the exact neighbours),
 //          contrast (D_2k/D_k, D_4k/D_k, D_16k/D_k), simulate bits=B (offline ranking of all
 //          probed entries by their projected distance), diagnose [count] (misses in probed
@@ -245,6 +246,10 @@ int main(int argc, char** argv) {
   options.first_round_scan = static_cast<uint32_t>(get("first_round", options.first_round_scan));
   options.extension_stages = static_cast<uint32_t>(get("stages", options.extension_stages));
   options.sparse_radius_factor = static_cast<float>(get("sparse", options.sparse_radius_factor));
+  options.chain_columns = static_cast<uint32_t>(get("chain", options.chain_columns));
+  options.chain_advance = static_cast<uint32_t>(get("chain_advance", options.chain_advance));
+  options.chained_max_candidates =
+      static_cast<uint32_t>(get("chained", options.chained_max_candidates));
   auto rss = [] {
     malloc_trim(0);
     std::ifstream status("/proc/self/status");

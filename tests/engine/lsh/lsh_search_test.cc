@@ -248,6 +248,84 @@ TEST_F(LshSearchTest, SameColumnsForOneAndTwoThreads) {
   EXPECT_NE(serial->DescribeParams(), other->DescribeParams());
 }
 
+// Chained columns depend on their predecessors in an aligned chain: a column must come out the
+// same whether a range starts at it, inside its chain or before it.
+TEST_F(LshSearchTest, ChainedColumnsDoNotDependOnTheRangeThatAskedForThem) {
+  LshOptions options;
+  options.chain_columns = 64;
+  options.threads = 2;
+  auto search = CreateSearch(*features_, *rules_, options);
+  ASSERT_NE(search, nullptr);
+  std::vector<std::vector<Neighbour>> whole;
+  SearchStats whole_stats;
+  ASSERT_TRUE(search->SearchColumns(1000, 700, &whole, &whole_stats).ok());
+  EXPECT_EQ(whole_stats.columns, 700u);
+  // Split at 1037 (inside the chain [1024, 1088)) and at 1100.
+  std::vector<std::vector<Neighbour>> part;
+  std::vector<std::vector<Neighbour>> pieces;
+  for (auto [first, count] : {std::pair<uint64_t, uint64_t>{1000, 37}, {1037, 63}, {1100, 600}}) {
+    SearchStats stats;
+    ASSERT_TRUE(search->SearchColumns(first, count, &part, &stats).ok());
+    EXPECT_EQ(stats.columns, count);
+    pieces.insert(pieces.end(), part.begin(), part.begin() + static_cast<ptrdiff_t>(count));
+  }
+  EXPECT_EQ(pieces, whole);
+  for (uint64_t column : {1000u, 1024u, 1025u, 1087u, 1500u, 1699u}) {
+    SearchStats stats;
+    EXPECT_EQ(Column(*search, column, &stats), whole[column - 1000]) << "column " << column;
+    EXPECT_EQ(stats.columns, 1u);
+  }
+}
+
+// Chaining seeds each column with its predecessor's neighbours advanced by 0..2 frames: on the
+// same columns and with the same probed-bucket budget, it finds at least as many of the exact
+// neighbours, and with half of that budget for the probes it still keeps recall >= 0.95.
+TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
+  LshOptions alone;
+  alone.chain_columns = 0;
+  alone.max_candidates = 512;  // tight, so that the seeds' contribution shows
+  alone.probes_per_table = 8;
+  LshOptions chained = alone;
+  chained.chain_columns = 64;
+  chained.chained_max_candidates = 512;
+  LshOptions cheap = chained;
+  cheap.chained_max_candidates = 256;
+  auto search_alone = CreateSearch(*features_, *rules_, alone);
+  auto search_chained = CreateSearch(*features_, *rules_, chained);
+  auto search_cheap = CreateSearch(*features_, *rules_, cheap);
+  ASSERT_NE(search_alone, nullptr);
+  ASSERT_NE(search_chained, nullptr);
+  ASSERT_NE(search_cheap, nullptr);
+  // A block of consecutive columns: where chaining acts.
+  const uint64_t first = 12800;
+  const uint64_t count = 256;
+  std::vector<std::vector<Neighbour>> exact;
+  for (uint64_t column = first; column < first + count; ++column) {
+    exact.push_back(ExactColumn(*features_, *rules_, column));
+  }
+  auto measure = [&](const LshSearch& search, const char* what) {
+    std::vector<std::vector<Neighbour>> columns;
+    SearchStats stats;
+    LshQueryStats lsh_stats;
+    EXPECT_TRUE(search.SearchColumns(first, count, &columns, &stats, &lsh_stats).ok());
+    const RecallStats recall = Recall(exact, columns);
+    std::printf("%s: recall %.4f, evaluations/column %.0f (seeds %.0f)\n", what, recall.pooled(),
+                static_cast<double>(stats.distance_evaluations) / count,
+                static_cast<double>(lsh_stats.seed_evaluations) / count);
+    return std::make_pair(recall.pooled(), lsh_stats);
+  };
+  const auto [recall_alone, stats_alone] = measure(*search_alone, "alone, 512");
+  const auto [recall_chained, stats_chained] = measure(*search_chained, "chained, 512");
+  const auto [recall_cheap, stats_cheap] = measure(*search_cheap, "chained, 256");
+  EXPECT_EQ(stats_alone.seed_evaluations, 0u);
+  EXPECT_GT(stats_chained.seed_evaluations, 0u);
+  EXPECT_GE(recall_chained, recall_alone);
+  EXPECT_GE(recall_chained, 0.97);
+  EXPECT_GE(recall_cheap, 0.95);
+  // The cheap chain examines fewer bucket entries than the unchained search.
+  EXPECT_LT(stats_cheap.entries_examined, stats_alone.entries_examined);
+}
+
 // Heavy buckets: a static pose held for thousands of frames (the T-pose a take starts with)
 // lands in one bucket of every table. The work per column must stay within the caps, the
 // static frames' columns must still be exact (distance 0, lowest frames first), and the other
