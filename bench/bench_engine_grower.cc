@@ -1,32 +1,57 @@
 // Path grower throughput: the streaming grower (GrowPaths: one block of the trellis file and one
 // O(N) array in memory, O(N·K·B)) against the pairwise reference (GrowPathsReference: the whole
-// trellis in memory, O(N·K²)), on synthetic trellis files of N = 2^13, 2^15, 2^17 columns with
-// K = 32 .. 1024 nodes a column, B = 5, lambda = 60.
-// Items are trellis entries per second. Counters: grower_MB (the grower's own structures: the
-// auxiliary array, two columns of leaves, the candidates), peak_rss_MB (the process's peak
-// resident set during the runs, which includes the pages of the memory-mapped trellis file the
-// reader has touched), candidates.
-// The trellises are random walks shaped like real ones: planted paths (runs of 8 consecutive
-// frames around a walker that advances 0 to 2 frames a column and lives 100 to 500 columns)
-// make up half of each column, uniform random noise nodes the rest. They are written once per
-// (N, K) to $TMPDIR (or /tmp) outside the timed loop and removed at exit. The reference is run
-// only where it fits: at most 2^24 entries in memory and N·K² at most 2^33.
-// Run: bench/bench_engine_grower --benchmark_min_time=0.2s (the command in docs/benchmarks.md).
+// trellis in memory, O(N·K²)), on synthetic trellis files with B = 5, lambda = 60.
+//
+// Three series:
+// * StreamingGrowerScaling/frames:N/k:256: the streaming grower against N = 2^13, 2^15, 2^17,
+//   2^20, 2^22 and 10^7 at a fixed K, with a complexity fit (oN). Sizes above
+//   $MOTIF_BENCH_GROWER_MAX (default 2^17, so that a plain run stays quick; 10000000 or 1e7 for
+//   the whole series) are not registered. K = 256: real trellises have a mean K of 150 to 250
+//   with k_max 256, so 256 is the top of the real range, the most entries and the largest
+//   decoded block per column: the throughput and memory measured are not flattered (128 would
+//   sit below every real trellis).
+// * StreamingGrowerKeepPages/...: the same sizes and loop, but without giving the pages of the
+//   blocks read back to the kernel (GrowPaths before TrellisFileReader::ReleaseBlocks): its
+//   peak RSS grows with the trellis file, not with N.
+// * StreamingGrower and ReferenceGrower/frames:N/k:K: the K sweep, K = 32 .. 1024 at
+//   N = 2^13, 2^15, 2^17, both growers on the same files. The reference runs only where it
+//   fits: at most 2^25 entries in memory (~256 MB) and N·K² at most 2^33.
+// Items are trellis entries per second (wall time). Counters: entries_per_cpu_s (the same per
+// second of this thread's CPU: the machines are shared), grower_MB (the grower's own
+// structures: the auxiliary array, two columns of leaves, the tree table, the candidates),
+// peak_rss_MB (the process's peak resident set during the timed runs, VmHWM after a reset),
+// base_rss_MB (the resident set when the timed runs start, after malloc_trim: the process and
+// what earlier runs left, such as the block decoder's scratch), peak_rss_B_per_frame and
+// grower_B_per_frame (per column of the trellis), file_MB, candidates.
+// Trellises: random walks shaped like real ones: planted paths (runs of 8 consecutive frames
+// around a walker that advances 0 to 2 frames a column and lives 100 to 500 columns) make up
+// half of each column, uniform random noise nodes the rest; clips of 4096 frames. Each (N, K) is
+// written once to $TMPDIR (or /tmp) outside the timed loop, with the next block generated on a
+// second thread while the writer encodes the current one, and without fsync (throwaway data);
+// the files are removed at exit. 10^7 columns at K = 256 are 2.56 billion entries, a 4.2 GB
+// file (with 2^22, ~6 GB in $TMPDIR), read from the page cache where memory allows (the runs
+// measure decoding and growing, not the disk).
+// Run: bench/bench_engine_grower --benchmark_min_time=0.2 (the commands in docs/benchmarks.md).
+#include <malloc.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_util.h"
+#include "common/writable_file.h"
 #include "engine/grow/path_grower.h"
 #include "engine/grow/reference_grower.h"
 #include "formats/trellis_file/trellis_file_reader.h"
@@ -59,13 +84,103 @@ TempFiles& Files() {
   return files;
 }
 
+// The real file system without fsync: the trellises are throwaway, and 2,442 synced blocks of
+// a 10^7-column file would only slow the generation and load the shared disk.
+class NoSyncFile final : public WritableFile {
+ public:
+  explicit NoSyncFile(std::unique_ptr<WritableFile> file) : file_(std::move(file)) {}
+  Status WriteAt(uint64_t offset, const void* data, size_t size) override {
+    return file_->WriteAt(offset, data, size);
+  }
+  Status Sync() override { return Status::Ok(); }
+  Status Truncate(uint64_t size) override { return file_->Truncate(size); }
+  Result<uint64_t> Size() override { return file_->Size(); }
+  Status Close() override { return file_->Close(); }
+  const std::string& path() const override { return file_->path(); }
+
+ private:
+  std::unique_ptr<WritableFile> file_;
+};
+
+class NoSyncFileSystem final : public FileSystem {
+ public:
+  Result<std::unique_ptr<WritableFile>> OpenWritable(const std::string& path,
+                                                     OpenMode mode) override {
+    auto file = PosixFileSystem()->OpenWritable(path, mode);
+    if (!file.ok()) return file.status();
+    return std::unique_ptr<WritableFile>(new NoSyncFile(std::move(*file)));
+  }
+  Status Rename(const std::string& from, const std::string& to) override {
+    return PosixFileSystem()->Rename(from, to);
+  }
+  Status SyncParentDir(const std::string&) override { return Status::Ok(); }
+  Status Remove(const std::string& path) override { return PosixFileSystem()->Remove(path); }
+};
+
 // One walker: a planted path through the trellis.
 struct Walker {
   uint64_t frame = 0;
   uint64_t columns_left = 0;
 };
 
-// Writes the synthetic trellis of N columns, about K nodes each.
+// The columns of a synthetic trellis, block after block (sequential: the walkers carry over).
+class RandomWalkTrellis {
+ public:
+  RandomWalkTrellis(uint64_t frame_count, uint32_t k)
+      : frame_count_(frame_count), k_(k), rng_(frame_count * 1000 + k),
+        walkers_(std::max<uint32_t>(1, k / 2 / kRun)) {
+    for (Walker& walker : walkers_) Respawn(&walker);
+  }
+
+  // Columns [first_column, first_column + count) into *block (its vectors are reused).
+  void NextBlock(uint64_t first_column, uint64_t count,
+                 std::vector<std::vector<Neighbour>>* block) {
+    block->resize(count);
+    for (uint64_t column_idx = first_column; column_idx < first_column + count; ++column_idx) {
+      frames_.clear();
+      for (Walker& walker : walkers_) {
+        for (uint32_t offset = 0; offset < kRun && walker.frame + offset < frame_count_;
+             ++offset) {
+          frames_.push_back(static_cast<uint32_t>(walker.frame + offset));
+        }
+        walker.frame += rng_() % 3;
+        if (--walker.columns_left == 0 || walker.frame >= frame_count_) Respawn(&walker);
+      }
+      // The walkers' runs and the noise are sorted apart and merged: the same column as one
+      // sort of both, in about half the time (the runs are nearly sorted already).
+      const size_t walker_frames = frames_.size();
+      while (frames_.size() < k_) frames_.push_back(static_cast<uint32_t>(rng_() % frame_count_));
+      std::sort(frames_.begin(), frames_.begin() + walker_frames);
+      std::sort(frames_.begin() + walker_frames, frames_.end());
+      merged_.resize(frames_.size());
+      std::merge(frames_.begin(), frames_.begin() + walker_frames,
+                 frames_.begin() + walker_frames, frames_.end(), merged_.begin());
+      merged_.erase(std::unique(merged_.begin(), merged_.end()), merged_.end());
+      std::vector<Neighbour>& column = (*block)[column_idx - first_column];
+      column.resize(merged_.size());
+      for (size_t node_idx = 0; node_idx < merged_.size(); ++node_idx) {
+        column[node_idx] = {merged_[node_idx], 0.5f};
+      }
+    }
+  }
+
+ private:
+  static constexpr uint32_t kRun = 8;
+
+  void Respawn(Walker* walker) {
+    walker->frame = rng_() % frame_count_;
+    walker->columns_left = 100 + rng_() % 401;
+  }
+
+  uint64_t frame_count_;
+  uint32_t k_;
+  std::mt19937_64 rng_;
+  std::vector<Walker> walkers_;
+  std::vector<uint32_t> frames_;
+  std::vector<uint32_t> merged_;
+};
+
+// Writes the synthetic trellis of N columns, about K nodes each (once per (N, K)).
 std::string TrellisOf(uint64_t frame_count, uint32_t k) {
   static std::map<std::pair<uint64_t, uint32_t>, std::string> paths;
   auto it = paths.find({frame_count, k});
@@ -77,39 +192,28 @@ std::string TrellisOf(uint64_t frame_count, uint32_t k) {
   params.eps = 1.0f;
   params.k_max = 2 * k;
   params.search_params = "bench random walk";
-  auto writer = TrellisFileWriter::OpenOrResume(path, params);
+  static NoSyncFileSystem no_sync;
+  TrellisFileWriterOptions options;
+  options.file_system = &no_sync;
+  auto writer = TrellisFileWriter::OpenOrResume(path, params, options);
   if (!writer.ok()) Die(writer.status());
-  std::mt19937_64 rng(frame_count * 1000 + k);
-  constexpr uint32_t kRun = 8;
-  std::vector<Walker> walkers(std::max<uint32_t>(1, k / 2 / kRun));
-  auto respawn = [&](Walker* walker) {
-    walker->frame = rng() % frame_count;
-    walker->columns_left = 100 + rng() % 401;
-  };
-  for (Walker& walker : walkers) respawn(&walker);
-  std::vector<std::vector<Neighbour>> block;
-  std::vector<uint32_t> frames;
-  const uint32_t block_columns = (*writer)->block_columns();
-  for (uint64_t first = 0; first < frame_count; first += block_columns) {
-    const uint64_t count = std::min<uint64_t>(block_columns, frame_count - first);
-    block.assign(count, {});
-    for (uint64_t in_block = 0; in_block < count; ++in_block) {
-      frames.clear();
-      for (Walker& walker : walkers) {
-        for (uint32_t offset = 0; offset < kRun && walker.frame + offset < frame_count; ++offset) {
-          frames.push_back(static_cast<uint32_t>(walker.frame + offset));
-        }
-        walker.frame += rng() % 3;
-        if (--walker.columns_left == 0 || walker.frame >= frame_count) respawn(&walker);
-      }
-      while (frames.size() < k) frames.push_back(static_cast<uint32_t>(rng() % frame_count));
-      std::sort(frames.begin(), frames.end());
-      frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-      std::vector<Neighbour>& column = block[in_block];
-      column.reserve(frames.size());
-      for (uint32_t frame : frames) column.push_back({frame, 0.5f});
+  const uint64_t block_columns = (*writer)->block_columns();
+  RandomWalkTrellis trellis(frame_count, k);
+  // Two buffers: block b + 1 is generated on another thread while block b is encoded and
+  // written (the generator is sequential, so only these two stages overlap).
+  std::vector<std::vector<Neighbour>> buffers[2];
+  trellis.NextBlock(0, std::min(block_columns, frame_count), &buffers[0]);
+  for (uint64_t block_idx = 0; block_idx * block_columns < frame_count; ++block_idx) {
+    const uint64_t next_first = (block_idx + 1) * block_columns;
+    std::future<void> next;
+    if (next_first < frame_count) {
+      next = std::async(std::launch::async, [&, next_first, block_idx] {
+        trellis.NextBlock(next_first, std::min(block_columns, frame_count - next_first),
+                          &buffers[(block_idx + 1) % 2]);
+      });
     }
-    Status status = (*writer)->AppendBlock(block);
+    Status status = (*writer)->AppendBlock(buffers[block_idx % 2]);
+    if (next.valid()) next.get();
     if (!status.ok()) Die(status);
   }
   Status status = (*writer)->Finish();
@@ -130,7 +234,49 @@ GrowOptions Options() {
   return options;
 }
 
-void BM_StreamingGrower(benchmark::State& state) {
+// CPU seconds of the calling thread (the growers are single-threaded).
+double ThreadCpuSeconds() {
+  timespec now;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
+}
+
+// Gives freed heap (the generator's and earlier benchmarks' buffers) back to the kernel and
+// resets the peak-RSS mark: returns the resident set the timed runs start from.
+double StartPeakRss() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+  bench::ResetPeakRss();
+  return bench::PeakRssBytes();
+}
+
+// GrowPaths as it was before TrellisFileReader::ReleaseBlocks: the same block loop, keeping the
+// pages of the blocks read mapped.
+Result<std::vector<PathCandidate>> GrowKeepingPages(const TrellisFileReader& trellis,
+                                                    const std::vector<uint64_t>& clip_starts,
+                                                    const GrowOptions& options, GrowStats* stats) {
+  auto grower = PathGrower::Create(trellis.column_count(), clip_starts, options);
+  if (!grower.ok()) return grower.status();
+  TrellisBlock block;
+  for (uint64_t block_idx = 0; block_idx < trellis.block_count(); ++block_idx) {
+    MOTIF_RETURN_IF_ERROR(trellis.ReadBlock(block_idx, &block, /*decode_distances=*/false));
+    for (uint32_t in_block = 0; in_block < block.column_count; ++in_block) {
+      const uint32_t begin = block.offsets[in_block];
+      MOTIF_RETURN_IF_ERROR((*grower)->AddColumn(block.neighbours.data() + begin,
+                                                 block.offsets[in_block + 1] - begin));
+    }
+  }
+  const uint64_t memory_bytes = (*grower)->memory_bytes();
+  auto candidates = (*grower)->Finish();
+  *stats = (*grower)->stats();
+  stats->memory_bytes = memory_bytes;
+  return candidates;
+}
+
+enum class Pages { kRelease, kKeep };
+
+void RunStreaming(benchmark::State& state, Pages pages) {
   const uint64_t frame_count = static_cast<uint64_t>(state.range(0));
   const uint32_t k = static_cast<uint32_t>(state.range(1));
   const std::string path = TrellisOf(frame_count, k);
@@ -139,20 +285,36 @@ void BM_StreamingGrower(benchmark::State& state) {
   const std::vector<uint64_t> clips = ClipStarts(frame_count);
   GrowStats stats;
   size_t candidates = 0;
-  bench::ResetPeakRss();
+  const double base_rss_bytes = StartPeakRss();
+  const double cpu_start = ThreadCpuSeconds();
   for (auto _ : state) {
-    auto result = GrowPaths(**reader, clips, Options(), nullptr, &stats);
+    auto result = pages == Pages::kRelease
+                      ? GrowPaths(**reader, clips, Options(), nullptr, &stats)
+                      : GrowKeepingPages(**reader, clips, Options(), &stats);
     if (!result.ok()) Die(result.status());
     candidates = result->size();
     benchmark::DoNotOptimize(result->data());
   }
+  const double cpu_seconds = ThreadCpuSeconds() - cpu_start;
+  const double peak_rss_bytes = bench::PeakRssBytes();
+  const double entries = static_cast<double>((*reader)->neighbour_count());
+  const double frames = static_cast<double>(frame_count);
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * (*reader)->neighbour_count()));
-  state.counters["mean_k"] =
-      static_cast<double>((*reader)->neighbour_count()) / static_cast<double>(frame_count);
+  state.SetComplexityN(static_cast<int64_t>(frame_count));
+  state.counters["mean_k"] = entries / frames;
+  state.counters["entries_per_cpu_s"] =
+      entries * static_cast<double>(state.iterations()) / cpu_seconds;
   state.counters["grower_MB"] = static_cast<double>(stats.memory_bytes) / 1e6;
-  state.counters["peak_rss_MB"] = bench::PeakRssBytes() / 1e6;
+  state.counters["grower_B_per_frame"] = static_cast<double>(stats.memory_bytes) / frames;
+  state.counters["base_rss_MB"] = base_rss_bytes / 1e6;
+  state.counters["peak_rss_MB"] = peak_rss_bytes / 1e6;
+  state.counters["peak_rss_B_per_frame"] = peak_rss_bytes / frames;
+  state.counters["file_MB"] = static_cast<double>((*reader)->file_bytes()) / 1e6;
   state.counters["candidates"] = static_cast<double>(candidates);
 }
+
+void BM_StreamingGrower(benchmark::State& state) { RunStreaming(state, Pages::kRelease); }
+void BM_StreamingGrowerKeepPages(benchmark::State& state) { RunStreaming(state, Pages::kKeep); }
 
 void BM_ReferenceGrower(benchmark::State& state) {
   const uint64_t frame_count = static_cast<uint64_t>(state.range(0));
@@ -166,23 +328,62 @@ void BM_ReferenceGrower(benchmark::State& state) {
   if (!status.ok()) Die(status);
   const std::vector<uint64_t> clips = ClipStarts(frame_count);
   size_t candidates = 0;
-  bench::ResetPeakRss();
+  const double base_rss_bytes = StartPeakRss();
+  const double cpu_start = ThreadCpuSeconds();
   for (auto _ : state) {
     auto result = GrowPathsReference(columns, clips, Options());
     if (!result.ok()) Die(result.status());
     candidates = result->size();
     benchmark::DoNotOptimize(result->data());
   }
+  const double cpu_seconds = ThreadCpuSeconds() - cpu_start;
+  const double entries = static_cast<double>((*reader)->neighbour_count());
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * (*reader)->neighbour_count()));
-  state.counters["mean_k"] =
-      static_cast<double>((*reader)->neighbour_count()) / static_cast<double>(frame_count);
+  state.counters["mean_k"] = entries / static_cast<double>(frame_count);
+  state.counters["entries_per_cpu_s"] =
+      entries * static_cast<double>(state.iterations()) / cpu_seconds;
+  state.counters["base_rss_MB"] = base_rss_bytes / 1e6;
   state.counters["peak_rss_MB"] = bench::PeakRssBytes() / 1e6;
   state.counters["candidates"] = static_cast<double>(candidates);
 }
 
+// $MOTIF_BENCH_GROWER_MAX: the largest N of the scaling series (default 2^17).
+int64_t ScalingMaxFrames() {
+  const char* from_env = std::getenv("MOTIF_BENCH_GROWER_MAX");
+  if (from_env == nullptr || *from_env == 0) return int64_t{1} << 17;
+  char* end = nullptr;
+  const double value = std::strtod(from_env, &end);
+  if (end == from_env || *end != 0 || !(value >= 1)) {
+    std::fprintf(stderr, "bench_engine_grower: MOTIF_BENCH_GROWER_MAX=%s is not a frame count\n",
+                 from_env);
+    std::exit(2);
+  }
+  return static_cast<int64_t>(value);
+}
+
+constexpr int64_t kScalingK = 256;
+
 const bool registered = [] {
-  for (int64_t frames : {int64_t{1} << 13, int64_t{1} << 15, int64_t{1} << 17}) {
-    for (int64_t k : {32, 128, 512, 1024}) {
+  const int64_t max_frames = ScalingMaxFrames();
+  using Function = void (*)(benchmark::State&);
+  const std::pair<const char*, Function> kScalingSeries[] = {
+      {"StreamingGrowerScaling", BM_StreamingGrower},
+      {"StreamingGrowerKeepPages", BM_StreamingGrowerKeepPages}};
+  for (const auto& [name, function] : kScalingSeries) {
+    benchmark::internal::Benchmark* scaling = benchmark::RegisterBenchmark(name, function);
+    for (int64_t frames : {int64_t{1} << 13, int64_t{1} << 15, int64_t{1} << 17,
+                           int64_t{1} << 20, int64_t{1} << 22, int64_t{10'000'000}}) {
+      if (frames <= max_frames) scaling->Args({frames, kScalingK});
+    }
+    scaling->ArgNames({"frames", "k"})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Complexity(benchmark::oN);
+  }
+  constexpr int64_t kSweepFrames[] = {int64_t{1} << 13, int64_t{1} << 15, int64_t{1} << 17};
+  constexpr int64_t kSweepK[] = {32, 128, 256, 512, 1024};
+  for (int64_t frames : kSweepFrames) {
+    for (int64_t k : kSweepK) {
       benchmark::RegisterBenchmark("StreamingGrower", BM_StreamingGrower)
           ->Args({frames, k})
           ->ArgNames({"frames", "k"})
@@ -190,10 +391,10 @@ const bool registered = [] {
           ->UseRealTime();
     }
   }
-  for (int64_t frames : {int64_t{1} << 13, int64_t{1} << 15, int64_t{1} << 17}) {
-    for (int64_t k : {32, 128, 512, 1024}) {
+  for (int64_t frames : kSweepFrames) {
+    for (int64_t k : kSweepK) {
       const double entries = static_cast<double>(frames) * static_cast<double>(k);
-      if (entries > static_cast<double>(1 << 24) ||
+      if (entries > static_cast<double>(1 << 25) ||
           entries * static_cast<double>(k) > static_cast<double>(uint64_t{1} << 33)) {
         continue;
       }

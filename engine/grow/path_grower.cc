@@ -282,6 +282,10 @@ Result<std::vector<PathCandidate>> GrowPaths(
       Status status = grower.AddColumn(block.neighbours.data() + begin, end - begin);
       if (!status.ok()) return status.WithContext(trellis.path());
     }
+    // The block is consumed: without this its mapped pages stay in the process's resident set
+    // until the reader closes (the whole file by the end: gigabytes at 10^7 frames), dwarfing
+    // the grower's O(N) memory. The page cache keeps them; the reader maps them again if asked.
+    MOTIF_RETURN_IF_ERROR(trellis.ReleaseBlocks(block_idx, block_idx + 1));
     if (progress) progress(grower.next_column(), total);
   }
   const uint64_t memory_bytes = grower.memory_bytes();

@@ -111,7 +111,9 @@ class PathGrower {
 };
 
 // Streams every block of `trellis` in order (ReadBlock without distances, one block held at a
-// time) through a PathGrower. `progress(done_columns, total)` after each block if given.
+// time) through a PathGrower, giving each block's mapped pages back once grown
+// (TrellisFileReader::ReleaseBlocks), so the resident set stays O(N) and not the file's size.
+// `progress(done_columns, total)` after each block if given.
 // Errors: those of Create (clip starts against trellis.column_count()) and of ReadBlock
 // (Corruption naming the file and block).
 Result<std::vector<PathCandidate>> GrowPaths(

@@ -213,6 +213,19 @@ Status TrellisFileReader::ReadColumns(uint64_t first_column, uint64_t count,
   return Status::Ok();
 }
 
+Status TrellisFileReader::ReleaseBlocks(uint64_t first_block, uint64_t end_block) const {
+  if (first_block > end_block || end_block > block_count()) {
+    return Status::InvalidArgument(impl_->path + ": release blocks [" +
+                                   std::to_string(first_block) + ", " +
+                                   std::to_string(end_block) + ") of " +
+                                   std::to_string(block_count()));
+  }
+  if (first_block == end_block) return Status::Ok();
+  const BlockHandle& last = impl_->blocks[end_block - 1];
+  impl_->ReleasePages(impl_->blocks[first_block].offset, last.offset + last.bytes);
+  return Status::Ok();
+}
+
 Status TrellisFileReader::Verify() const {
   TrellisBlock block;
   const std::vector<BlockHandle>& blocks = impl_->blocks;

@@ -57,6 +57,14 @@ class TrellisFileReader {
   // range is outside [0, column_count()); Corruption as ReadBlock.
   Status ReadColumns(uint64_t first_column, uint64_t count,
                      std::vector<std::vector<Neighbour>>* columns) const;
+  // Gives the mapped pages of blocks [first_block, end_block) back to the kernel
+  // (madvise(MADV_DONTNEED) on the read-only mapping: the file and the page cache are untouched,
+  // a later read maps the pages again). For a sequential consumer such as the path grower: after
+  // each block it has finished with, so that streaming through a trellis larger than memory does
+  // not keep the file in the process's resident set. A page shared with the next block is kept
+  // (released with that block). Safe beside concurrent reads of any block (they only fault the
+  // pages back in). InvalidArgument unless first_block <= end_block <= block_count().
+  Status ReleaseBlocks(uint64_t first_block, uint64_t end_block) const;
   // Every block's checksum and decoding, in file order; the pages of checked blocks are given
   // back to the kernel so a large file does not stay resident.
   Status Verify() const;

@@ -7,6 +7,7 @@
 
 #include "formats/trellis_file/trellis_file_reader.h"
 #include "tests/engine/grow/grow_test_util.h"
+#include "tests/formats/trellis_file/trellis_test_util.h"
 #include "tests/testing/temp_dir.h"
 
 namespace motif::testing {
@@ -292,6 +293,28 @@ TEST(GrowPaths, ReportsProgressAndClipsAgainstTheTrellis) {
   auto bad = GrowPaths(**reader, {0, 100}, Options(3, 60));
   EXPECT_TRUE(bad.status().IsInvalidArgument());
   EXPECT_NE(bad.status().message().find("t.mtr"), std::string::npos) << bad.status().ToString();
+}
+
+// GrowPaths gives each block's mapped pages back once consumed: after a run the reader's
+// mapping is not resident (the grower's memory is its O(N) array, not the trellis file), and the
+// candidates are those of the in-memory grower.
+TEST(GrowPaths, ReleasesTheBlocksItHasGrown) {
+  TempDir dir;
+  const GrowColumns columns = RandomColumns(20000, 5, 40, 200, 2);
+  const std::vector<uint64_t> clips = {0, 7000, 13000};
+  ASSERT_TRUE(WriteColumns(dir.File("t.mtr"), columns, 256).ok());
+  auto reader = TrellisFileReader::Open(dir.File("t.mtr"));
+  ASSERT_TRUE(reader.ok());
+  ASSERT_GT((*reader)->file_bytes(), 1u << 20);
+  auto candidates = GrowPaths(**reader, clips, Options(5, 60, /*all_branches=*/false));
+  ASSERT_TRUE(candidates.ok()) << candidates.status().ToString();
+  auto in_memory = GrowInMemory(columns, clips, Options(5, 60, /*all_branches=*/false));
+  ASSERT_TRUE(in_memory.ok());
+  EXPECT_EQ(*candidates, *in_memory);
+  EXPECT_FALSE(candidates->empty());
+  const int64_t resident = MappedResidentBytes(dir.File("t.mtr"));
+  if (resident < 0) GTEST_SKIP() << "no /proc/self/smaps";
+  EXPECT_LT(resident, static_cast<int64_t>((*reader)->file_bytes() / 10));
 }
 
 }  // namespace

@@ -164,6 +164,47 @@ TEST_F(TrellisFileReaderTest, ReadsFramesWithoutDistancesOnRequest) {
   }
 }
 
+// A sequential consumer releases each block after reading it: the columns are the same, a
+// released block reads back the same, and the mapping's resident pages go.
+TEST_F(TrellisFileReaderTest, ReleasedBlocksReadTheSameAndLeaveTheResidentSet) {
+  Write(MakeParams(20000, 200), MakeRunColumns(20000, 1.0f, 50, 200, 12), 256);
+  auto reader = TrellisFileReader::Open(path_);
+  ASSERT_TRUE(reader.ok());
+  const uint64_t block_count = (*reader)->block_count();
+  ASSERT_GT((*reader)->file_bytes(), 1u << 20);  // enough pages to see them go
+  TrellisBlock block;
+  TrellisColumns read;
+  for (uint64_t block_idx = 0; block_idx < block_count; ++block_idx) {
+    ASSERT_TRUE((*reader)->ReadBlock(block_idx, &block).ok());
+    for (uint32_t column_idx = 0; column_idx < block.column_count; ++column_idx) {
+      read.emplace_back(block.neighbours.begin() + block.offsets[column_idx],
+                        block.neighbours.begin() + block.offsets[column_idx + 1]);
+    }
+    ASSERT_TRUE((*reader)->ReleaseBlocks(block_idx, block_idx + 1).ok());
+  }
+  ExpectSameWithinBound(columns_, read, 1.0f);
+  // Released pages come back from the file when read again.
+  TrellisColumns again;
+  ASSERT_TRUE((*reader)->ReadColumns(0, 20000, &again).ok());
+  EXPECT_EQ(again, read);
+
+  // Every block read (resident), then all released: what stays is the tail (index, footer and
+  // the last block's partial page) the reader validated at Open.
+  const int64_t resident_read = MappedResidentBytes(path_);
+  if (resident_read < 0) GTEST_SKIP() << "no /proc/self/smaps";
+  EXPECT_GT(resident_read, static_cast<int64_t>((*reader)->file_bytes() / 2));
+  ASSERT_TRUE((*reader)->ReleaseBlocks(0, block_count).ok());
+  const int64_t resident_released = MappedResidentBytes(path_);
+  EXPECT_LT(resident_released, static_cast<int64_t>((*reader)->file_bytes() / 10))
+      << "resident after reading " << resident_read;
+  EXPECT_TRUE((*reader)->Verify().ok());
+
+  EXPECT_TRUE((*reader)->ReleaseBlocks(0, 0).ok());
+  EXPECT_TRUE((*reader)->ReleaseBlocks(block_count, block_count).ok());
+  EXPECT_TRUE((*reader)->ReleaseBlocks(2, 1).IsInvalidArgument());
+  EXPECT_TRUE((*reader)->ReleaseBlocks(0, block_count + 1).IsInvalidArgument());
+}
+
 TEST_F(TrellisFileReaderTest, ConstMethodsAreSafeFromManyThreads) {
   Write(MakeParams(2000), MakeRunColumns(2000, 1.0f, 5, 100, 10), 100);
   auto reader = TrellisFileReader::Open(path_);

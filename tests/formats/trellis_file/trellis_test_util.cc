@@ -1,6 +1,7 @@
 #include "tests/formats/trellis_file/trellis_test_util.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -135,6 +136,27 @@ class NoSyncFileSystemImpl final : public FileSystem {
 FileSystem* NoSyncFileSystem() {
   static NoSyncFileSystemImpl* file_system = new NoSyncFileSystemImpl();
   return file_system;
+}
+
+int64_t MappedResidentBytes(const std::string& path) {
+  std::ifstream smaps("/proc/self/smaps");
+  if (!smaps) return -1;
+  std::error_code error;
+  const std::string canonical = std::filesystem::canonical(path, error).string();
+  int64_t resident_bytes = 0;
+  bool in_mapping = false;
+  std::string line;
+  // A mapping's header line ends with its path; its "Rss:" line follows in kB.
+  while (std::getline(smaps, line)) {
+    if (line.rfind("Rss:", 0) == 0) {
+      if (in_mapping) resident_bytes += std::stoll(line.substr(4)) * 1024;
+    } else if (!line.empty() && std::isxdigit(static_cast<unsigned char>(line[0])) &&
+               line.find('-') != std::string::npos && line.find(':') > line.find(' ')) {
+      in_mapping = line.size() >= canonical.size() &&
+                   line.compare(line.size() - canonical.size(), canonical.size(), canonical) == 0;
+    }
+  }
+  return resident_bytes;
 }
 
 }  // namespace motif::testing

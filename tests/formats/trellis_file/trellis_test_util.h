@@ -49,5 +49,10 @@ void ExpectSameWithinBound(const TrellisColumns& written, const TrellisColumns& 
 // seam (a FaultInjectingFileSystem over it counts the same steps). Lives for the whole program.
 FileSystem* NoSyncFileSystem();
 
+// Bytes of this process's mappings of the file at `path` that are resident (the sum of their Rss
+// in /proc/self/smaps; pages of the file's page cache not mapped here do not count); -1 if
+// /proc/self/smaps cannot be read (not Linux).
+int64_t MappedResidentBytes(const std::string& path);
+
 
 }  // namespace motif::testing
