@@ -2,7 +2,8 @@
 // key=value arguments:
 //   data=real|synth|synthbig|reseq frames=N seed=S queries=Q k_max=K eps=E
 //   LSH options: tables= hashes= width= width_per_hash= probes= max_candidates= max_bucket_scan=
-//                first_round= stages= sparse= chain= chain_advance= chained= threads=
+//                first_round= stages= sparse= chain= chain_advance= chained= ranking=sort|code
+//                max_entries= threads=
 //                range=(columns timed in one block)
 //   modes: oracle (how well L2 / l1,2 embedding distances rank the exact neighbours),
 //          contrast (D_2k/D_k, D_4k/D_k, D_16k/D_k), simulate bits=B (offline ranking of all
@@ -246,6 +247,8 @@ int main(int argc, char** argv) {
   options.first_round_scan = static_cast<uint32_t>(get("first_round", options.first_round_scan));
   options.extension_stages = static_cast<uint32_t>(get("stages", options.extension_stages));
   options.sparse_radius_factor = static_cast<float>(get("sparse", options.sparse_radius_factor));
+  if (args.count("ranking")) ParseLshRanking(args["ranking"], &options.ranking);
+  options.max_entries = static_cast<uint32_t>(get("max_entries", options.max_entries));
   options.chain_columns = static_cast<uint32_t>(get("chain", options.chain_columns));
   options.chain_advance = static_cast<uint32_t>(get("chain_advance", options.chain_advance));
   options.chained_max_candidates =
