@@ -1,6 +1,7 @@
 // motifmine cluster ARCHIVE [...]: clusters the grown paths into motifs (instances merged, their
 // similarity read back from the trellis, normalized cut) and writes DIR/motifs.json; with
 // --truth, scores the motifs against a synthetic archive's planted ones.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -83,7 +84,10 @@ int RunCluster(const std::vector<std::string>& args) {
       ("max-ncut", po::value<double>()->default_value(cut_defaults.max_ncut),
        "auto: stop cutting a group when its best cut's Ncut (0..2) is not below this")
       ("min-similarity", po::value<double>()->default_value(similarity_defaults.min_similarity),
-       "instance pairs sharing less than this fraction of the shorter get no edge");
+       "instance pairs sharing less than this fraction of the shorter get no edge")
+      ("max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
+       "drop an instance from its motif when its length is more than this factor from the "
+       "motif's median (a fragment or a run-on; 0 keeps all)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -109,10 +113,16 @@ int RunCluster(const std::vector<std::string>& args) {
   options.threads = vm["threads"].as<int>();
   options.cut.max_ncut = vm["max-ncut"].as<double>();
   options.similarity.min_similarity = vm["min-similarity"].as<double>();
+  options.max_length_ratio = vm["max-length-ratio"].as<double>();
   if (!(options.cut.max_ncut > 0) || !(options.similarity.min_similarity > 0) ||
       options.similarity.min_similarity > 1) {
     return ReportError("cluster", Status::InvalidArgument(
                                       "--max-ncut must be > 0 and --min-similarity in (0, 1]"));
+  }
+  if (!(options.max_length_ratio == 0 || options.max_length_ratio >= 1) ||
+      !std::isfinite(options.max_length_ratio)) {
+    return ReportError("cluster", Status::InvalidArgument(
+                                      "--max-length-ratio must be 0 (keep all) or >= 1"));
   }
 
   Result<std::unique_ptr<FrameFileReader>> frames = FrameFileReader::Open(archive);
@@ -168,9 +178,10 @@ int RunCluster(const std::vector<std::string>& args) {
               WithCommas(result->motifs.size()).c_str(),
               params.groups ? std::to_string(params.groups).c_str() : "auto",
               WithCommas(report.cut_stats.components).c_str());
-  std::printf("  instances    %s in motifs, of %s merged from %s segments of %s paths "
-              "(%s candidates)\n",
+  std::printf("  instances    %s in motifs (%s fragments dropped), of %s merged from "
+              "%s segments of %s paths (%s candidates)\n",
               WithCommas(report.clustered_instances).c_str(),
+              WithCommas(report.length_outliers).c_str(),
               WithCommas(instances.instances).c_str(),
               WithCommas(instances.raw_instances).c_str(),
               WithCommas(instances.kept_paths).c_str(),

@@ -119,7 +119,8 @@ std::string ClusterKey(const PathsReport& paths, const ClusterOptions& options) 
       << " min_length=" << paths.params.min_length << " all_branches=" << paths.params.all_branches
       << " candidates=" << paths.candidates << " groups=" << options.cut.groups
       << " max_ncut=" << options.cut.max_ncut
-      << " min_similarity=" << options.similarity.min_similarity << " seed=" << options.seed;
+      << " min_similarity=" << options.similarity.min_similarity
+      << " max_length_ratio=" << options.max_length_ratio << " seed=" << options.seed;
   return key.str();
 }
 
@@ -159,6 +160,9 @@ int RunMine(const std::vector<std::string>& args) {
       ("min-length", po::value<std::string>()->default_value("0.5s"),
        "least motif length: frames (60) or seconds (0.5s)")
       ("groups", po::value<std::string>()->default_value("auto"), "number of motifs, or auto")
+      ("max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
+       "drop an instance from its motif when its length is more than this factor from the "
+       "motif's median (0 keeps all)")
       ("seed", po::value<uint64_t>()->default_value(1), "seed of every random choice")
       ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
       ("synth-frames", po::value<uint64_t>()->default_value(120000),
@@ -207,6 +211,11 @@ int RunMine(const std::vector<std::string>& args) {
   const std::string groups_text = vm["groups"].as<std::string>();
   if (Status status = ParseGroups(groups_text, &cluster_options.cut.groups); !status.ok()) {
     return fail(status);
+  }
+  cluster_options.max_length_ratio = vm["max-length-ratio"].as<double>();
+  if (!(cluster_options.max_length_ratio == 0 || cluster_options.max_length_ratio >= 1) ||
+      !std::isfinite(cluster_options.max_length_ratio)) {
+    return fail(Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1"));
   }
   if (trellis_options.eps < 0 || !std::isfinite(trellis_options.eps)) {
     return fail(Status::InvalidArgument("--eps must be >= 0 (0: mu - 2 sigma)"));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 
 namespace motif {
 
@@ -11,16 +12,121 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The length-weighted median of the group's instance lengths: the length of the instance that
+// covers the group's middle frame when its instances are laid end to end from the longest. A
+// plain median would follow the fragments when they outnumber the instances (a long motif with
+// six 60-frame fragments of it and five instances).
+uint64_t TypicalLength(const std::vector<uint32_t>& group,
+                       const std::vector<MotifInstance>& instances) {
+  std::vector<uint64_t> lengths;
+  lengths.reserve(group.size());
+  uint64_t total = 0;
+  for (uint32_t id : group) {
+    lengths.push_back(instances[id].length());
+    total += lengths.back();
+  }
+  std::sort(lengths.begin(), lengths.end(), std::greater<>());
+  uint64_t covered = 0;
+  for (uint64_t length : lengths) {
+    covered += length;
+    if (2 * covered >= total) return length;
+  }
+  return lengths.back();
+}
+
+// The connected components of `nodes` (ascending) under the path links between them, each
+// ascending, ordered by their smallest instance.
+std::vector<std::vector<uint32_t>> LinkedComponents(
+    const std::vector<uint32_t>& nodes, const std::vector<std::vector<uint32_t>>& linked) {
+  std::vector<std::vector<uint32_t>> components;
+  std::vector<bool> seen(nodes.size(), false);
+  auto index_of = [&](uint32_t id) -> int64_t {
+    auto it = std::lower_bound(nodes.begin(), nodes.end(), id);
+    return it != nodes.end() && *it == id ? it - nodes.begin() : -1;
+  };
+  for (size_t first = 0; first < nodes.size(); ++first) {
+    if (seen[first]) continue;
+    std::vector<uint32_t> component;
+    std::vector<size_t> stack = {first};
+    seen[first] = true;
+    while (!stack.empty()) {
+      const uint32_t id = nodes[stack.back()];
+      stack.pop_back();
+      component.push_back(id);
+      for (uint32_t other : linked[id]) {
+        const int64_t at = index_of(other);
+        if (at >= 0 && !seen[static_cast<size_t>(at)]) {
+          seen[static_cast<size_t>(at)] = true;
+          stack.push_back(static_cast<size_t>(at));
+        }
+      }
+    }
+    std::sort(component.begin(), component.end());
+    components.push_back(std::move(component));
+  }
+  return components;
+}
+
+// A class split off a group needs this many instances to stand as a motif. Two are too few: two
+// short stretches that each match part of the group's motif also match each other by chance (on
+// the planted archives every such pair was background, every class of 3 or more a motif).
+constexpr size_t kMinSplitOffInstances = 3;
+
+// Appends to `out` the length classes of `group` (ascending): the instances within
+// max_length_ratio of its typical length form one class; the others are split off, and among
+// them only the instances joined by path links to one another stand as classes of their own
+// (each link component of at least kMinSplitOffInstances, split the same way in turn). An instance that shares frames with the
+// group but is linked only to the longer instances is a fragment of them and is dropped.
+void SplitByLength(const std::vector<uint32_t>& group, const std::vector<MotifInstance>& instances,
+                   const std::vector<std::vector<uint32_t>>& linked, double max_length_ratio,
+                   std::vector<std::vector<uint32_t>>* out, uint64_t* dropped) {
+  if (max_length_ratio <= 0 || group.size() < 2) {
+    out->push_back(group);
+    return;
+  }
+  const double typical = static_cast<double>(TypicalLength(group, instances));
+  std::vector<uint32_t> kept;
+  std::vector<uint32_t> split_off;
+  for (uint32_t id : group) {
+    const double length = static_cast<double>(instances[id].length());
+    const bool typical_length = length * max_length_ratio >= typical &&
+                                length <= typical * max_length_ratio;
+    (typical_length ? kept : split_off).push_back(id);
+  }
+  out->push_back(std::move(kept));
+  for (std::vector<uint32_t>& component : LinkedComponents(split_off, linked)) {
+    if (component.size() < kMinSplitOffInstances) {
+      *dropped += component.size();
+    } else {
+      SplitByLength(component, instances, linked, max_length_ratio, out, dropped);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Motif> RankMotifs(const std::vector<std::vector<uint32_t>>& groups,
-                              const std::vector<MotifInstance>& instances) {
-  std::vector<Motif> motifs;
+                              const std::vector<MotifInstance>& instances,
+                              const std::vector<InstanceLink>& links, double max_length_ratio,
+                              uint64_t* length_outliers) {
+  std::vector<std::vector<uint32_t>> linked(instances.size());
+  for (const InstanceLink& link : links) {
+    linked[link.a].push_back(link.b);
+    linked[link.b].push_back(link.a);
+  }
+  std::vector<std::vector<uint32_t>> classes;
+  uint64_t dropped = 0;
   for (const std::vector<uint32_t>& group : groups) {
-    if (group.size() < 2) continue;
+    std::vector<uint32_t> sorted = group;
+    std::sort(sorted.begin(), sorted.end());
+    SplitByLength(sorted, instances, linked, max_length_ratio, &classes, &dropped);
+  }
+  if (length_outliers != nullptr) *length_outliers = dropped;
+  std::vector<Motif> motifs;
+  for (std::vector<uint32_t>& instance_ids : classes) {
+    if (instance_ids.size() < 2) continue;
     Motif motif;
-    motif.instances = group;
-    std::sort(motif.instances.begin(), motif.instances.end());
+    motif.instances = std::move(instance_ids);
     for (uint32_t id : motif.instances) motif.total_frames += instances[id].length();
     motifs.push_back(std::move(motif));
   }
@@ -69,7 +175,8 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
       ClusterByNormalizedCut(graph, cut, &result.report.cut_stats);
   result.report.cut_seconds = SecondsSince(started);
 
-  result.motifs = RankMotifs(groups, set.instances);
+  result.motifs = RankMotifs(groups, set.instances, set.links, options.max_length_ratio,
+                             &result.report.length_outliers);
   std::vector<MotifInstance> clustered;
   for (const Motif& motif : result.motifs) {
     result.report.clustered_instances += motif.instances.size();

@@ -5,6 +5,13 @@
 //      plus the links) -> groups (normalized_cut.h) -> motifs, most important first.
 // A motif's importance is its number of instances times their mean length (= the frames it
 // covers); ties go to the motif that starts first. Its instances are listed by position.
+// Instances of one motif differ in duration by a time warp, so each normalized-cut group is split
+// by length first: the instances within max_length_ratio of the group's typical length (the
+// length-weighted median) stay; the others are split off. A split-off instance path-linked to
+// other split-off instances forms a motif with them (a short motif grouped with a long one that
+// contains similar poses); one linked only to the group's instances is a fragment of them (a
+// short stretch that matches part of the motif) and is dropped. A class of fewer than two
+// instances is no motif.
 // Thread-safety: one call per thread; the reader may be shared.
 #pragma once
 
@@ -27,6 +34,12 @@ struct ClusterOptions {
   InstanceOptions instances;
   SimilarityOptions similarity;   // its threads and progress are set from the fields below
   NormalizedCutOptions cut;       // its threads and seed are set from the fields below
+  // Keep an instance in its motif only when typical / r <= length <= typical * r, typical being
+  // the length-weighted median of the group's lengths; 0 keeps every instance. Warps of 0.7-1.4x
+  // differ by 2x at most; 3 leaves room for a typical length pulled down by split instances
+  // (2 dropped a whole planted instance on one archive), while the fragments seen are 4-10x
+  // shorter than their motif (60-90 frames against 300-800).
+  double max_length_ratio = 3.0;
   uint64_t seed = 1;
   int threads = 0;                // 0: all cores
   // (stage, done, total): stage "similarity" counts instance columns read.
@@ -48,6 +61,7 @@ struct ClusterReport {
   SimilarityStats similarity_stats;
   NormalizedCutStats cut_stats;
   uint64_t clustered_instances = 0;  // in a kept motif
+  uint64_t length_outliers = 0;      // fragments dropped by the split by length
   uint64_t covered_frames = 0;       // distinct frames inside some motif instance
   double instance_seconds = 0;
   double cut_seconds = 0;
@@ -65,8 +79,12 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
                                     const TrellisFileReader& trellis,
                                     const ClusterOptions& options);
 
-// Groups of instance ids -> motifs ranked as above (exposed for tests).
+// Groups of instance ids -> motifs ranked as above, each group split by length (exposed for
+// tests; max_length_ratio 0 keeps the groups). `links` are the path links between instances;
+// `length_outliers`, when given, receives the number of fragments dropped.
 std::vector<Motif> RankMotifs(const std::vector<std::vector<uint32_t>>& groups,
-                              const std::vector<MotifInstance>& instances);
+                              const std::vector<MotifInstance>& instances,
+                              const std::vector<InstanceLink>& links = {},
+                              double max_length_ratio = 0.0, uint64_t* length_outliers = nullptr);
 
 }  // namespace motif

@@ -34,6 +34,43 @@ TEST(RankMotifsTest, MostFramesFirstAndSingletonsDropped) {
   EXPECT_EQ(motifs[1].instances, (std::vector<uint32_t>{0, 1}));
 }
 
+// One group as the cut might leave it: four instances of a 400-frame motif (0-3), two 70-frame
+// fragments linked only to them (4, 5), three 120-frame instances of a short motif linked to
+// each other (6-8), and two 60-frame stretches linked only to each other (9, 10).
+TEST(RankMotifsTest, SplitsAGroupByLengthAndDropsFragments) {
+  const std::vector<MotifInstance> instances = {
+      {0, 400},       {1000, 1380},  {2000, 2430},  {3000, 3410},  // the long motif
+      {4000, 4070},   {4500, 4570},                                // fragments of it
+      {5000, 5120},   {5500, 5610},  {6000, 6130},                 // a short motif
+      {7000, 7060},   {7500, 7560}};                               // a chance pair
+  const std::vector<InstanceLink> links = {{0, 1}, {1, 2}, {2, 3}, {0, 4}, {2, 5},
+                                           {6, 7}, {7, 8}, {0, 6}, {9, 10}, {3, 9}};
+  const std::vector<std::vector<uint32_t>> groups = {{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}};
+  uint64_t dropped = 0;
+  std::vector<Motif> motifs = RankMotifs(groups, instances, links, 3.0, &dropped);
+  ASSERT_EQ(motifs.size(), 2u);
+  EXPECT_EQ(motifs[0].instances, (std::vector<uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(motifs[1].instances, (std::vector<uint32_t>{6, 7, 8}));
+  EXPECT_EQ(dropped, 4u);  // 4, 5 alone; 9, 10 a pair
+
+  // The typical length is length-weighted: six fragments outnumbering four instances do not
+  // make the fragments typical.
+  std::vector<MotifInstance> many = instances;
+  many.push_back({8000, 8065});
+  many.push_back({8500, 8570});
+  uint64_t many_dropped = 0;
+  std::vector<Motif> kept = RankMotifs({{0, 1, 2, 3, 4, 5, 11, 12}}, many, links, 3.0,
+                                       &many_dropped);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].instances, (std::vector<uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(many_dropped, 4u);
+
+  // Within the ratio everything stays; a ratio of 0 keeps the group as cut.
+  EXPECT_EQ(RankMotifs({{0, 1, 2, 3}}, instances, links, 3.0)[0].instances.size(), 4u);
+  ASSERT_EQ(RankMotifs(groups, instances, links, 0.0).size(), 1u);
+  EXPECT_EQ(RankMotifs(groups, instances, links, 0.0)[0].instances.size(), 11u);
+}
+
 TEST(MotifClustererTest, FindsPlantedMotifsRankedByImportance) {
   testing::TempDir dir;
   ASSERT_TRUE(testing::WriteColumns(dir.File("t.mtr"),
