@@ -38,6 +38,20 @@ int RunAudit(const po::variables_map& vm, const std::string& archive, const std:
               report->min_column_recall);
   std::printf("  exact columns capped  %s (more than k_max within eps)\n",
               WithCommas(report->capped_exact_columns).c_str());
+  auto share = [](uint64_t part, uint64_t whole) {
+    return whole ? static_cast<double>(part) / static_cast<double>(whole) : 1.0;
+  };
+  std::printf("  recall, uncapped      %.4f  (%s of %s: every frame within eps)\n",
+              share(report->uncapped_found_entries, report->uncapped_exact_entries),
+              WithCommas(report->uncapped_found_entries).c_str(),
+              WithCommas(report->uncapped_exact_entries).c_str());
+  std::printf("  recall, capped        %.4f  (%s of %s: the k_max nearest; %s of %s trellis "
+              "columns full, with k_max verified frames within eps)\n",
+              share(report->capped_found_entries, report->capped_exact_entries),
+              WithCommas(report->capped_found_entries).c_str(),
+              WithCommas(report->capped_exact_entries).c_str(),
+              WithCommas(report->capped_columns_full).c_str(),
+              WithCommas(report->capped_exact_columns).c_str());
   std::printf("  distance evaluations  %.0f per query (exact: %.0f)\n",
               report->lsh_evaluations_per_query, report->exact_evaluations_per_query);
   if (report->lsh_seconds_per_query > 0) {

@@ -89,7 +89,9 @@ Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::str
     const uint64_t column = sample[sample_idx];
     auto start = std::chrono::steady_clock::now();
     exact_column.assign(1, {});
+    const uint64_t capped_before = exact_stats.capped_columns;
     MOTIF_RETURN_IF_ERROR(exact.SearchColumns(column, 1, &exact_column, &exact_stats));
+    const bool capped = exact_stats.capped_columns > capped_before;
     exact_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (lsh) {
       start = std::chrono::steady_clock::now();
@@ -109,6 +111,14 @@ Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::str
       if (found_idx < found.size() && found[found_idx].frame == neighbour.frame) ++hits;
     }
     report.found_entries += hits;
+    if (capped) {
+      report.capped_exact_entries += truth.size();
+      report.capped_found_entries += hits;
+      if (found.size() >= truth.size()) ++report.capped_columns_full;
+    } else {
+      report.uncapped_exact_entries += truth.size();
+      report.uncapped_found_entries += hits;
+    }
     if (!truth.empty()) {
       const double column_recall = static_cast<double>(hits) / truth.size();
       column_recall_sum += column_recall;

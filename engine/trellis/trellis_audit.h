@@ -33,6 +33,15 @@ struct AuditReport {
   double mean_column_recall = 0;    // mean over sampled columns with a non-empty exact column
   double min_column_recall = 1;
   uint64_t capped_exact_columns = 0;  // exact columns that had more than k_max within eps
+  // The same split by kind of column. An uncapped exact column holds every frame within eps; a
+  // capped one only the k_max nearest of more, so a trellis column that misses some of those
+  // may still hold k_max frames within eps (every trellis entry is verified), only not the
+  // nearest: `capped_columns_full` counts the capped columns whose trellis column is full.
+  uint64_t uncapped_exact_entries = 0;
+  uint64_t uncapped_found_entries = 0;
+  uint64_t capped_exact_entries = 0;
+  uint64_t capped_found_entries = 0;
+  uint64_t capped_columns_full = 0;
   double lsh_evaluations_per_query = 0;  // 0 if the trellis is exact
   double exact_evaluations_per_query = 0;
   double lsh_seconds_per_query = 0;

@@ -156,12 +156,18 @@ TEST(AuditTrellis, LshRecallOnAPlantedSyntheticArchive) {
   EXPECT_GE(report->recall, 0.95);
   EXPECT_GT(report->lsh_evaluations_per_query, 0.0);
   EXPECT_LT(report->lsh_evaluations_per_query, report->exact_evaluations_per_query);
+  // The split by kind of column adds up to the totals.
+  EXPECT_EQ(report->capped_exact_entries + report->uncapped_exact_entries, report->exact_entries);
+  EXPECT_EQ(report->capped_found_entries + report->uncapped_found_entries, report->found_entries);
+  EXPECT_LE(report->capped_columns_full, report->capped_exact_columns);
   // An exact trellis audits at recall 1.
   const std::string exact_path = dir.File("x.mtr");
   ASSERT_TRUE(BuildTrellis(archive, exact_path, SmallOptions(true, 2)).ok());
   auto exact_report = AuditTrellis(archive, exact_path, audit);
   ASSERT_TRUE(exact_report.ok());
   EXPECT_EQ(exact_report->recall, 1.0);
+  EXPECT_EQ(exact_report->capped_found_entries, exact_report->capped_exact_entries);
+  EXPECT_EQ(exact_report->capped_columns_full, exact_report->capped_exact_columns);
 }
 
 TEST(BuildTrellis, AutoChoosesExactBelowTheThresholdAndLshFromIt) {
