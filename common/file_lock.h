@@ -18,9 +18,10 @@ class ExclusiveFileLock {
   ExclusiveFileLock(const ExclusiveFileLock&) = delete;
   ExclusiveFileLock& operator=(const ExclusiveFileLock&) = delete;
 
-  // Locks `path` (which must exist: NotFound otherwise). If another process or descriptor holds
-  // the lock: IOError "<path>: <held_message>".
-  Status Acquire(const std::string& path, const std::string& held_message);
+  // Locks `path` (which must exist unless `create`: NotFound otherwise; with `create` a missing
+  // file is created empty). If another process or descriptor holds the lock: Busy
+  // "<path>: <held_message>", at once (the lock is never waited for).
+  Status Acquire(const std::string& path, const std::string& held_message, bool create = false);
   void Release();
 
  private:

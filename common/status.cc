@@ -14,6 +14,7 @@ const char* StatusCodeName(Status::Code code) {
     case Status::Code::kIOError: return "IOError";
     case Status::Code::kNotSupported: return "NotSupported";
     case Status::Code::kResourceExhausted: return "ResourceExhausted";
+    case Status::Code::kBusy: return "Busy";
   }
   return "Unknown";
 }

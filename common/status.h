@@ -25,6 +25,7 @@ class Status {
     kIOError = 4,
     kNotSupported = 5,
     kResourceExhausted = 6,
+    kBusy = 7,  // another process holds the lock of what this one would write
   };
 
   Status() = default;
@@ -41,6 +42,7 @@ class Status {
   static Status ResourceExhausted(std::string msg) {
     return Status(Code::kResourceExhausted, std::move(msg));
   }
+  static Status Busy(std::string msg) { return Status(Code::kBusy, std::move(msg)); }
   // An IOError built from errno: "<context>: <strerror(errno)>". ENOSPC and EDQUOT become
   // kResourceExhausted so callers can tell a full disk from a broken one.
   static Status FromErrno(const std::string& context, int errno_value);
@@ -57,6 +59,7 @@ class Status {
   bool IsCorruption() const { return code_ == Code::kCorruption; }
   bool IsInvalidArgument() const { return code_ == Code::kInvalidArgument; }
   bool IsIOError() const { return code_ == Code::kIOError; }
+  bool IsBusy() const { return code_ == Code::kBusy; }
 
  private:
   Status(Code code, std::string msg) : code_(code), message_(std::move(msg)) {}

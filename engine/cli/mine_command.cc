@@ -11,7 +11,9 @@
 // the same options; the synthetic archive when its truth has the same options; an import skips
 // takes already in the archive. Changing one parameter reruns only the stages after it. A run
 // killed at any point (SIGKILL included) and started again gives the same motifs.json; it first
-// removes the temporary files a dead run left in DIR (RemoveStaleTemporaries).
+// removes the temporary files a dead run left in DIR (RemoveStaleTemporaries). One run at a time
+// per DIR: DIR/.motifmine.lock (flock) is held for the whole run; a second run exits at once with
+// exit code 17 (busy).
 #include <signal.h>
 
 #include <cerrno>
@@ -23,6 +25,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "common/file_lock.h"
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
 #include "engine/cli/synthetic_archive.h"
@@ -50,6 +53,9 @@ using Clock = std::chrono::steady_clock;
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+// The file a run holds an exclusive flock on, in its output folder.
+constexpr char kRunLockName[] = ".motifmine.lock";
 
 std::string Join(const std::filesystem::path& dir, const char* name) {
   return (dir / name).string();
@@ -227,6 +233,17 @@ int RunMine(const std::vector<std::string>& args) {
   std::filesystem::create_directories(out_dir, error);
   if (error) {
     return fail(Status::IOError("cannot create " + out_dir.string() + ": " + error.message()));
+  }
+  // One run per folder: a second run (an overlapping cron job) leaves at once, before touching
+  // anything, with exit code 17. The lock goes with the process, even on kill -9.
+  ExclusiveFileLock run_lock;
+  if (Status status = run_lock.Acquire(
+          Join(out_dir, kRunLockName),
+          "another motifmine run is working in this folder; nothing was changed (exit 17: try "
+          "again when it has finished)",
+          /*create=*/true);
+      !status.ok()) {
+    return fail(status);
   }
   RemoveStaleTemporaries(out_dir);
   ProgressReporter progress(ProgressModeFrom(vm));

@@ -9,7 +9,7 @@
 // the header's two commit slots is overwritten to point at the new footer. A failure or a crash
 // at any point before that slot write is durable leaves the previous archive readable and
 // unchanged; an abandoned writer (destroyed without Commit) truncates its uncommitted tail.
-// Only one writer may have an archive open: a second one gets IOError ("locked").
+// Only one writer may have an archive open: a second one gets Busy ("locked").
 // Thread-safety: one thread at a time.
 #pragma once
 

@@ -15,7 +15,7 @@
 // want to reuse it read its params with TrellisFileReader first).
 // After an I/O error the writer is closed (every later call returns that error) and the partial
 // file is left for a later OpenOrResume. Only one writer may build a path at a time: a second
-// gets IOError ("locked").
+// gets Busy ("locked").
 // Thread-safety: one thread at a time.
 #pragma once
 
@@ -59,8 +59,8 @@ class TrellisFileWriter {
   // Starts a new build of `path`, or resumes "<path>.partial" if it holds blocks written with
   // equal params and block size. InvalidArgument: params (eps not finite and > 0, frame_count
   // above 2^32, k_max 0, search_params over 64 KiB) or options (block_columns not in [1, 2^20],
-  // zstd level, no file system). IOError ("locked" if another writer builds the same path) /
-  // ResourceExhausted from the file system.
+  // zstd level, no file system). Busy ("locked" if another writer builds the same path);
+  // IOError / ResourceExhausted from the file system.
   static Result<std::unique_ptr<TrellisFileWriter>> OpenOrResume(
       const std::string& path, const TrellisParams& params,
       const TrellisFileWriterOptions& options = {});

@@ -15,6 +15,7 @@ TEST(Status, CodesArePinned) {
   EXPECT_EQ(static_cast<int>(Status::Code::kIOError), 4);
   EXPECT_EQ(static_cast<int>(Status::Code::kNotSupported), 5);
   EXPECT_EQ(static_cast<int>(Status::Code::kResourceExhausted), 6);
+  EXPECT_EQ(static_cast<int>(Status::Code::kBusy), 7);
 }
 
 TEST(Status, ToStringNamesCodeAndMessage) {

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/file_lock.h"
 #include "engine/cluster/motifs_json.h"
 #include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
