@@ -1,6 +1,7 @@
 #include "formats/import/amc_parser.h"
 
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "formats/import/text_scanner.h"
@@ -115,7 +116,9 @@ class AmcParser {
   Status StartFrame(int64_t frame_number) {
     if (frame_count_ > 0) {
       MOTIF_RETURN_IF_ERROR(CheckFrameComplete());
-      if (frame_number != frame_number_ + 1) {
+      // Checked first: no frame can follow the largest int64 (frame_number_ + 1 overflows).
+      if (frame_number_ == std::numeric_limits<int64_t>::max() ||
+          frame_number != frame_number_ + 1) {
         return Error("frame number " + std::to_string(frame_number) + " follows frame " +
                      std::to_string(frame_number_) + ": frame numbers must be consecutive");
       }

@@ -335,6 +335,13 @@ class BvhParser {
     if (frame_time <= 0) {
       return Error(lines.line_number(), "'Frame Time: " + Printable(value) + "': must be > 0");
     }
+    // A take is resampled to the archive's rate on import: a frame time of hours would turn a
+    // few bytes of motion into millions of frames.
+    if (frame_time < kMinBvhFrameTime || frame_time > kMaxBvhFrameTime) {
+      return Error(lines.line_number(), "'Frame Time: " + Printable(value) +
+                                            "': must be between 1e-06 and 1 second (1 to "
+                                            "1000000 frames per second)");
+    }
     double fps = 1.0 / frame_time;
     const double rounded = std::round(fps);
     if (rounded >= 1 && std::abs(fps - rounded) <= 1e-4 * fps) fps = rounded;

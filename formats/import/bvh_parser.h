@@ -20,13 +20,15 @@
 //     same joint is an error);
 //   - fps is 1 / Frame Time, snapped to the nearest integer when within 0.01 % of it (BVH files
 //     store a rounded frame time: ".0083333" is 120.0005 fps and means 120); fps_override > 0
-//     replaces it. The Frame Time must still be a positive number.
+//     replaces it. The Frame Time must still be a number in [kMinBvhFrameTime,
+//     kMaxBvhFrameTime]: 1 to 1,000,000 frames per second (the importer resamples a take to
+//     the archive's rate, so a frame time of hours would make millions of frames).
 // Every error is InvalidArgument "<file>:<line>: <problem>", e.g. "05_01.bvh:412: frame 3 has
 // 95 values, the hierarchy declares 96 channels" (frames counted from 0). Rejected: a missing
 // HIERARCHY/ROOT/MOTION, unbalanced braces, several ROOTs, unknown keywords or channel names, a
 // CHANNELS count that does not match its names, missing or non-numeric OFFSET values, NaN or
 // infinite numbers, a frame line with too few or too many values, fewer or more frame lines than
-// "Frames:" declares, zero frames, a frame time <= 0, duplicate joint names.
+// "Frames:" declares, zero frames, a frame time outside [1e-6, 1] seconds, duplicate joint names.
 // Thread-safety: a pure function.
 #pragma once
 
@@ -37,6 +39,10 @@
 #include "formats/motion/take.h"
 
 namespace motif {
+
+// The accepted range of "Frame Time:", in seconds.
+inline constexpr double kMinBvhFrameTime = 1e-6;
+inline constexpr double kMaxBvhFrameTime = 1.0;
 
 // Parses `text`, the content of the file `file_name` (used in messages and as
 // Take::source_path). The take's name, content_hash and meters_per_unit are left unset; its

@@ -152,6 +152,13 @@ TEST(MalformedBvh, ErrorsNameFileLineAndProblem) {
       {"zero frame time", Replace(valid, "0.01", "0"), "bad.bvh:18: 'Frame Time: 0': must be > 0"},
       {"nan frame time", Replace(valid, "0.01", "nan"),
        "bad.bvh:18: 'Frame Time:' needs a finite number, found 'nan'"},
+      // Found by fuzzing (tests/data/fuzz/bvh_parser/timeout-frame-time-of-hours.bvh): resampled
+      // to 120 fps on import, two frames 38 hours apart became 16 million frames.
+      {"frame time of hours", Replace(valid, "0.01", "138300.33"),
+       "bad.bvh:18: 'Frame Time: 138300.33': must be between 1e-06 and 1 second (1 to 1000000 "
+       "frames per second)"},
+      {"frame time below a microsecond", Replace(valid, "0.01", "1e-9"),
+       "bad.bvh:18: 'Frame Time: 1e-9': must be between 1e-06 and 1 second"},
       {"huge frame count", Replace(valid, "Frames: 2", "Frames: 99999999999"),
        "bad.bvh:20: file ends after 2 of the 99999999999 frames"},
       {"no channels", "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\n}\nMOTION\nFrames: 1\n",
@@ -233,6 +240,13 @@ TEST(MalformedAmc, ErrorsNameFileLineAndProblem) {
        "bad.amc:11: bone 'root' has 2 values"},
       {"frame gap", Replace(valid, "\n2\n", "\n3\n"),
        "bad.amc:9: frame number 3 follows frame 1: frame numbers must be consecutive"},
+      // Found by fuzzing (tests/data/fuzz/amc_parser/crash-frame-number-overflow.amc): the
+      // check computed the largest int64 + 1.
+      {"frame after the largest frame number",
+       Replace(Replace(valid, "\n1\n", "\n9223372036854775807\n"), "\n2\n",
+               "\n-9223372036854775808\n"),
+       "bad.amc:9: frame number -9223372036854775808 follows frame 9223372036854775807: frame "
+       "numbers must be consecutive"},
       {"frame line with more", Replace(valid, "\n2\n", "\n2 root\n"),
        "bad.amc:9: a frame number line holds only the number, found 'root' after it"},
       {"keyword after frames", valid + ":DEGREES\n",
