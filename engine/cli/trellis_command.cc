@@ -52,8 +52,13 @@ int RunAudit(const po::variables_map& vm, const std::string& archive, const std:
               WithCommas(report->capped_exact_entries).c_str(),
               WithCommas(report->capped_columns_full).c_str(),
               WithCommas(report->capped_exact_columns).c_str());
-  std::printf("  distance evaluations  %.0f per query (exact: %.0f)\n",
-              report->lsh_evaluations_per_query, report->exact_evaluations_per_query);
+  std::printf("  distance evaluations  %.0f per query (exact: %.0f)", report->lsh_evaluations_per_query,
+              report->exact_evaluations_per_query);
+  if (report->lsh_timed_columns > 0) {
+    std::printf("  [LSH: over the %s columns of the chains of 16 sampled columns]",
+                WithCommas(report->lsh_timed_columns).c_str());
+  }
+  std::printf("\n");
   if (report->lsh_seconds_per_query > 0) {
     std::printf("  time per query        %.3f ms (exact: %.3f ms, %.1fx)\n",
                 1e3 * report->lsh_seconds_per_query, 1e3 * report->exact_seconds_per_query,
