@@ -28,21 +28,16 @@
 #include "engine/distance/exact_search.h"
 #include "engine/lsh/lsh_search.h"
 #include "tests/engine/lsh/lsh_test_util.h"
+#include "tests/engine/lsh/experiment_args.h"
 #include "tests/testing/mocap_data.h"
 
 using namespace motif;
 using namespace motif::testing;
 
 int main(int argc, char** argv) {
-  std::map<std::string, std::string> args;
-  for (int idx = 1; idx < argc; ++idx) {
-    std::string arg = argv[idx];
-    auto eq = arg.find('=');
-    args[arg.substr(0, eq)] = eq == std::string::npos ? "1" : arg.substr(eq + 1);
-  }
-  auto get = [&](const std::string& key, double fallback) {
-    return args.count(key) ? std::atof(args[key].c_str()) : fallback;
-  };
+  motif::testing::ExperimentArgs parsed(argc, argv);
+  std::map<std::string, std::string>& args = parsed.values();
+  auto get = [&](const std::string& key, double fallback) { return parsed.number(key, fallback); };
   const std::string data = args.count("data") ? args["data"] : "synth";
   const uint64_t frames = static_cast<uint64_t>(get("frames", 40000));
   const uint32_t queries = static_cast<uint32_t>(get("queries", 400));

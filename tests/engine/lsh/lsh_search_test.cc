@@ -27,6 +27,15 @@ std::unique_ptr<LshSearch> CreateSearch(const PoseFeatures& features, const Neig
   return search.ok() ? std::move(*search) : nullptr;
 }
 
+// One search per set of options, in order (null, with a failure, where creation fails).
+std::vector<std::unique_ptr<LshSearch>> CreateSearches(const PoseFeatures& features,
+                                                       const NeighbourRules& rules,
+                                                       const std::vector<LshOptions>& options) {
+  std::vector<std::unique_ptr<LshSearch>> searches;
+  for (const LshOptions& one : options) searches.push_back(CreateSearch(features, rules, one));
+  return searches;
+}
+
 std::vector<Neighbour> Column(const LshSearch& search, uint64_t column, SearchStats* stats,
                               LshQueryStats* lsh_stats = nullptr) {
   std::vector<std::vector<Neighbour>> columns;
@@ -295,12 +304,11 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
   chained.chained_max_candidates = 512;
   LshOptions cheap = chained;
   cheap.chained_max_candidates = 256;
-  auto search_alone = CreateSearch(*features_, *rules_, alone);
-  auto search_chained = CreateSearch(*features_, *rules_, chained);
-  auto search_cheap = CreateSearch(*features_, *rules_, cheap);
-  ASSERT_NE(search_alone, nullptr);
-  ASSERT_NE(search_chained, nullptr);
-  ASSERT_NE(search_cheap, nullptr);
+  const auto searches = CreateSearches(*features_, *rules_, {alone, chained, cheap});
+  for (const auto& search : searches) ASSERT_NE(search, nullptr);
+  const LshSearch& search_alone = *searches[0];
+  const LshSearch& search_chained = *searches[1];
+  const LshSearch& search_cheap = *searches[2];
   // A block of consecutive columns: where chaining acts.
   const uint64_t first = 12800;
   const uint64_t count = 256;
@@ -319,9 +327,9 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
                 static_cast<double>(lsh_stats.seed_evaluations) / count);
     return std::make_pair(recall.pooled(), lsh_stats);
   };
-  const auto [recall_alone, stats_alone] = measure(*search_alone, "alone, 512");
-  const auto [recall_chained, stats_chained] = measure(*search_chained, "chained, 512");
-  const auto [recall_cheap, stats_cheap] = measure(*search_cheap, "chained, 256");
+  const auto [recall_alone, stats_alone] = measure(search_alone, "alone, 512");
+  const auto [recall_chained, stats_chained] = measure(search_chained, "chained, 512");
+  const auto [recall_cheap, stats_cheap] = measure(search_cheap, "chained, 256");
   EXPECT_EQ(stats_alone.seed_evaluations, 0u);
   EXPECT_GT(stats_chained.seed_evaluations, 0u);
   EXPECT_GE(recall_chained, recall_alone);
@@ -346,12 +354,8 @@ TEST_F(LshSearchTest, ChainSweepsCarryPathsFoundLateToTheWholeChain) {
   backward.chain_sweeps = 1;
   LshOptions both = none;
   both.chain_sweeps = 4;
-  auto search_none = CreateSearch(*features_, *rules_, none);
-  auto search_backward = CreateSearch(*features_, *rules_, backward);
-  auto search_both = CreateSearch(*features_, *rules_, both);
-  ASSERT_NE(search_none, nullptr);
-  ASSERT_NE(search_backward, nullptr);
-  ASSERT_NE(search_both, nullptr);
+  const auto searches = CreateSearches(*features_, *rules_, {none, backward, both});
+  for (const auto& search : searches) ASSERT_NE(search, nullptr);
   const uint64_t first = 12800;  // a multiple of 64: whole chains
   const uint64_t count = 256;
   std::vector<std::vector<Neighbour>> exact;
@@ -366,9 +370,9 @@ TEST_F(LshSearchTest, ChainSweepsCarryPathsFoundLateToTheWholeChain) {
     return lsh_stats;
   };
   std::vector<std::vector<Neighbour>> columns_none, columns_backward, columns_both;
-  const LshQueryStats stats_none = run(*search_none, &columns_none);
-  const LshQueryStats stats_backward = run(*search_backward, &columns_backward);
-  const LshQueryStats stats_both = run(*search_both, &columns_both);
+  const LshQueryStats stats_none = run(*searches[0], &columns_none);
+  const LshQueryStats stats_backward = run(*searches[1], &columns_backward);
+  const LshQueryStats stats_both = run(*searches[2], &columns_both);
   EXPECT_EQ(stats_none.sweep_evaluations, 0u);
   EXPECT_GT(stats_backward.sweep_evaluations, 0u);
   EXPECT_GT(stats_both.sweep_evaluations, stats_backward.sweep_evaluations);

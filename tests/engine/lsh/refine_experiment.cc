@@ -6,7 +6,13 @@
 //   sym       column t verifies every u whose column holds t (D is symmetric)
 //   nnd r     column t verifies the columns of its r nearest neighbours (NN-descent)
 // key=value arguments: archive= trellis= sample=500 seed=1 chain=64 advance=2 r=4 passes=...
-// Not a test; built beside lsh_test.
+// (passes: b/f backward/forward sweeps in chains of `chain`, B/F over the whole archive as one
+// chain, s symmetry, n NN-descent; e.g. passes=bfbsn).
+// variants=SPEC,SPEC,... instead times LshSearch variants in this process (one thread) on the
+// columns [first, first + count) and measures recall on every 16th of them: SPEC letters
+// s<sweeps> c<chained budget> m<max candidates> h<chain columns> p<probes> t<tables>
+// w<width per hash> r<0 sort / 1 code ranking>, e.g. variants=s0,h256s4p8w0.04.
+// Not a test; built beside lsh_test (docs/design/lsh.md section 3b).
 #include <tbb/parallel_for.h>
 #include <time.h>
 
@@ -15,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <string>
@@ -26,6 +33,7 @@
 #include "engine/lsh/query_distance.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
+#include "tests/engine/lsh/experiment_args.h"
 
 using namespace motif;
 
@@ -121,9 +129,9 @@ uint64_t Symmetric(const Context& context, Columns* columns) {
     for (const Neighbour& nb : (*columns)[t]) reverse[nb.frame].push_back(static_cast<uint32_t>(t));
   std::vector<uint64_t> evals(n, 0);
   tbb::parallel_for(uint64_t{0}, n, [&](uint64_t t) {
-    thread_local QueryDistance* distance = nullptr;
-    if (!distance) distance = new QueryDistance(*context.features);
-    evals[t] = Merge(context, t, reverse[t], &(*columns)[t], distance);
+    thread_local std::unique_ptr<QueryDistance> distance;
+    if (!distance) distance = std::make_unique<QueryDistance>(*context.features);
+    evals[t] = Merge(context, t, reverse[t], &(*columns)[t], distance.get());
   });
   uint64_t total = 0;
   for (uint64_t e : evals) total += e;
@@ -135,15 +143,15 @@ uint64_t NnDescent(const Context& context, Columns* columns, uint32_t r) {
   Columns next = *columns;
   std::vector<uint64_t> evals(n, 0);
   tbb::parallel_for(uint64_t{0}, n, [&](uint64_t t) {
-    thread_local QueryDistance* distance = nullptr;
-    if (!distance) distance = new QueryDistance(*context.features);
+    thread_local std::unique_ptr<QueryDistance> distance;
+    if (!distance) distance = std::make_unique<QueryDistance>(*context.features);
     std::vector<Neighbour> nearest = (*columns)[t];
     std::sort(nearest.begin(), nearest.end(), Nearer);
     if (nearest.size() > r) nearest.resize(r);
     std::vector<uint32_t> candidates;
     for (const Neighbour& nb : nearest)
       for (const Neighbour& second : (*columns)[nb.frame]) candidates.push_back(second.frame);
-    evals[t] = Merge(context, t, candidates, &next[t], distance);
+    evals[t] = Merge(context, t, candidates, &next[t], distance.get());
   });
   *columns = std::move(next);
   uint64_t total = 0;
@@ -154,15 +162,9 @@ uint64_t NnDescent(const Context& context, Columns* columns, uint32_t r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::map<std::string, std::string> args;
-  for (int idx = 1; idx < argc; ++idx) {
-    std::string arg = argv[idx];
-    auto eq = arg.find('=');
-    args[arg.substr(0, eq)] = eq == std::string::npos ? "1" : arg.substr(eq + 1);
-  }
-  auto get = [&](const std::string& key, double fallback) {
-    return args.count(key) ? std::atof(args[key].c_str()) : fallback;
-  };
+  motif::testing::ExperimentArgs parsed(argc, argv);
+  std::map<std::string, std::string>& args = parsed.values();
+  auto get = [&](const std::string& key, double fallback) { return parsed.number(key, fallback); };
   auto reader = FrameFileReader::Open(args["archive"]);
   if (!reader.ok()) {
     std::printf("%s\n", reader.status().ToString().c_str());
@@ -187,9 +189,7 @@ int main(int argc, char** argv) {
               params.search_params.c_str());
 
   if (args.count("variants")) {
-    // mode: time LshSearch variants in this process (CPU time of one thread) on a block of
-    // columns; variants=sk0,sk1,... each a comma-free spec: s<sweeps> c<chained>
-    // h<chain columns> r<ranking 0 sort / 1 code>.
+    // Time LshSearch variants (see the header) in this process.
     const uint64_t first = static_cast<uint64_t>(get("first", 0));
     const uint64_t count = std::min<uint64_t>(static_cast<uint64_t>(get("count", 8192)), n - first);
     std::string list = args["variants"];
