@@ -170,14 +170,23 @@ int main(int argc, char** argv) {
     std::printf("%s\n", reader.status().ToString().c_str());
     return 1;
   }
-  auto trellis = TrellisFileReader::Open(args["trellis"]);
-  if (!trellis.ok()) {
+  // The trellis gives eps, k_max and the exclusion radius; without one (variants= only), eps= is
+  // needed and k_max 256, exclusion 30 are used.
+  auto trellis = TrellisFileReader::Open(args.count("trellis") ? args["trellis"] : "");
+  TrellisParams params;
+  if (trellis.ok()) {
+    params = (*trellis)->params();
+  } else if (args.count("eps") && args.count("variants")) {
+    params.eps = static_cast<float>(get("eps", 0));
+    params.k_max = 256;
+    params.exclusion_frames = 30;
+    params.seed = 1;
+  } else {
     std::printf("%s\n", trellis.status().ToString().c_str());
     return 1;
   }
   auto weights = LoadDistanceWeights((*reader)->skeleton(), "");
   auto features = PoseFeatures::FromArchive(**reader, *weights);
-  const TrellisParams& params = (*trellis)->params();
   Context context;
   context.features = &*features;
   context.rules.eps = params.eps;
@@ -210,6 +219,21 @@ int main(int argc, char** argv) {
       if (next == std::string::npos) next = list.size();
       const std::string spec = list.substr(pos, next - pos);
       pos = next + 1;
+      if (spec == "x") {  // the exact search on 256 columns of the block, one thread
+        ExactSearchOptions exact_options;
+        exact_options.threads = 1;
+        ExactSearch exact_search(*features, context.rules, exact_options);
+        Columns found;
+        SearchStats stats;
+        timespec t0, t1;
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t0);
+        (void)exact_search.SearchColumns(first, std::min<uint64_t>(256, count), &found, &stats);
+        clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t1);
+        const double cpu = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
+        std::printf("%-14s cpu %.1f us/column\n", "exact", 1e6 * cpu / std::min<uint64_t>(256, count));
+        std::fflush(stdout);
+        continue;
+      }
       LshOptions options;
       options.seed = params.seed;
       options.threads = 1;
