@@ -52,8 +52,13 @@ int RunAudit(const po::variables_map& vm, const std::string& archive, const std:
               WithCommas(report->capped_exact_entries).c_str(),
               WithCommas(report->capped_columns_full).c_str(),
               WithCommas(report->capped_exact_columns).c_str());
-  std::printf("  distance evaluations  %.0f per query (exact: %.0f)\n",
-              report->lsh_evaluations_per_query, report->exact_evaluations_per_query);
+  std::printf("  distance evaluations  %.0f per query (exact: %.0f)", report->lsh_evaluations_per_query,
+              report->exact_evaluations_per_query);
+  if (report->lsh_timed_columns > 0) {
+    std::printf("  [LSH: over the %s columns of the chains of 16 sampled columns]",
+                WithCommas(report->lsh_timed_columns).c_str());
+  }
+  std::printf("\n");
   if (report->lsh_seconds_per_query > 0) {
     std::printf("  time per query        %.3f ms (exact: %.3f ms, %.1fx)\n",
                 1e3 * report->lsh_seconds_per_query, 1e3 * report->exact_seconds_per_query,
@@ -100,6 +105,10 @@ int RunTrellis(const std::vector<std::string>& args) {
        "LSH projections per table")
       ("probes", po::value<uint32_t>()->default_value(lsh_defaults.probes_per_table),
        "LSH buckets visited per table (multi-probe)")
+      ("width-per-hash", po::value<float>()->default_value(lsh_defaults.width_per_hash),
+       "LSH cell width per projection, relative to the measured neighbour distance (the width "
+       "is this x projections per table x the 90th percentile of a column's neighbours' "
+       "embedding distance)")
       ("max-candidates", po::value<uint32_t>()->default_value(lsh_defaults.max_candidates),
        "LSH: at most this many exact distance evaluations a column")
       ("chain", po::value<uint32_t>()->default_value(lsh_defaults.chain_columns),
@@ -108,6 +117,9 @@ int RunTrellis(const std::vector<std::string>& args) {
       ("chained-max-candidates",
        po::value<uint32_t>()->default_value(lsh_defaults.chained_max_candidates),
        "LSH: evaluations a chained column spends on the probed buckets after its seeds")
+      ("chain-sweeps", po::value<uint32_t>()->default_value(lsh_defaults.chain_sweeps),
+       "LSH: passes over each finished chain, backward then forward, in which every column "
+       "verifies its neighbour column's neighbours moved by up to 2 frames (0: none)")
       ("ranking", po::value<std::string>()->default_value("sort"),
        "LSH candidate order: sort (fastest) or code (ranks gathered entries by position code: "
        "better recall on low-contrast archives, ~1.5-2.5x the time)")
@@ -128,10 +140,12 @@ int RunTrellis(const std::vector<std::string>& args) {
   lsh.tables = vm["tables"].as<uint32_t>();
   lsh.hashes_per_table = vm["hashes"].as<uint32_t>();
   lsh.probes_per_table = vm["probes"].as<uint32_t>();
+  lsh.width_per_hash = vm["width-per-hash"].as<float>();
   lsh.max_candidates = vm["max-candidates"].as<uint32_t>();
   lsh.max_entries = vm["max-entries"].as<uint32_t>();
   lsh.chain_columns = vm["chain"].as<uint32_t>();
   lsh.chained_max_candidates = vm["chained-max-candidates"].as<uint32_t>();
+  lsh.chain_sweeps = vm["chain-sweeps"].as<uint32_t>();
   if (!ParseLshRanking(vm["ranking"].as<std::string>(), &lsh.ranking)) {
     return ReportError("trellis", Status::InvalidArgument("--ranking must be sort or code, not '" +
                                                           vm["ranking"].as<std::string>() + "'"));

@@ -38,9 +38,9 @@ struct LshOptions {
   // the data, width_per_hash * m * the 90th percentile of the embedding distance of a column's
   // neighbours (ResolveLshOptions in lsh_tuning.h).
   float bucket_width = 0;
-  float width_per_hash = 0.03f;
+  float width_per_hash = 0.04f;
   // Buckets visited per table, nearest first (multi-probe); 1 visits only the query's own.
-  uint32_t probes_per_table = 4;
+  uint32_t probes_per_table = 8;
   // Work bounds per column: exact distance evaluations, and entries examined in one bucket
   // (heavy buckets: a static pose repeated thousands of times falls into one bucket).
   uint32_t max_candidates = 4096;
@@ -65,9 +65,15 @@ struct LshOptions {
   // 0..chain_advance frames before probing, which sets a tight radius at once, and then spends
   // at most chained_max_candidates further evaluations on the probed buckets (new paths).
   // chain_columns 0 or 1: every column is searched alone with max_candidates.
-  uint32_t chain_columns = 64;
+  uint32_t chain_columns = 256;
   uint32_t chain_advance = 2;
   uint32_t chained_max_candidates = 2048;
+  // Sweeps over a finished chain, alternately backward and forward, without probing: each column
+  // verifies its successor's neighbours moved back by 0..chain_advance frames (backward), or its
+  // predecessor's moved on (forward), so a path found anywhere in the chain reaches all of its
+  // columns, not only the later ones. 0: none (a column then depends only on the columns before
+  // it in its chain).
+  uint32_t chain_sweeps = 4;
   // Random projections and offsets are drawn from this seed; the same seed gives the same index
   // and the same columns for any thread count.
   uint64_t seed = 0x6d6f746966ull;

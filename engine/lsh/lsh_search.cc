@@ -84,6 +84,22 @@ class VisitedSet {
   uint32_t stamp_ = 1;
 };
 
+// The work of one column, added to a range's statistics only if the range asked for the column.
+struct ColumnWork {
+  uint64_t evaluations = 0;
+  bool capped = false;  // more than k_max frames within eps were seen
+  LshQueryStats lsh;
+};
+
+// Keeps the k_max nearest of *best (unordered) once it holds k_max or more; returns the radius
+// nothing farther can enter: min(eps, the k_max-th distance), or eps while *best is not full.
+float KeepNearest(uint32_t k_max, float eps, std::vector<Neighbour>* best) {
+  if (best->size() < k_max) return eps;
+  std::nth_element(best->begin(), best->begin() + (k_max - 1), best->end(), Nearer());
+  best->resize(k_max);
+  return std::min(eps, (*best)[k_max - 1].distance);
+}
+
 }  // namespace
 
 // Scratch of one worker: reused across the columns of a range.
@@ -102,7 +118,12 @@ class LshSearch::Query {
 
   // `previous`: the neighbours of column - 1 in the same chain (seeds), or null.
   void Run(uint64_t column, const std::vector<Neighbour>* previous, std::vector<Neighbour>* out,
-           SearchStats* stats, LshQueryStats* lsh_stats);
+           ColumnWork* work);
+  // A chain sweep: column `column` (*out, found already, sorted by frame) verifies the frames of
+  // `from` (the neighbours of column + direction) moved by -direction * (0..chain_advance) that
+  // it does not hold yet, and keeps the k_max nearest, sorted by frame.
+  void Sweep(uint64_t column, const std::vector<Neighbour>& from, int direction,
+             std::vector<Neighbour>* out, ColumnWork* work);
   // Hashes the column and lists its probes (sorted) in probes_.
   void Prepare(uint64_t column);
   // Appends the probes of rank [skip, wanted) of every table, sorted among themselves.
@@ -153,6 +174,7 @@ class LshSearch::Query {
   std::vector<float> projections_;
   std::vector<Probe> probes_;
   std::vector<Neighbour> best_;  // accepted candidates: the k_max nearest of them are kept
+  std::vector<uint32_t> sweep_candidates_;
   QueryDistance distance_;
 
   // Ranking by position code. Per probed bucket, eight 16-entry tables (one per code nibble) of
@@ -400,8 +422,7 @@ std::vector<LshSearch::ProbeInfo> LshSearch::ProbeSequence(uint64_t column) cons
 }
 
 void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previous,
-                           std::vector<Neighbour>* out, SearchStats* stats,
-                           LshQueryStats* lsh_stats) {
+                           std::vector<Neighbour>* out, ColumnWork* work) {
   const HashFamily& family = search_.family_;
   const LshIndex& index = search_.index_;
   const PoseFeatures& features = search_.features_;
@@ -438,12 +459,7 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
   // Keeps the k_max nearest accepted so far and sets the radius to the k_max-th distance. Done
   // when twice k_max have been accepted (amortised O(1) per candidate, where a heap would pay
   // O(log k_max) on every improvement), and when a decision needs the exact radius.
-  auto prune = [&] {
-    if (best_.size() < k_max) return;
-    std::nth_element(best_.begin(), best_.begin() + (k_max - 1), best_.end(), Nearer());
-    best_.resize(k_max);
-    bound = std::min(eps, best_[k_max - 1].distance);
-  };
+  auto prune = [&] { bound = KeepNearest(k_max, eps, &best_); };
   auto verify = [&](const uint32_t* candidates, uint32_t count) {
     distance_.ToBatch(candidates, count, bound, distances);
     for (uint32_t idx = 0; idx < count; ++idx) {
@@ -467,7 +483,7 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
   // The column itself and its own clip's temporal neighbourhood are never candidates.
   auto excluded = [&](uint32_t frame) {
     const uint64_t frame_gap = frame > column ? frame - column : column - frame;
-    return frame_gap < rules.exclusion_frames &&
+    return frame_gap < std::max(rules.exclusion_frames, 1u) &&
            rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame));
   };
 
@@ -687,11 +703,81 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
 
   out->assign(best_.begin(), best_.end());
   FinishColumn(k_max, out);
-  stats->columns += 1;
-  stats->distance_evaluations += evaluations;
-  stats->neighbours += out->size();
-  if (within_eps > k_max) stats->capped_columns += 1;
-  if (lsh_stats) lsh_stats->Add(local);
+  work->evaluations += evaluations;
+  work->capped = work->capped || within_eps > k_max;
+  work->lsh.Add(local);
+}
+
+void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from, int direction,
+                             std::vector<Neighbour>* out, ColumnWork* work) {
+  const PoseFeatures& features = search_.features_;
+  const NeighbourRules& rules = search_.rules_;
+  const uint32_t k_max = rules.k_max;
+  const float eps = rules.eps;
+  const int64_t frame_count = static_cast<int64_t>(features.frame_count());
+  const int64_t advance = search_.options_.chain_advance;
+  const uint32_t clip_of_column = features.ClipOf(column);
+  // The candidates: the union of [j - advance, j] (backward) or [j, j + advance] (forward) over
+  // the frames j of `from`, less the frames *out holds. Both lists are sorted by frame, so one
+  // merging walk gives them in increasing order, each once, with no set.
+  sweep_candidates_.clear();
+  size_t held = 0;
+  int64_t next = 0;  // frames below this were considered already
+  for (const Neighbour& neighbour : from) {
+    const int64_t frame = neighbour.frame;
+    const int64_t low = std::max(next, direction > 0 ? frame - advance : frame);
+    const int64_t high = std::min(frame_count - 1, direction > 0 ? frame : frame + advance);
+    for (int64_t candidate = low; candidate <= high; ++candidate) {
+      while (held < out->size() && (*out)[held].frame < candidate) ++held;
+      if (held < out->size() && (*out)[held].frame == candidate) continue;
+      const uint64_t gap = static_cast<uint64_t>(
+          candidate > static_cast<int64_t>(column) ? candidate - static_cast<int64_t>(column)
+                                                   : static_cast<int64_t>(column) - candidate);
+      if (gap < std::max(rules.exclusion_frames, 1u) &&
+          rules.Excluded(column, static_cast<uint64_t>(candidate), clip_of_column,
+                         features.ClipOf(static_cast<uint64_t>(candidate)))) {
+        continue;
+      }
+      sweep_candidates_.push_back(static_cast<uint32_t>(candidate));
+    }
+    next = std::max(next, high + 1);
+  }
+  if (sweep_candidates_.empty()) return;
+  // Nothing farther than the column's k_max-th neighbour can enter it.
+  float bound = eps;
+  if (out->size() >= k_max) {
+    float farthest = 0;
+    for (const Neighbour& neighbour : *out) farthest = std::max(farthest, neighbour.distance);
+    bound = std::min(eps, farthest);
+  }
+  distance_.SetQuery(column);
+  constexpr uint32_t kBatch = 16;
+  float distances[kBatch];
+  uint64_t within_eps = 0;
+  best_.clear();  // the candidates accepted
+  const size_t count = sweep_candidates_.size();
+  for (size_t idx = 0; idx < std::min<size_t>(kBatch, count); ++idx) {
+    distance_.Prefetch(sweep_candidates_[idx]);
+  }
+  for (size_t first = 0; first < count; first += kBatch) {
+    const uint32_t batch = static_cast<uint32_t>(std::min<size_t>(kBatch, count - first));
+    for (size_t idx = first + kBatch; idx < std::min(count, first + 2 * kBatch); ++idx) {
+      distance_.Prefetch(sweep_candidates_[idx]);  // the next batch, while this one is verified
+    }
+    distance_.ToBatch(&sweep_candidates_[first], batch, bound, distances);
+    for (uint32_t idx = 0; idx < batch; ++idx) {
+      if (distances[idx] <= eps) ++within_eps;
+      if (distances[idx] <= bound) best_.push_back({sweep_candidates_[first + idx], distances[idx]});
+    }
+  }
+  work->evaluations += count;
+  work->lsh.sweep_evaluations += count;
+  // The column's own frames and the new ones within eps are distinct frames within eps.
+  work->capped = work->capped || out->size() + within_eps > k_max;
+  if (best_.empty()) return;
+  best_.insert(best_.end(), out->begin(), out->end());
+  out->assign(best_.begin(), best_.end());
+  FinishColumn(k_max, out);
 }
 
 LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
@@ -778,12 +864,14 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
   // Integer counters: their sums do not depend on how the columns were split among threads.
   std::atomic<uint64_t> column_total{0}, evaluations{0}, neighbours{0}, capped{0};
   std::atomic<uint64_t> probes{0}, examined{0}, scans_capped{0}, budget_capped{0}, bound_stopped{0},
-      extensions{0}, seed_evaluations{0};
-  // One task per aligned chain (or per 64 columns without chaining). A range that starts inside
-  // a chain computes the chain's earlier columns too (not returned, not counted): a column is the
-  // same whichever range asked for it.
+      extensions{0}, seed_evaluations{0}, sweep_evaluations{0};
+  // One task per aligned chain (or per 64 columns without chaining). A chain is computed whole
+  // whenever a range asks for one of its columns (only its columns inside the range are returned
+  // and counted; without sweeps, it stops at the range's end): a column is the same whichever
+  // range asked for it.
   const uint64_t chain = options_.chain_columns > 1 ? options_.chain_columns : 0;
   const uint64_t grain = chain ? chain : 64;
+  const uint32_t sweeps = chain ? options_.chain_sweeps : 0;
   const uint64_t end_column = first_column + count;
   const uint64_t first_task = first_column / grain;
   const uint64_t task_count = (end_column + grain - 1) / grain - first_task;
@@ -795,23 +883,44 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
           Query query(*this);
           SearchStats local;
           LshQueryStats local_lsh;
-          SearchStats warm_stats;
-          std::vector<Neighbour> previous, warm;
+          std::vector<std::vector<Neighbour>> chain_columns;
+          std::vector<ColumnWork> work;
           for (uint64_t task = range.begin(); task != range.end(); ++task) {
             const uint64_t task_first = (first_task + task) * grain;
             const uint64_t begin = chain ? task_first : std::max(task_first, first_column);
-            const uint64_t end = std::min(task_first + grain, end_column);
-            for (uint64_t column = begin; column < end; ++column) {
-              const std::vector<Neighbour>* seeds =
-                  chain && column != task_first ? &previous : nullptr;
-              if (column < first_column) {
-                query.Run(column, seeds, &warm, &warm_stats, nullptr);
-                previous.swap(warm);
-                continue;
+            const uint64_t end = std::min(task_first + grain,
+                                          sweeps ? features_.frame_count() : end_column);
+            const size_t size = end - begin;
+            chain_columns.resize(std::max(chain_columns.size(), size));
+            work.assign(size, ColumnWork{});
+            for (size_t idx = 0; idx < size; ++idx) {
+              const bool seeded = chain && idx > 0;
+              query.Run(begin + idx, seeded ? &chain_columns[idx - 1] : nullptr,
+                        &chain_columns[idx], &work[idx]);
+            }
+            for (uint32_t sweep = 0; sweep < sweeps && size > 1; ++sweep) {
+              if (sweep % 2 == 0) {  // backward: from the successor
+                for (size_t idx = size - 1; idx-- > 0;) {
+                  query.Sweep(begin + idx, chain_columns[idx + 1], +1, &chain_columns[idx],
+                              &work[idx]);
+                }
+              } else {  // forward: from the predecessor
+                for (size_t idx = 1; idx < size; ++idx) {
+                  query.Sweep(begin + idx, chain_columns[idx - 1], -1, &chain_columns[idx],
+                              &work[idx]);
+                }
               }
+            }
+            for (size_t idx = 0; idx < size; ++idx) {
+              const uint64_t column = begin + idx;
+              if (column < first_column || column >= end_column) continue;
               std::vector<Neighbour>& out = (*columns)[column - first_column];
-              query.Run(column, seeds, &out, &local, &local_lsh);
-              if (chain) previous = out;
+              out.assign(chain_columns[idx].begin(), chain_columns[idx].end());
+              local.columns += 1;
+              local.distance_evaluations += work[idx].evaluations;
+              local.neighbours += out.size();
+              local.capped_columns += work[idx].capped ? 1 : 0;
+              local_lsh.Add(work[idx].lsh);
             }
           }
           column_total += local.columns;
@@ -825,6 +934,7 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
           bound_stopped += local_lsh.columns_bound_stopped;
           extensions += local_lsh.extensions;
           seed_evaluations += local_lsh.seed_evaluations;
+          sweep_evaluations += local_lsh.sweep_evaluations;
         });
   });
   if (stats) {
@@ -841,6 +951,7 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
     lsh_stats->columns_bound_stopped += bound_stopped;
     lsh_stats->extensions += extensions;
     lsh_stats->seed_evaluations += seed_evaluations;
+    lsh_stats->sweep_evaluations += sweep_evaluations;
   }
   return Status::Ok();
 }

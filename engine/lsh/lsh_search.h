@@ -23,9 +23,12 @@
 //   0. chaining: columns go in chains of chain_columns, aligned on multiples of it; a column
 //      after its chain's first verifies its predecessor's neighbours advanced by 0..chain_advance
 //      frames first (seeds), then spends at most chained_max_candidates on the probed buckets.
-// Each column depends only on the index, f_t and the columns before it in its aligned chain
-// (computed again when a range starts inside a chain), so columns are the same for any thread
-// count and any split of the archive into ranges.
+//   4. chain sweeps: once a chain's columns are found, chain_sweeps passes over it, backward then
+//      forward, verify each column's successor's (predecessor's) neighbours moved by
+//      0..chain_advance frames, so a path found at any column of the chain reaches all of them.
+// Each column depends only on the index, f_t and the other columns of its aligned chain (the
+// whole chain is computed whenever a range asks for one of its columns), so columns are the same
+// for any thread count and any split of the archive into ranges.
 // Thread-safety: SearchColumns is const and may run from many threads at once.
 #pragma once
 
@@ -52,6 +55,7 @@ struct LshQueryStats {
   uint64_t columns_bound_stopped = 0;  // columns stopped because nothing left could enter
   uint64_t extensions = 0;             // extra probing stages of sparse columns
   uint64_t seed_evaluations = 0;       // evaluations of chained columns' seeds (in the total)
+  uint64_t sweep_evaluations = 0;      // evaluations of the chain sweeps (in the total)
 
   void Add(const LshQueryStats& other) {
     probes += other.probes;
@@ -61,6 +65,7 @@ struct LshQueryStats {
     columns_bound_stopped += other.columns_bound_stopped;
     extensions += other.extensions;
     seed_evaluations += other.seed_evaluations;
+    sweep_evaluations += other.sweep_evaluations;
   }
 };
 

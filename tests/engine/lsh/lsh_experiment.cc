@@ -2,7 +2,8 @@
 // key=value arguments:
 //   data=real|synth|synthbig|reseq frames=N seed=S queries=Q k_max=K eps=E
 //   LSH options: tables= hashes= width= width_per_hash= probes= max_candidates= max_bucket_scan=
-//                first_round= stages= sparse= chain= chain_advance= chained= ranking=sort|code
+//                first_round= stages= sparse= chain= chain_advance= chained= sweeps=
+//                ranking=sort|code
 //                max_entries= threads=
 //                range=(columns timed in one block)
 //   modes: oracle (how well L2 / l1,2 embedding distances rank the exact neighbours),
@@ -27,21 +28,16 @@
 #include "engine/distance/exact_search.h"
 #include "engine/lsh/lsh_search.h"
 #include "tests/engine/lsh/lsh_test_util.h"
+#include "tests/engine/lsh/experiment_args.h"
 #include "tests/testing/mocap_data.h"
 
 using namespace motif;
 using namespace motif::testing;
 
 int main(int argc, char** argv) {
-  std::map<std::string, std::string> args;
-  for (int idx = 1; idx < argc; ++idx) {
-    std::string arg = argv[idx];
-    auto eq = arg.find('=');
-    args[arg.substr(0, eq)] = eq == std::string::npos ? "1" : arg.substr(eq + 1);
-  }
-  auto get = [&](const std::string& key, double fallback) {
-    return args.count(key) ? std::atof(args[key].c_str()) : fallback;
-  };
+  motif::testing::ExperimentArgs parsed(argc, argv);
+  std::map<std::string, std::string>& args = parsed.values();
+  auto get = [&](const std::string& key, double fallback) { return parsed.number(key, fallback); };
   const std::string data = args.count("data") ? args["data"] : "synth";
   const uint64_t frames = static_cast<uint64_t>(get("frames", 40000));
   const uint32_t queries = static_cast<uint32_t>(get("queries", 400));
@@ -253,6 +249,7 @@ int main(int argc, char** argv) {
   options.chain_advance = static_cast<uint32_t>(get("chain_advance", options.chain_advance));
   options.chained_max_candidates =
       static_cast<uint32_t>(get("chained", options.chained_max_candidates));
+  options.chain_sweeps = static_cast<uint32_t>(get("sweeps", options.chain_sweeps));
   auto rss = [] {
     malloc_trim(0);
     std::ifstream status("/proc/self/status");

@@ -27,6 +27,15 @@ std::unique_ptr<LshSearch> CreateSearch(const PoseFeatures& features, const Neig
   return search.ok() ? std::move(*search) : nullptr;
 }
 
+// One search per set of options, in order (null, with a failure, where creation fails).
+std::vector<std::unique_ptr<LshSearch>> CreateSearches(const PoseFeatures& features,
+                                                       const NeighbourRules& rules,
+                                                       const std::vector<LshOptions>& options) {
+  std::vector<std::unique_ptr<LshSearch>> searches;
+  for (const LshOptions& one : options) searches.push_back(CreateSearch(features, rules, one));
+  return searches;
+}
+
 std::vector<Neighbour> Column(const LshSearch& search, uint64_t column, SearchStats* stats,
                               LshQueryStats* lsh_stats = nullptr) {
   std::vector<std::vector<Neighbour>> columns;
@@ -42,15 +51,20 @@ struct Measured {
   double exact_neighbours_per_column = 0;
 };
 
+// The LSH columns come from one search of the whole archive (a column is computed with its whole
+// chain anyway), so the work counted is that of every column.
 Measured MeasureRecall(const LshSearch& search, const PoseFeatures& features,
                        const NeighbourRules& rules, uint32_t count, uint64_t seed) {
   Measured measured;
   const std::vector<uint64_t> columns = testing::SampleColumns(features.frame_count(), count, seed);
+  std::vector<std::vector<Neighbour>> all;
+  const Status status = search.SearchColumns(0, features.frame_count(), &all, &measured.stats);
+  EXPECT_TRUE(status.ok()) << status.ToString();
   std::vector<std::vector<Neighbour>> exact;
   std::vector<std::vector<Neighbour>> approximate;
   for (uint64_t column : columns) {
     exact.push_back(ExactColumn(features, rules, column));
-    approximate.push_back(Column(search, column, &measured.stats));
+    approximate.push_back(all[column]);
     measured.exact_neighbours_per_column += exact.back().size();
   }
   measured.exact_neighbours_per_column /= columns.size();
@@ -290,12 +304,11 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
   chained.chained_max_candidates = 512;
   LshOptions cheap = chained;
   cheap.chained_max_candidates = 256;
-  auto search_alone = CreateSearch(*features_, *rules_, alone);
-  auto search_chained = CreateSearch(*features_, *rules_, chained);
-  auto search_cheap = CreateSearch(*features_, *rules_, cheap);
-  ASSERT_NE(search_alone, nullptr);
-  ASSERT_NE(search_chained, nullptr);
-  ASSERT_NE(search_cheap, nullptr);
+  const auto searches = CreateSearches(*features_, *rules_, {alone, chained, cheap});
+  for (const auto& search : searches) ASSERT_NE(search, nullptr);
+  const LshSearch& search_alone = *searches[0];
+  const LshSearch& search_chained = *searches[1];
+  const LshSearch& search_cheap = *searches[2];
   // A block of consecutive columns: where chaining acts.
   const uint64_t first = 12800;
   const uint64_t count = 256;
@@ -314,9 +327,9 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
                 static_cast<double>(lsh_stats.seed_evaluations) / count);
     return std::make_pair(recall.pooled(), lsh_stats);
   };
-  const auto [recall_alone, stats_alone] = measure(*search_alone, "alone, 512");
-  const auto [recall_chained, stats_chained] = measure(*search_chained, "chained, 512");
-  const auto [recall_cheap, stats_cheap] = measure(*search_cheap, "chained, 256");
+  const auto [recall_alone, stats_alone] = measure(search_alone, "alone, 512");
+  const auto [recall_chained, stats_chained] = measure(search_chained, "chained, 512");
+  const auto [recall_cheap, stats_cheap] = measure(search_cheap, "chained, 256");
   EXPECT_EQ(stats_alone.seed_evaluations, 0u);
   EXPECT_GT(stats_chained.seed_evaluations, 0u);
   EXPECT_GE(recall_chained, recall_alone);
@@ -324,6 +337,84 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
   EXPECT_GE(recall_cheap, 0.95);
   // The cheap chain examines fewer bucket entries than the unchained search.
   EXPECT_LT(stats_cheap.entries_examined, stats_alone.entries_examined);
+}
+
+// Chain sweeps: after a chain's columns are found, a backward sweep lets every column verify its
+// successor's neighbours moved back by 0..chain_advance frames, so a path found late in a chain
+// reaches its earlier columns. After one backward sweep each column is closed under that move
+// (every such frame within eps is in it, or the column is full of nearer ones), and with a tight
+// budget the sweeps find more of the exact neighbours on the same columns.
+TEST_F(LshSearchTest, ChainSweepsCarryPathsFoundLateToTheWholeChain) {
+  LshOptions none;
+  none.chain_columns = 64;
+  none.chain_sweeps = 0;
+  none.max_candidates = 512;  // tight, so that what the sweeps add shows
+  none.chained_max_candidates = 256;
+  LshOptions backward = none;
+  backward.chain_sweeps = 1;
+  LshOptions both = none;
+  both.chain_sweeps = 4;
+  const auto searches = CreateSearches(*features_, *rules_, {none, backward, both});
+  for (const auto& search : searches) ASSERT_NE(search, nullptr);
+  const uint64_t first = 12800;  // a multiple of 64: whole chains
+  const uint64_t count = 256;
+  std::vector<std::vector<Neighbour>> exact;
+  for (uint64_t column = first; column < first + count; ++column) {
+    exact.push_back(ExactColumn(*features_, *rules_, column));
+  }
+  auto run = [&](const LshSearch& search, std::vector<std::vector<Neighbour>>* columns) {
+    SearchStats stats;
+    LshQueryStats lsh_stats;
+    EXPECT_TRUE(search.SearchColumns(first, count, columns, &stats, &lsh_stats).ok());
+    EXPECT_EQ(stats.columns, count);
+    return lsh_stats;
+  };
+  std::vector<std::vector<Neighbour>> columns_none, columns_backward, columns_both;
+  const LshQueryStats stats_none = run(*searches[0], &columns_none);
+  const LshQueryStats stats_backward = run(*searches[1], &columns_backward);
+  const LshQueryStats stats_both = run(*searches[2], &columns_both);
+  EXPECT_EQ(stats_none.sweep_evaluations, 0u);
+  EXPECT_GT(stats_backward.sweep_evaluations, 0u);
+  EXPECT_GT(stats_both.sweep_evaluations, stats_backward.sweep_evaluations);
+  const double recall_none = Recall(exact, columns_none).pooled();
+  const double recall_backward = Recall(exact, columns_backward).pooled();
+  const double recall_both = Recall(exact, columns_both).pooled();
+  std::printf("sweeps 0: recall %.4f; 1 (backward): %.4f; 4: %.4f\n", recall_none,
+              recall_backward, recall_both);
+  EXPECT_GT(recall_backward, recall_none + 0.01);
+  EXPECT_GE(recall_both, recall_backward);
+
+  // Closure under the backward move, checked with the exact D on every column but a chain's last.
+  const NeighbourRules& rules = *rules_;
+  auto nearer = [](const Neighbour& a, const Neighbour& b) {
+    return a.distance < b.distance || (a.distance == b.distance && a.frame < b.frame);
+  };
+  uint64_t checked = 0;
+  for (uint64_t offset = 0; offset + 1 < count; ++offset) {
+    const uint64_t column = first + offset;
+    if ((column + 1) % 64 == 0) continue;  // a chain's last column has no successor in it
+    const std::vector<Neighbour>& own = columns_backward[offset];
+    Neighbour farthest{0, 0};
+    for (const Neighbour& neighbour : own) {
+      if (nearer(farthest, neighbour)) farthest = neighbour;
+    }
+    for (const Neighbour& next : columns_backward[offset + 1]) {
+      for (uint32_t shift = 0; shift <= backward.chain_advance && shift <= next.frame; ++shift) {
+        const uint32_t frame = next.frame - shift;
+        if (rules.Excluded(column, frame, features_->ClipOf(column), features_->ClipOf(frame))) {
+          continue;
+        }
+        const Neighbour candidate{frame, PoseDistance(*features_, column, frame)};
+        if (candidate.distance > rules.eps) continue;
+        const bool held = std::any_of(own.begin(), own.end(),
+                                      [&](const Neighbour& n) { return n.frame == frame; });
+        ASSERT_TRUE(held || (own.size() == rules.k_max && !nearer(candidate, farthest)))
+            << "column " << column << " misses " << frame << " at " << candidate.distance;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, count * 100);
 }
 
 // Heavy buckets: a static pose held for thousands of frames (the T-pose a take starts with)

@@ -141,6 +141,41 @@ TEST(BuildTrellis, ResumesAnInterruptedBuildToTheSameFile) {
   EXPECT_EQ(ReadFileToString(path).value(), ReadFileToString(reference).value());
 }
 
+// LSH columns depend on their whole chain (256 columns, swept both ways), never on how the
+// trellis is cut into blocks: blocks of 1000 columns (which cut chains) give the columns of
+// blocks of 2048, also when the build is interrupted and resumed in the middle of a chain.
+TEST(BuildTrellis, LshColumnsDoNotDependOnTheBlockSplit) {
+  testing::TempDir dir;
+  const std::string archive = MakeArchive(dir, 9000);
+  const std::string reference = dir.File("reference.mtr");
+  ASSERT_TRUE(BuildTrellis(archive, reference, SmallOptions(false, 2)).ok());
+  TrellisOptions cut = SmallOptions(false, 2);
+  cut.block_columns = 1000;
+  ASSERT_NE(cut.lsh.chain_columns, 0u);
+  ASSERT_NE(cut.block_columns % cut.lsh.chain_columns, 0u);
+  ASSERT_GT(cut.lsh.chain_sweeps, 0u);
+  const std::string path = dir.File("cut.mtr");
+  TrellisOptions interrupted = cut;
+  interrupted.stop_after_blocks = 3;
+  ASSERT_FALSE(BuildTrellis(archive, path, interrupted).ok());
+  cut.threads = 1;
+  auto resumed = BuildTrellis(archive, path, cut);
+  ASSERT_TRUE(resumed.ok()) << resumed.status().ToString();
+  EXPECT_EQ(resumed->resumed_from_column, 3000u);
+  auto expected = TrellisFileReader::Open(reference);
+  auto actual = TrellisFileReader::Open(path);
+  ASSERT_TRUE(expected.ok());
+  ASSERT_TRUE(actual.ok());
+  std::vector<std::vector<Neighbour>> expected_columns;
+  std::vector<std::vector<Neighbour>> actual_columns;
+  ASSERT_TRUE((*expected)->ReadColumns(0, 9000, &expected_columns).ok());
+  ASSERT_TRUE((*actual)->ReadColumns(0, 9000, &actual_columns).ok());
+  EXPECT_EQ((*actual)->block_columns(), 1000u);
+  for (uint64_t column = 0; column < 9000; ++column) {
+    ASSERT_EQ(actual_columns[column], expected_columns[column]) << "column " << column;
+  }
+}
+
 TEST(AuditTrellis, LshRecallOnAPlantedSyntheticArchive) {
   testing::TempDir dir;
   const std::string archive = MakeArchive(dir, 12000);
