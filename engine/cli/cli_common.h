@@ -75,5 +75,6 @@ int RunCluster(const std::vector<std::string>& args);
 int RunExportMotif(const std::vector<std::string>& args);
 int RunReport(const std::vector<std::string>& args);
 int RunMine(const std::vector<std::string>& args);
+int RunWords(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

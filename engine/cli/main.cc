@@ -29,6 +29,7 @@ const Command kCommands[] = {
     {"cluster", motif::cli::RunCluster, "cluster the grown paths into motifs (normalized cut): motifs.json"},
     {"report", motif::cli::RunReport, "write the HTML report of motifs.json: overview, timeline, stick figures"},
     {"export-motif", motif::cli::RunExportMotif, "write every instance of one motif as a BVH file"},
+    {"words", motif::cli::RunWords, "motion words: train their embedding, cluster motifs, write every take's signature"},
 };
 
 void PrintUsage(FILE* out) {
