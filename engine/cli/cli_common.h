@@ -76,5 +76,7 @@ int RunExportMotif(const std::vector<std::string>& args);
 int RunReport(const std::vector<std::string>& args);
 int RunMine(const std::vector<std::string>& args);
 int RunWords(const std::vector<std::string>& args);
+int RunClassify(const std::vector<std::string>& args);
+int RunSearch(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

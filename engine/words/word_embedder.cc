@@ -30,8 +30,10 @@ Result<WordEmbedder> WordEmbedder::Create(const EmbeddingModel& model, const Fra
   embedder.model_ = &model;
   embedder.layout_ = layout;
   embedder.weighted_joints_ = resampler.weighted_joint_count();
-  embedder.arena_ = std::make_shared<tbb::task_arena>(threads > 0 ? threads
-                                                                  : tbb::task_arena::automatic);
+  // A copy of the constant: make_shared takes its arguments by reference, and TBB does not
+  // define task_arena::automatic out of line.
+  const int concurrency = threads > 0 ? threads : int{tbb::task_arena::automatic};
+  embedder.arena_ = std::make_shared<tbb::task_arena>(concurrency);
   return embedder;
 }
 

@@ -66,6 +66,10 @@ TensorFile SignaturesToTensorFile(const SignatureSet& signatures) {
   const uint64_t identity[4] = {signatures.motifs_identity, signatures.archive_identity,
                                 signatures.motif_count, signatures.take_count};
   file.AddU64("identity", identity);
+  const uint32_t geometry[2] = {signatures.words.word_frames, signatures.words.stride_frames};
+  file.AddU32("word.geometry", geometry);
+  const double fps[1] = {signatures.words.word_fps};
+  file.AddF64("word.fps", fps);
   file.AddU64("clip.words", signatures.clip_words);
   file.AddU16("word.motifs", signatures.word_motifs);
   file.AddU64("document.frequencies", signatures.document_frequencies);
@@ -86,6 +90,15 @@ Result<SignatureSet> SignaturesFromTensorFile(const TensorFile& file) {
   }
   set.motif_count = static_cast<uint32_t>(identity[2]);
   set.take_count = identity[3];
+  MOTIF_ASSIGN_OR_RETURN(std::vector<uint32_t> geometry, file.U32("word.geometry", 2));
+  MOTIF_ASSIGN_OR_RETURN(set.words.word_fps, file.ScalarF64("word.fps"));
+  set.words.word_frames = geometry[0];
+  set.words.stride_frames = geometry[1];
+  if (!ValidateWordOptions(set.words).ok()) {
+    return Status::Corruption("signatures file: word geometry " + std::to_string(geometry[0]) +
+                              " / " + std::to_string(geometry[1]) + " at " +
+                              std::to_string(set.words.word_fps) + " Hz is not valid");
+  }
   MOTIF_ASSIGN_OR_RETURN(set.clip_words, file.U64("clip.words"));
   MOTIF_ASSIGN_OR_RETURN(set.word_motifs, file.U16("word.motifs"));
   MOTIF_ASSIGN_OR_RETURN(set.document_frequencies,

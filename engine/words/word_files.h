@@ -14,6 +14,7 @@
 
 #include "common/status.h"
 #include "engine/signature/k_means.h"
+#include "engine/signature/word_grid.h"
 #include "formats/tensor_file/tensor_file.h"
 
 namespace motif {
@@ -36,6 +37,7 @@ struct SignatureSet {
   uint64_t motifs_identity = 0;  // the motifs file's identity
   uint64_t archive_identity = 0;
   uint32_t motif_count = 0;
+  WordOptions words;                           // the word geometry the words were cut with
   std::vector<uint64_t> clip_words;            // words of each archive clip
   std::vector<uint16_t> word_motifs;           // the motif of every word, archive word order
   std::vector<uint64_t> document_frequencies;  // takes using each motif

@@ -223,6 +223,7 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
   const std::vector<ClipInfo>& clips = reader->clips();
   SignatureSet signatures;
   signatures.archive_identity = archive_identity;
+  signatures.words = options.words;
   for (size_t clip = 0; clip < clips.size(); ++clip) {
     const uint64_t words = ClipWordGrid(*reader, clip, options.words).word_count();
     signatures.clip_words.push_back(words);
@@ -255,7 +256,10 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
       Result<SignatureSet> stored = SignaturesFromTensorFile(*file);
       if (stored.ok() && stored->motifs_identity == motifs_identity &&
           stored->archive_identity == archive_identity &&
-          stored->clip_words == signatures.clip_words) {
+          stored->clip_words == signatures.clip_words &&
+          stored->words.word_frames == options.words.word_frames &&
+          stored->words.stride_frames == options.words.stride_frames &&
+          stored->words.word_fps == options.words.word_fps) {
         report.signatures_reused = true;
         signatures = std::move(stored.value());
       }
