@@ -12,6 +12,7 @@
 #include "engine/report/words_report_html.h"
 #include "engine/signature/signature_matrix.h"
 #include "engine/signature/take_dtw.h"
+#include "engine/signature/word_stream.h"
 #include "engine/words/take_classification.h"
 #include "engine/words/word_model.h"
 
@@ -94,15 +95,17 @@ int RunClassify(const std::vector<std::string>& args) {
     if (!read.ok()) return fail(read.status());
     labels = std::move(read.value());
   }
+  // The takes: clips with at least one word. DTW needs no words file: without one, the takes are
+  // those long enough for one word of the default geometry, the takes signatures would see.
   Result<LoadedWords> words = LoadWords(**reader, paths, /*with_embedding=*/false);
-  if (!words.ok()) return fail(words.status());
-
-  // The takes: clips with at least one word.
+  const bool dtw = distance_name == "dtw";
+  if (!words.ok() && !(dtw && words.status().IsNotFound())) return fail(words.status());
+  const WordOptions geometry = words.ok() ? words->signatures.words : WordOptions{};
   TakeClassification named;
   std::vector<std::string> take_labels;
   const std::vector<ClipInfo>& clips = (*reader)->clips();
   for (size_t clip = 0; clip < clips.size(); ++clip) {
-    if (words->signatures.clip_words[clip] == 0) continue;
+    if (ClipWordGrid(**reader, clip, geometry).word_count() == 0) continue;
     named.clips.push_back(static_cast<uint32_t>(clip));
     named.names.push_back(clips[clip].name);
     const auto label = labels.by_clip.find(clips[clip].name);
@@ -172,8 +175,7 @@ int RunClassify(const std::vector<std::string>& args) {
   const TakeClassification& r = *result;
   std::printf("motifmine classify: %s (%zu takes, distance %s%s)\n", archive.c_str(),
               r.names.size(), distance_name.c_str(),
-              distance_name == "dtw" ? "" : (" over " + std::to_string(words->motifs.motif_count()) +
-                                             " motifs").c_str());
+              dtw ? "" : (" over " + std::to_string(words->motifs.motif_count()) + " motifs").c_str());
   std::printf("  unsupervised MDS into %lld dimensions, k-means into %u groups",
               static_cast<long long>(r.mds.coordinates.cols()), r.group_count);
   if (!r.label_names.empty()) {

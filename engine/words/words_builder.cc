@@ -120,7 +120,8 @@ Result<EmbeddingStage> TrainEmbedding(const FrameFileReader& reader,
     }
   }
   MOTIF_RETURN_IF_ERROR(trainer.Train(&state, [&](const TrainingState& done) {
-    return WriteTensorFile(checkpoint_path, CheckpointToTensorFile(model, done));
+    MOTIF_RETURN_IF_ERROR(WriteTensorFile(checkpoint_path, CheckpointToTensorFile(model, done)));
+    return options.after_epoch ? options.after_epoch(done.epochs_done) : Status::Ok();
   }));
   model.net = trainer.NetOf(state);
   model.epoch_loss = state.epoch_loss;
@@ -194,13 +195,34 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
   WordsReport report;
   report.paths = paths;
 
-  // Stage 1: the embedding.
+  // An embedding from elsewhere fixes the word geometry.
   EmbeddingStage embedding;
   if (!options.embedding_in.empty()) {
     MOTIF_ASSIGN_OR_RETURN(embedding, LoadEmbedding(options.embedding_in));
     report.embedding_loaded = true;
     options.words = embedding.model.words;  // the words the network was trained on
-  } else {
+  }
+
+  // The archive's words, counted first: bad options fail before anything is trained or written.
+  const std::vector<ClipInfo>& clips = reader->clips();
+  SignatureSet signatures;
+  signatures.archive_identity = archive_identity;
+  signatures.words = options.words;
+  for (size_t clip = 0; clip < clips.size(); ++clip) {
+    const uint64_t words = ClipWordGrid(*reader, clip, options.words).word_count();
+    signatures.clip_words.push_back(words);
+    report.words += words;
+    report.takes += words > 0;
+  }
+  report.clips = clips.size();
+  if (report.words < options.motifs) {
+    return Status::InvalidArgument(archive_path + ": " + std::to_string(report.words) +
+                                   " words, fewer than the " + std::to_string(options.motifs) +
+                                   " motifs asked for (--motifs)");
+  }
+
+  // Stage 1: the embedding.
+  if (!report.embedding_loaded) {
     const uint64_t key = TrainingKey(archive_identity, weights, options);
     Result<EmbeddingStage> stored = LoadEmbedding(paths.embedding);
     if (stored.ok() && stored->model.training_key == key) {
@@ -218,24 +240,6 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
   MOTIF_ASSIGN_OR_RETURN(WordEmbedder embedder,
                          WordEmbedder::Create(model, reader->layout(), weights, options.threads));
   report.dims = embedder.dims();
-
-  // The archive's words.
-  const std::vector<ClipInfo>& clips = reader->clips();
-  SignatureSet signatures;
-  signatures.archive_identity = archive_identity;
-  signatures.words = options.words;
-  for (size_t clip = 0; clip < clips.size(); ++clip) {
-    const uint64_t words = ClipWordGrid(*reader, clip, options.words).word_count();
-    signatures.clip_words.push_back(words);
-    report.words += words;
-    report.takes += words > 0;
-  }
-  report.clips = clips.size();
-  if (report.words < options.motifs) {
-    return Status::InvalidArgument(archive_path + ": " + std::to_string(report.words) +
-                                   " words, fewer than the " + std::to_string(options.motifs) +
-                                   " motifs asked for (--motifs)");
-  }
 
   // Stage 2: the motifs (reused if made from this embedding and archive with these options).
   MotifSet motifs;

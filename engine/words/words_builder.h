@@ -63,6 +63,9 @@ struct WordsOptions {
   std::function<void(const std::string&, uint64_t, uint64_t, const std::string&)> progress;
                                     // (stage, done, total, unit)
   std::function<void(const std::string&)> note;
+  // Called after each training epoch once its checkpoint is written; a non-OK status stops the
+  // run there and is returned (cancellation; the next run resumes from that checkpoint).
+  std::function<Status(uint32_t)> after_epoch;
 };
 
 struct WordsReport {
