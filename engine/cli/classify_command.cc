@@ -49,12 +49,8 @@ int RunClassify(const std::vector<std::string>& args) {
        "dtw: compare every n-th frame (1: every frame)")
       ("weights", po::value<std::string>()->default_value(""),
        "dtw: per-joint weights file (default: the skeleton's)")
-      ("prefix", po::value<std::string>()->default_value(""),
-       "read PREFIX.mwm and PREFIX.mws (default: ARCHIVE without .mfs)")
-      ("out", po::value<std::string>()->default_value(""),
-       "output folder (default: the archive's): classify.json, classify.html")
-      ("seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of k-means")
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)");
+      ("seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of k-means");
+  AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "classify");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -80,11 +76,9 @@ int RunClassify(const std::vector<std::string>& args) {
   if (options.dims == 0 || options.knn == 0 || options.top == 0 || dtw_step == 0) {
     return fail(Status::InvalidArgument("--dims, --knn, --top and --dtw-step must be at least 1"));
   }
-  std::string out_dir = vm["out"].as<std::string>();
-  if (out_dir.empty()) out_dir = std::filesystem::path(archive).parent_path().string();
-  if (out_dir.empty()) out_dir = ".";
-  const std::string prefix = vm["prefix"].as<std::string>();
-  const WordsPaths paths = DefaultWordsPaths(prefix.empty() ? archive : prefix + ".mfs");
+  Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, archive, "classify");
+  if (!output.ok()) return fail(output.status());
+  const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
 
   Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(archive);
   if (!reader.ok()) return fail(reader.status());
@@ -159,11 +153,8 @@ int RunClassify(const std::vector<std::string>& args) {
   result->clips = named.clips;
   result->seconds_distances = seconds;
 
-  std::error_code error;
-  std::filesystem::create_directories(out_dir, error);
-  if (error) return fail(Status::IOError("cannot create " + out_dir + ": " + error.message()));
-  const std::string json_path = (std::filesystem::path(out_dir) / "classify.json").string();
-  const std::string html_path = (std::filesystem::path(out_dir) / "classify.html").string();
+  const std::string& json_path = output->json_path;
+  const std::string& html_path = output->html_path;
   if (Status status = AtomicWriteFile(json_path, ClassificationJson(*result, archive).dump(2) + "\n");
       !status.ok()) {
     return fail(status);

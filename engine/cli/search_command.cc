@@ -121,12 +121,8 @@ int RunSearch(const std::vector<std::string>& args) {
        "query: a BVH (or ASF/AMC) file, embedded with the archive's embedding")
       ("top", po::value<uint32_t>()->default_value(10), "matches to keep")
       ("weights", po::value<std::string>()->default_value(""),
-       "per-joint weights file (as given to `motifmine words`)")
-      ("prefix", po::value<std::string>()->default_value(""),
-       "read PREFIX.mwe, .mwm, .mws (default: ARCHIVE without .mfs)")
-      ("out", po::value<std::string>()->default_value(""),
-       "output folder (default: the archive's): search.json, search.html")
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)");
+       "per-joint weights file (as given to `motifmine words`)");
+  AddWordsReaderOptions(spec, "PREFIX.mwe, .mwm, .mws", "search");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -148,11 +144,9 @@ int RunSearch(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   if (top == 0) return fail(Status::InvalidArgument("--top must be at least 1"));
-  std::string out_dir = vm["out"].as<std::string>();
-  if (out_dir.empty()) out_dir = std::filesystem::path(archive).parent_path().string();
-  if (out_dir.empty()) out_dir = ".";
-  const std::string prefix = vm["prefix"].as<std::string>();
-  const WordsPaths paths = DefaultWordsPaths(prefix.empty() ? archive : prefix + ".mfs");
+  Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, archive, "search");
+  if (!output.ok()) return fail(output.status());
+  const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
 
   Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(archive);
   if (!reader.ok()) return fail(reader.status());
@@ -227,11 +221,8 @@ int RunSearch(const std::vector<std::string>& args) {
   if (!result.ok()) return fail(result.status());
   info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
 
-  std::error_code error;
-  std::filesystem::create_directories(out_dir, error);
-  if (error) return fail(Status::IOError("cannot create " + out_dir + ": " + error.message()));
-  const std::string json_path = (std::filesystem::path(out_dir) / "search.json").string();
-  const std::string html_path = (std::filesystem::path(out_dir) / "search.html").string();
+  const std::string& json_path = output->json_path;
+  const std::string& html_path = output->html_path;
   const nlohmann::json json = SearchJson(*result, frames, info, query_kind, query_file);
   if (Status status = AtomicWriteFile(json_path, json.dump(2) + "\n"); !status.ok()) {
     return fail(status);

@@ -3,10 +3,52 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "engine/lsh/split_mix64.h"
 
 namespace motif {
+
+namespace {
+
+// The sizes every pass uses, from the shape.
+struct Dims {
+  explicit Dims(const EmbeddingNetShape& s)
+      : c(s.input_channels),
+        t1(s.conv1_frames()),
+        t2(s.conv2_frames()),
+        c1(s.conv1_channels),
+        c2(s.conv2_channels),
+        d(s.embedding_dims) {}
+  Eigen::Index c, t1, t2, c1, c2, d;
+};
+
+// The six blocks of a flat parameter vector (the parameters, or a gradient) as Eigen maps.
+template <typename Scalar, bool kConst>
+struct Blocks {
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  using Row = Eigen::Matrix<Scalar, 1, Eigen::Dynamic>;
+  using MatrixMap = Eigen::Map<std::conditional_t<kConst, const Matrix, Matrix>>;
+  using RowMap = Eigen::Map<std::conditional_t<kConst, const Row, Row>>;
+  using Pointer = std::conditional_t<kConst, const Scalar*, Scalar*>;
+
+  Blocks(const EmbeddingNetShape& s, Pointer p)
+      : w1(p + s.conv1_weight_offset(), s.conv1_kernel * s.input_channels, s.conv1_channels),
+        b1(p + s.conv1_bias_offset(), s.conv1_channels),
+        w2(p + s.conv2_weight_offset(), s.conv2_kernel * s.conv1_channels, s.conv2_channels),
+        b2(p + s.conv2_bias_offset(), s.conv2_channels),
+        w3(p + s.linear_weight_offset(), s.flat_size(), s.embedding_dims),
+        b3(p + s.linear_bias_offset(), s.embedding_dims) {}
+
+  MatrixMap w1;
+  RowMap b1;
+  MatrixMap w2;
+  RowMap b2;
+  MatrixMap w3;
+  RowMap b3;
+};
+
+}  // namespace
 
 size_t EmbeddingNetShape::conv1_bias_offset() const {
   return conv1_weight_offset() + static_cast<size_t>(conv1_kernel) * input_channels * conv1_channels;
@@ -97,23 +139,12 @@ template <typename Scalar>
 void EmbeddingNetT<Scalar>::Forward(const Eigen::Ref<const Matrix>& input,
                                     Workspace* workspace) const {
   using MatrixMap = Eigen::Map<const Matrix>;
-  using RowMap = Eigen::Map<const Eigen::Matrix<Scalar, 1, Eigen::Dynamic>>;
   const EmbeddingNetShape& s = shape_;
   const Eigen::Index batch = input.rows();
-  const Eigen::Index c = s.input_channels;
-  const Eigen::Index t1 = s.conv1_frames();
-  const Eigen::Index t2 = s.conv2_frames();
-  const Eigen::Index c1 = s.conv1_channels;
-  const Eigen::Index c2 = s.conv2_channels;
-  const Eigen::Index d = s.embedding_dims;
+  const Dims dims(s);
+  const Eigen::Index c = dims.c, t1 = dims.t1, t2 = dims.t2, c1 = dims.c1, d = dims.d;
   MOTIF_CHECK(input.cols() == static_cast<Eigen::Index>(s.input_size()));
-  const Scalar* p = parameters_.data();
-  const MatrixMap w1(p + s.conv1_weight_offset(), s.conv1_kernel * c, c1);
-  const RowMap b1(p + s.conv1_bias_offset(), c1);
-  const MatrixMap w2(p + s.conv2_weight_offset(), s.conv2_kernel * c1, c2);
-  const RowMap b2(p + s.conv2_bias_offset(), c2);
-  const MatrixMap w3(p + s.linear_weight_offset(), s.flat_size(), d);
-  const RowMap b3(p + s.linear_bias_offset(), d);
+  const Blocks<Scalar, true> weights(s, parameters_.data());
 
   // Standardise and unfold: row (b, t) of conv1's input holds frames t .. t + K1 - 1 of word b.
   Workspace& ws = *workspace;
@@ -129,8 +160,8 @@ void EmbeddingNetT<Scalar>::Forward(const Eigen::Ref<const Matrix>& input,
       }
     }
   }
-  ws.pre1.noalias() = ws.unfolded1 * w1;
-  ws.pre1.rowwise() += b1;
+  ws.pre1.noalias() = ws.unfolded1 * weights.w1;
+  ws.pre1.rowwise() += weights.b1;
 
   // conv2 over the ReLU of conv1, frames s * t .. s * t + K2 - 1 (contiguous rows of pre1).
   const Eigen::Index window2 = s.conv2_kernel * c1;
@@ -144,14 +175,14 @@ void EmbeddingNetT<Scalar>::Forward(const Eigen::Ref<const Matrix>& input,
       }
     }
   }
-  ws.pre2.noalias() = ws.unfolded2 * w2;
-  ws.pre2.rowwise() += b2;
+  ws.pre2.noalias() = ws.unfolded2 * weights.w2;
+  ws.pre2.rowwise() += weights.b2;
 
   // Linear over the flattened ReLU of conv2 (word b's T2 x C2 rows are contiguous).
   const Matrix hidden2 = ws.pre2.cwiseMax(Scalar(0));
   const MatrixMap flat(hidden2.data(), batch, s.flat_size());
-  ws.z.noalias() = flat * w3;
-  ws.z.rowwise() += b3;
+  ws.z.noalias() = flat * weights.w3;
+  ws.z.rowwise() += weights.b3;
   ws.norms = ws.z.rowwise().norm();
   ws.embeddings.resize(batch, d);
   for (Eigen::Index word = 0; word < batch; ++word) {
@@ -168,27 +199,14 @@ template <typename Scalar>
 void EmbeddingNetT<Scalar>::Backward(const Eigen::Ref<const Matrix>& d_embeddings,
                                      Workspace* workspace, Scalar* gradient) const {
   using MatrixMap = Eigen::Map<const Matrix>;
-  using MutableMap = Eigen::Map<Matrix>;
-  using MutableRowMap = Eigen::Map<Eigen::Matrix<Scalar, 1, Eigen::Dynamic>>;
   const EmbeddingNetShape& s = shape_;
   Workspace& ws = *workspace;
   const Eigen::Index batch = ws.z.rows();
-  const Eigen::Index c = s.input_channels;
-  const Eigen::Index t1 = s.conv1_frames();
-  const Eigen::Index t2 = s.conv2_frames();
-  const Eigen::Index c1 = s.conv1_channels;
-  const Eigen::Index c2 = s.conv2_channels;
-  const Eigen::Index d = s.embedding_dims;
+  const Dims dims(s);
+  const Eigen::Index t1 = dims.t1, t2 = dims.t2, c1 = dims.c1, c2 = dims.c2, d = dims.d;
   MOTIF_CHECK(d_embeddings.rows() == batch && d_embeddings.cols() == d);
-  const Scalar* p = parameters_.data();
-  const MatrixMap w2(p + s.conv2_weight_offset(), s.conv2_kernel * c1, c2);
-  const MatrixMap w3(p + s.linear_weight_offset(), s.flat_size(), d);
-  MutableMap g_w1(gradient + s.conv1_weight_offset(), s.conv1_kernel * c, c1);
-  MutableRowMap g_b1(gradient + s.conv1_bias_offset(), c1);
-  MutableMap g_w2(gradient + s.conv2_weight_offset(), s.conv2_kernel * c1, c2);
-  MutableRowMap g_b2(gradient + s.conv2_bias_offset(), c2);
-  MutableMap g_w3(gradient + s.linear_weight_offset(), s.flat_size(), d);
-  MutableRowMap g_b3(gradient + s.linear_bias_offset(), d);
+  const Blocks<Scalar, true> weights(s, parameters_.data());
+  Blocks<Scalar, false> g(s, gradient);
 
   // e = z / |z|: de/dz = (I - e e^T) / |z|.
   ws.d_z.resize(batch, d);
@@ -204,16 +222,16 @@ void EmbeddingNetT<Scalar>::Backward(const Eigen::Ref<const Matrix>& d_embedding
   }
   const Matrix hidden2 = ws.pre2.cwiseMax(Scalar(0));
   const MatrixMap flat(hidden2.data(), batch, s.flat_size());
-  g_w3.noalias() += flat.transpose() * ws.d_z;
-  g_b3 += ws.d_z.colwise().sum();
-  ws.d_flat.noalias() = ws.d_z * w3.transpose();  // batch x T2 C2, i.e. (batch T2) x C2
+  g.w3.noalias() += flat.transpose() * ws.d_z;
+  g.b3 += ws.d_z.colwise().sum();
+  ws.d_flat.noalias() = ws.d_z * weights.w3.transpose();  // batch x T2 C2, i.e. (batch T2) x C2
 
   // Through conv2's ReLU and product.
   ws.d_pre2 = MatrixMap(ws.d_flat.data(), batch * t2, c2);
   ws.d_pre2.array() *= (ws.pre2.array() > Scalar(0)).template cast<Scalar>();
-  g_w2.noalias() += ws.unfolded2.transpose() * ws.d_pre2;
-  g_b2 += ws.d_pre2.colwise().sum();
-  ws.d_unfolded2.noalias() = ws.d_pre2 * w2.transpose();
+  g.w2.noalias() += ws.unfolded2.transpose() * ws.d_pre2;
+  g.b2 += ws.d_pre2.colwise().sum();
+  ws.d_unfolded2.noalias() = ws.d_pre2 * weights.w2.transpose();
 
   // Fold the unfolded gradient back onto conv1's output frames, then through its ReLU.
   const Eigen::Index window2 = s.conv2_kernel * c1;
@@ -226,8 +244,8 @@ void EmbeddingNetT<Scalar>::Backward(const Eigen::Ref<const Matrix>& d_embedding
     }
   }
   ws.d_hidden1.array() *= (ws.pre1.array() > Scalar(0)).template cast<Scalar>();
-  g_w1.noalias() += ws.unfolded1.transpose() * ws.d_hidden1;
-  g_b1 += ws.d_hidden1.colwise().sum();
+  g.w1.noalias() += ws.unfolded1.transpose() * ws.d_hidden1;
+  g.b1 += ws.d_hidden1.colwise().sum();
 }
 
 template class EmbeddingNetT<float>;

@@ -2,7 +2,6 @@
 
 #include <bit>
 #include <cstring>
-#include <filesystem>
 #include <unordered_set>
 
 #include "common/file_util.h"
@@ -295,13 +294,7 @@ Result<TensorFile> DecodeTensorFile(const std::string& bytes, const std::string&
 }
 
 Result<TensorFile> ReadTensorFile(const std::string& path, const std::string& expected_kind) {
-  std::error_code error;
-  const std::filesystem::file_status file_status = std::filesystem::status(path, error);
-  if (!std::filesystem::exists(file_status)) return Status::NotFound(path + ": no such file");
-  if (!std::filesystem::is_regular_file(file_status)) {
-    return Status::IOError(path + ": not a regular file");
-  }
-  MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadFileToString(path));
+  MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadRegularFile(path));
   return DecodeTensorFile(bytes, path, expected_kind);
 }
 

@@ -36,9 +36,7 @@ std::vector<std::vector<WordNeighbour>> BruteForce(const WordPool& pool, uint32_
 
 TEST(DtwNeighbours, ExhaustiveSearchIsTheBruteForce) {
   const std::vector<ClipWords> clips = ClipWordsOf(MakeSynthClips(5000, 7));
-  WordPoolOptions pool_options;
-  pool_options.warp_copies = 0;
-  const WordPool pool = PoolOf(clips, pool_options);
+  const WordPool pool = WordsOnlyPool(clips);
   DtwNeighbourOptions options;
   options.lists = 6;
   options.probes = 6;
@@ -54,9 +52,7 @@ TEST(DtwNeighbours, ExhaustiveSearchIsTheBruteForce) {
 
 TEST(DtwNeighbours, DefaultSearchFindsMostTrueNeighboursForAnyThreadCount) {
   const std::vector<ClipWords> clips = ClipWordsOf(MakeSynthClips(20000, 9));
-  WordPoolOptions pool_options;
-  pool_options.warp_copies = 0;
-  const WordPool pool = PoolOf(clips, pool_options);
+  const WordPool pool = WordsOnlyPool(clips);
   DtwNeighbourOptions options;
   options.threads = 1;
   auto one = FindDtwNeighbours(pool, options);

@@ -23,4 +23,11 @@ inline WordPool PoolOf(const std::vector<ClipWords>& clips, const WordPoolOption
   return std::move(*pool);
 }
 
+// The words alone, no warped copies (for the neighbour search).
+inline WordPool WordsOnlyPool(const std::vector<ClipWords>& clips) {
+  WordPoolOptions options;
+  options.warp_copies = 0;
+  return PoolOf(clips, options);
+}
+
 }  // namespace motif::testing

@@ -73,20 +73,7 @@ std::string AnnotatedHexdump(const std::string& bytes) {
 TEST(TensorFileGolden, TheSpecsHexdumpIsTheEncodedExample) {
   auto bytes = EncodeTensorFile(ExampleFile());
   ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
-  const std::string dump = AnnotatedHexdump(*bytes);
-  const char* update = std::getenv("MOTIF_UPDATE_GOLDEN");
-  if (update != nullptr && std::string(update) == "1") std::printf("%s", dump.c_str());
-  auto spec = ReadFileToString(kSpec);
-  ASSERT_TRUE(spec.ok()) << spec.status().ToString();
-  const size_t begin = spec->find(kGoldenBegin);
-  const size_t end = spec->find(kGoldenEnd);
-  ASSERT_NE(begin, std::string::npos);
-  ASSERT_NE(end, std::string::npos);
-  const size_t body = begin + sizeof(kGoldenBegin) - 1 + 1;
-  EXPECT_EQ(spec->substr(body, end - body), dump)
-      << "docs/formats/tensor_file.md is out of date; run with MOTIF_UPDATE_GOLDEN=1";
-  std::string error;
-  EXPECT_EQ(BytesFromSpecHexdump(kSpec, &error), *bytes) << error;
+  ExpectSpecHexdump(kSpec, AnnotatedHexdump(*bytes), *bytes);
 }
 
 TEST(TensorFile, RoundTripsEveryTypeAndShape) {
@@ -168,14 +155,9 @@ class TensorFileCorruptionTest : public ::testing::Test {
 };
 
 TEST_F(TensorFileCorruptionTest, RejectsEveryFlippedByte) {
-  for (size_t byte_idx = 0; byte_idx < bytes_.size(); ++byte_idx) {
-    for (uint8_t mask : {0x01, 0x10, 0x80}) {
-      std::string damaged = bytes_;
-      damaged[byte_idx] = static_cast<char>(damaged[byte_idx] ^ mask);
-      ExpectCorruption(damaged, "byte " + std::to_string(byte_idx) + " ^ " + std::to_string(mask));
-      if (HasFailure()) return;
-    }
-  }
+  ForEachFlippedByte(bytes_, [&](const std::string& damaged, const std::string& what) {
+    ExpectCorruption(damaged, what);
+  });
 }
 
 TEST_F(TensorFileCorruptionTest, RejectsTruncationAppendedBytesAndAnotherMajorVersion) {
