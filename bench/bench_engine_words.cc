@@ -23,8 +23,6 @@
 // Left out: writing the synthetic archive (outside the timed loop), the disk (the archive is
 // read from the page cache where memory allows).
 // Run: scripts/bench_words.sh [quick|full] (the commands in docs/benchmarks.md).
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -51,13 +49,6 @@ uint64_t MaxFrames() {
 std::string BenchDir() {
   const char* text = std::getenv("MOTIF_BENCH_DIR");
   return (text && *text ? std::string(text) : std::string("/tmp/motifmine-bench")) + "/words";
-}
-
-double CpuSeconds() {
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
-         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
 // The archive of `frames` frames, written once (as `motifmine synth --motifs 20 --seed 7` with
@@ -108,9 +99,9 @@ void BM_WordsBuild(benchmark::State& state) {
     RemoveWordsFiles(paths);
     bench::ResetPeakRss();
     baseline = bench::PeakRssBytes();
-    const double cpu_start = CpuSeconds();
+    const double cpu_start = bench::ProcessCpuSeconds();
     report = BuildWords(*archive, paths, options);
-    cpu = CpuSeconds() - cpu_start;
+    cpu = bench::ProcessCpuSeconds() - cpu_start;
     peak = bench::PeakRssBytes();
     if (!report.ok()) {
       state.SkipWithError(report.status().ToString().c_str());
