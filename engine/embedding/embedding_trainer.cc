@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <unordered_map>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -377,12 +378,16 @@ TripletAccuracy EmbeddingTrainer::HeldOutAccuracy(const EmbeddingNet& trained) c
   accuracy.triplets = triplets.size();
   if (triplets.empty()) return accuracy;
   // Raw: the standardised inputs (the trained network's standardisation, which is the initial
-  // one: it is fixed before training).
+  // one: it is fixed before training), of the words the triplets use only.
   const uint32_t channels = pool.input_channels();
   const size_t input_size = static_cast<size_t>(pool.word_frames()) * channels;
-  std::vector<float> raw(pool.size() * input_size);
-  for (uint64_t word = 0; word < pool.size(); ++word) {
-    float* out = &raw[word * input_size];
+  std::unordered_map<uint32_t, size_t> slot;
+  for (const Triplet& t : triplets) {
+    for (uint32_t word : {t.anchor, t.positive, t.negative}) slot.emplace(word, slot.size());
+  }
+  std::vector<float> raw(slot.size() * input_size);
+  for (const auto& [word, index] : slot) {
+    float* out = &raw[index * input_size];
     pool.EncodeInput(word, 0, out);
     for (size_t value = 0; value < input_size; ++value) {
       const size_t channel = value % channels;
@@ -390,9 +395,11 @@ TripletAccuracy EmbeddingTrainer::HeldOutAccuracy(const EmbeddingNet& trained) c
     }
   }
   auto raw_distance = [&](uint32_t a, uint32_t b) {
+    const float* x = &raw[slot.at(a) * input_size];
+    const float* y = &raw[slot.at(b) * input_size];
     double sum = 0;
     for (size_t value = 0; value < input_size; ++value) {
-      const double delta = raw[a * input_size + value] - raw[b * input_size + value];
+      const double delta = x[value] - y[value];
       sum += delta * delta;
     }
     return sum;
