@@ -84,13 +84,6 @@ double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-double CpuSeconds() {
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
 // Resident set now (VmRSS), bytes, after returning freed heap memory to the system.
 double RssBytes() {
   malloc_trim(0);
@@ -208,12 +201,12 @@ Result<PerColumn> ExactSecondsPerColumn(const LoadedArchive& archive, int thread
   const ExactSearch exact(*archive.features, archive.rules, options);
   std::vector<std::vector<Neighbour>> columns;
   SearchStats stats;
-  const double cpu_start = CpuSeconds();
+  const double cpu_start = bench::ProcessCpuSeconds();
   const auto start = std::chrono::steady_clock::now();
   MOTIF_RETURN_IF_ERROR(exact.SearchColumns((frames - count) / 2, count, &columns, &stats));
   PerColumn per_column;
   per_column.wall = Seconds(start) / static_cast<double>(count);
-  per_column.cpu = (CpuSeconds() - cpu_start) / static_cast<double>(count);
+  per_column.cpu = (bench::ProcessCpuSeconds() - cpu_start) / static_cast<double>(count);
   return per_column;
 }
 
@@ -285,11 +278,11 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
   options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
     if (stage != "trellis") return;
     if (search_cpu_start == 0) {
-      search_cpu_start = CpuSeconds();
+      search_cpu_start = bench::ProcessCpuSeconds();
       search_wall_start = std::chrono::steady_clock::now();
     }
     if (done == total) {
-      search_cpu = CpuSeconds() - search_cpu_start;
+      search_cpu = bench::ProcessCpuSeconds() - search_cpu_start;
       search_wall = Seconds(search_wall_start);
     }
   };
@@ -302,11 +295,11 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
     RemoveTrellis(trellis);
     baseline = RssBytes();
     bench::ResetPeakRss();
-    const double cpu_start = CpuSeconds();
+    const double cpu_start = bench::ProcessCpuSeconds();
     const auto start = std::chrono::steady_clock::now();
     report = BuildTrellis(*archive, trellis, options);
     seconds = Seconds(start);
-    cpu_seconds = CpuSeconds() - cpu_start;
+    cpu_seconds = bench::ProcessCpuSeconds() - cpu_start;
     peak = bench::PeakRssBytes();
     if (!report.ok()) {
       state.SkipWithError(report.status().ToString().c_str());

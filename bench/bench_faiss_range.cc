@@ -96,13 +96,6 @@ double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-double CpuSeconds() {
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
 // OpenMP threads for FAISS, and the BLAS's own threads if the BLAS loaded is OpenBLAS (found by
 // name at run time, so the benchmark links against any libblas.so.3).
 void SetFaissThreads(int threads) {
@@ -267,12 +260,12 @@ void BM_FaissRange(benchmark::State& state, std::string data) {
     embed_seconds = built.embed_seconds;
     index_seconds = built.index_seconds;
     stats = FaissBlockStats();
-    const double cpu_start = CpuSeconds();
+    const double cpu_start = bench::ProcessCpuSeconds();
     const auto start = std::chrono::steady_clock::now();
     FaissColumns(*built.index, features, archive.rules, threads, first, count, &faiss_columns,
                  &stats);
     column_seconds = Seconds(start);
-    column_cpu = CpuSeconds() - cpu_start;
+    column_cpu = bench::ProcessCpuSeconds() - cpu_start;
     peak = bench::PeakRssBytes();
     state.SetIterationTime(embed_seconds + index_seconds +
                            column_seconds / static_cast<double>(count) * frames);
@@ -284,11 +277,11 @@ void BM_FaissRange(benchmark::State& state, std::string data) {
   const ExactSearch exact(features, archive.rules, exact_options);
   std::vector<std::vector<Neighbour>> exact_columns;
   SearchStats exact_stats;
-  const double exact_cpu_start = CpuSeconds();
+  const double exact_cpu_start = bench::ProcessCpuSeconds();
   const auto exact_start = std::chrono::steady_clock::now();
   Status status = exact.SearchColumns(first, count, &exact_columns, &exact_stats);
   const double exact_seconds = Seconds(exact_start);
-  const double exact_cpu = CpuSeconds() - exact_cpu_start;
+  const double exact_cpu = bench::ProcessCpuSeconds() - exact_cpu_start;
   if (!status.ok()) {
     state.SkipWithError(status.ToString().c_str());
     return;
@@ -368,14 +361,14 @@ void BM_FaissRandom(benchmark::State& state) {
   double cpu = 0;
   for (auto _ : state) {
     results = 0;
-    const double cpu_start = CpuSeconds();
+    const double cpu_start = bench::ProcessCpuSeconds();
     for (int64_t first = 0; first < vectors; first += kBatch) {
       const int64_t batch = std::min(kBatch, vectors - first);
       faiss::RangeSearchResult result(batch);
       index.range_search(batch, &data[static_cast<size_t>(first) * kDims], radius, &result);
       results += result.lims[batch];
     }
-    cpu = CpuSeconds() - cpu_start;
+    cpu = bench::ProcessCpuSeconds() - cpu_start;
   }
   state.SetItemsProcessed(state.iterations() * vectors);
   state.counters["squared_radius"] = radius;

@@ -1,5 +1,5 @@
-// Helpers shared by the benchmarks: peak resident memory as a counter, and where the real CMU
-// takes are. Header-only: each benchmark is its own small program.
+// Helpers shared by the benchmarks: peak resident memory as a counter, CPU time, and where the
+// real CMU takes are. Header-only: each benchmark is its own small program.
 #pragma once
 
 #include <sys/resource.h>
@@ -34,6 +34,15 @@ inline double PeakRssBytes() {
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) * 1024.0;
+}
+
+// CPU seconds of this process so far, all threads, user + system (getrusage): on a shared
+// machine a fairer measure of work than wall time.
+inline double ProcessCpuSeconds() {
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
 // The CMU takes: $MOTIF_MOCAP_DIR, else ../shared/data/mocap beside the source tree; "" if absent.

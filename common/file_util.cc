@@ -24,6 +24,16 @@ Result<std::string> ReadFileToString(const std::string& path) {
   return buffer.str();
 }
 
+Result<std::string> ReadRegularFile(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) return Status::NotFound(path + ": no such file");
+  if (!std::filesystem::is_regular_file(status)) {
+    return Status::IOError(path + ": not a regular file");
+  }
+  return ReadFileToString(path);
+}
+
 std::string TemporaryPathFor(const std::string& path) {
   static std::atomic<uint64_t> counter{0};
   return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);

@@ -13,6 +13,9 @@ namespace motif {
 
 // Reads the whole file. NotFound if it does not exist, IOError otherwise.
 Result<std::string> ReadFileToString(const std::string& path);
+// The same, for a file that must be a regular file: NotFound "<path>: no such file", IOError
+// "<path>: not a regular file" (a folder, a device), or ReadFileToString's errors.
+Result<std::string> ReadRegularFile(const std::string& path);
 
 // A temporary path beside `path`, unique to this process and call: "<path>.tmp-<pid>-<n>".
 std::string TemporaryPathFor(const std::string& path);

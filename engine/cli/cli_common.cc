@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -156,6 +157,33 @@ Status ParseGroups(const std::string& text, uint32_t* groups) {
   }
   *groups = static_cast<uint32_t>(value);
   return Status::Ok();
+}
+
+void AddWordsReaderOptions(CommandSpec& spec, const std::string& files_read,
+                           const std::string& name) {
+  spec.options.add_options()
+      ("prefix", po::value<std::string>()->default_value(""),
+       ("read " + files_read + " (default: ARCHIVE without .mfs)").c_str())
+      ("out", po::value<std::string>()->default_value(""),
+       ("output folder (default: the archive's): " + name + ".json, " + name + ".html").c_str())
+      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)");
+}
+
+Result<WordsReaderOutput> WordsReaderOutputFrom(const po::variables_map& vm,
+                                                const std::string& archive,
+                                                const std::string& name) {
+  WordsReaderOutput output;
+  const std::string prefix = vm["prefix"].as<std::string>();
+  output.prefix_archive = prefix.empty() ? archive : prefix + ".mfs";
+  std::string out_dir = vm["out"].as<std::string>();
+  if (out_dir.empty()) out_dir = std::filesystem::path(archive).parent_path().string();
+  if (out_dir.empty()) out_dir = ".";
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  if (error) return Status::IOError("cannot create " + out_dir + ": " + error.message());
+  output.json_path = (std::filesystem::path(out_dir) / (name + ".json")).string();
+  output.html_path = (std::filesystem::path(out_dir) / (name + ".html")).string();
+  return output;
 }
 
 }  // namespace motif::cli

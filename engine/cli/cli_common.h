@@ -63,6 +63,20 @@ Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds
 // --groups: "auto" (*groups = 0) or a positive number. InvalidArgument otherwise.
 Status ParseGroups(const std::string& text, uint32_t* groups);
 
+// What `search` and `classify` share: --prefix (where `motifmine words` wrote its files), --out
+// (the folder for DIR/<name>.json and DIR/<name>.html, default the archive's) and --threads.
+void AddWordsReaderOptions(CommandSpec& spec, const std::string& files_read,
+                           const std::string& name);
+struct WordsReaderOutput {
+  std::string prefix_archive;  // the archive path whose words files to read (PREFIX.mfs or ARCHIVE)
+  std::string json_path;       // DIR/<name>.json
+  std::string html_path;       // DIR/<name>.html
+};
+// Reads those options back and creates DIR. IOError if DIR cannot be created.
+Result<WordsReaderOutput> WordsReaderOutputFrom(const boost::program_options::variables_map& vm,
+                                                const std::string& archive,
+                                                const std::string& name);
+
 int RunImport(const std::vector<std::string>& args);
 int RunInfo(const std::vector<std::string>& args);
 int RunVerify(const std::vector<std::string>& args);
@@ -75,5 +89,8 @@ int RunCluster(const std::vector<std::string>& args);
 int RunExportMotif(const std::vector<std::string>& args);
 int RunReport(const std::vector<std::string>& args);
 int RunMine(const std::vector<std::string>& args);
+int RunWords(const std::vector<std::string>& args);
+int RunClassify(const std::vector<std::string>& args);
+int RunSearch(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

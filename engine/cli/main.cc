@@ -29,6 +29,9 @@ const Command kCommands[] = {
     {"cluster", motif::cli::RunCluster, "cluster the grown paths into motifs (normalized cut): motifs.json"},
     {"report", motif::cli::RunReport, "write the HTML report of motifs.json: overview, timeline, stick figures"},
     {"export-motif", motif::cli::RunExportMotif, "write every instance of one motif as a BVH file"},
+    {"words", motif::cli::RunWords, "motion words: train their embedding, cluster motifs, write every take's signature"},
+    {"search", motif::cli::RunSearch, "find the motions most like a clip range or a BVH file (signatures, EMD)"},
+    {"classify", motif::cli::RunClassify, "classify the takes by their signatures: MDS + k-means, kNN with labels"},
 };
 
 void PrintUsage(FILE* out) {

@@ -9,50 +9,13 @@
 #include <unordered_set>
 
 #include "common/file_util.h"
-#include "engine/report/forward_kinematics.h"
+#include "engine/report/keyframe_figures.h"
 #include "engine/report/motifs_archive_check.h"
 #include "formats/motion/quaternion_math.h"
 
 namespace motif {
 
 namespace {
-
-// Frames read from the archive at a time: instances are visited in archive order, so one chunk
-// usually serves several of them, and a column block is decoded about once.
-constexpr uint64_t kChunkFrames = 4096;
-
-std::string Printf(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
-
-std::string Commas(uint64_t value) {
-  std::string digits = std::to_string(value);
-  std::string text;
-  for (size_t idx = 0; idx < digits.size(); ++idx) {
-    if (idx > 0 && (digits.size() - idx) % 3 == 0) text += ',';
-    text += digits[idx];
-  }
-  return text;
-}
-
-std::string Seconds(uint64_t frames, double fps) {
-  return Printf("%.2f s", fps > 0 ? static_cast<double>(frames) / fps : 0.0);
-}
-
-std::string Bytes(uint64_t bytes) {
-  const double value = static_cast<double>(bytes);
-  if (value >= 1024.0 * 1024 * 1024) return Printf("%.2f GiB", value / (1024.0 * 1024 * 1024));
-  if (value >= 1024.0 * 1024) return Printf("%.1f MiB", value / (1024.0 * 1024));
-  return Printf("%.0f KiB", value / 1024.0);
-}
-
-// A fixed colour per motif id: hues a golden angle apart, so neighbouring ids never look alike.
-std::string MotifColour(uint32_t motif_id) {
-  const int hue = static_cast<int>(std::fmod(motif_id * 137.508, 360.0));
-  return "hsl(" + std::to_string(hue) + ",70%," + (motif_id % 2 ? "36%)" : "44%)");
-}
 
 // Global [start, end) of an instance.
 struct GlobalRange {
@@ -84,109 +47,7 @@ struct FigureJob {
   uint64_t end = 0;
 };
 
-class FigureRenderer {
- public:
-  FigureRenderer(const FrameFileReader& reader, const ReportOptions& options)
-      : reader_(reader),
-        options_(options),
-        layout_(MakeStickFigureLayout(reader.skeleton())),
-        stride_(reader.layout().stride()) {
-    projection_.view = options.view;
-    projection_.pixels_per_unit =
-        FigureScaleFor(reader.skeleton(), projection_.height_px, projection_.margin_px);
-  }
 
-  const StickFigureLayout& layout() const { return layout_; }
-  const FigureProjection& projection() const { return projection_; }
-
-  // The keyframes of one instance, projected. Jobs must come in increasing global start order
-  // for the chunk cache to work well (any order is correct).
-  Result<std::vector<std::vector<FigurePoint>>> Project(const FigureJob& job) {
-    const uint32_t keyframes = std::max<uint32_t>(1, options_.keyframes);
-    const uint64_t global_start = job.clip->first_frame + job.start;
-    const uint64_t global_end = job.clip->first_frame + job.end;
-    MOTIF_RETURN_IF_ERROR(EnsureCached(global_start, global_end));
-    std::vector<float> rows(keyframes * stride_);
-    const uint64_t length = job.end - job.start;
-    for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-      const uint64_t offset =
-          keyframes == 1 ? 0
-                         : static_cast<uint64_t>(std::llround(static_cast<double>(key_idx) *
-                                                              static_cast<double>(length - 1) /
-                                                              (keyframes - 1)));
-      const float* row = &cache_[(global_start + offset - cache_first_) * stride_];
-      std::copy(row, row + stride_, rows.begin() + key_idx * stride_);
-    }
-    // The keyframes are not consecutive, so the root's integrated horizontal path is
-    // meaningless; each figure is centred on its own root below, which cancels it. Height,
-    // heading and joint rotations come straight from each row.
-    const Take take = ClipFramesToTake(reader_.skeleton(), *job.clip, rows.data(), keyframes);
-    std::vector<std::vector<Eigen::Vector3d>> positions(keyframes);
-    double floor = std::numeric_limits<double>::max();
-    for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-      positions[key_idx] = TakeFramePositions(take, key_idx);
-      for (const Eigen::Vector3d& point : positions[key_idx]) floor = std::min(floor, point.y());
-    }
-    // The first keyframe's heading for all of them: instances line up, and a turn within the
-    // motif still shows.
-    FigureProjection projection = projection_;
-    projection.heading_rad = HeadingOf(take.rotation(0, 0));
-    std::vector<std::vector<FigurePoint>> projected(keyframes);
-    for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-      const Eigen::Vector3d& root = take.root_positions[key_idx];
-      projection.origin = Eigen::Vector3d(root.x(), floor, root.z());
-      projected[key_idx] = ProjectFigure(layout_, positions[key_idx], projection);
-    }
-    return projected;
-  }
-
- private:
-  Status EnsureCached(uint64_t global_start, uint64_t global_end) {
-    if (global_start >= cache_first_ && global_end <= cache_first_ + cache_count_) {
-      return Status::Ok();
-    }
-    const uint64_t count = std::min(std::max(global_end - global_start, kChunkFrames),
-                                    reader_.frame_count() - global_start);
-    MOTIF_RETURN_IF_ERROR(reader_.ReadFrames(global_start, count, &cache_));
-    cache_first_ = global_start;
-    cache_count_ = count;
-    return Status::Ok();
-  }
-
-  const FrameFileReader& reader_;
-  const ReportOptions& options_;
-  StickFigureLayout layout_;
-  FigureProjection projection_;
-  size_t stride_ = 0;
-  std::vector<float> cache_;
-  uint64_t cache_first_ = 0;
-  uint64_t cache_count_ = 0;
-};
-
-constexpr char kStyle[] = R"css(
-body{font:14px/1.45 system-ui,-apple-system,"Segoe UI",sans-serif;margin:20px auto;max-width:1400px;padding:0 16px;color:#222}
-h1{font-size:22px;margin:0 0 4px}h2{font-size:18px;border-bottom:1px solid #ccc;margin-top:28px}
-nav a{margin-right:14px}
-table.kv td{padding:2px 16px 2px 0;vertical-align:top}table.kv td:first-child{color:#555;white-space:nowrap}
-table.t{border-collapse:collapse}table.t td{padding:1px 14px 1px 0}table.t td:nth-child(2){text-align:right}
-.note{color:#666;font-size:12px}
-.tlrow{display:flex;align-items:center;margin:3px 0}
-.tlrow .n{width:170px;flex:none;overflow:hidden;text-overflow:ellipsis;white-space:nowrap;font-size:12px}
-.tlrow .w{flex:1;min-width:0}
-.tl{display:block;height:16px;background:#e6e6e6}
-.tl rect{fill:currentColor;stroke:currentColor;stroke-width:1px;vector-effect:non-scaling-stroke;cursor:pointer}
-.tl rect:hover{opacity:.6}
-.motif{border-top:1px solid #ddd;padding:8px 0 4px;margin-top:10px}
-.motif h3{margin:0;font-size:16px}
-.sw{display:inline-block;width:12px;height:12px;margin-right:7px;border-radius:2px;vertical-align:-1px;background:currentColor}
-.meta{margin:2px 0 8px;color:#444;font-size:13px}
-.insts{display:flex;flex-wrap:wrap;gap:8px 28px;min-height:138px}
-.strip .lbl{font-size:11px;color:#555;white-space:nowrap}
-.figs{display:flex;min-height:120px}
-.fig{flex:none;background:#f6f6f6;margin-right:2px}
-.fig path{fill:none;stroke:currentColor;stroke-width:1.7;stroke-linecap:round;stroke-linejoin:round}
-button{font:inherit;margin:6px 0}
-)css";
 
 // A click on a timeline instance goes to its motif. The lazy motifs' figures are drawn from the
 // JSON block (format: EncodeFigurePoints) when they come near the viewport; the SVG it writes is
@@ -223,17 +84,17 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
     out += "<tr><td>" + key + "</td><td>" + value_html + "</td></tr>\n";
   };
   row("archive", "<code>" + HtmlEscape(archive) + "</code>");
-  row("frames", Commas(reader.frame_count()) + " (" +
-                    Printf("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) +
-                    " at " + Printf("%g fps", fps) + "), " + Commas(reader.clips().size()) +
+  row("frames", HtmlCommas(reader.frame_count()) + " (" +
+                    HtmlNumber("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) +
+                    " at " + HtmlNumber("%g fps", fps) + "), " + HtmlCommas(reader.clips().size()) +
                     " clips, skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
                     std::to_string(reader.skeleton().joint_count()) + " joints)");
   const MotifsJsonParams& params = document.params;
   row("parameters",
-      "&epsilon; " + Printf("%.4g", params.eps) + ", K<sub>max</sub> " +
+      "&epsilon; " + HtmlNumber("%.4g", params.eps) + ", K<sub>max</sub> " +
           std::to_string(params.kmax) + ", branching B " + std::to_string(params.branch) +
-          ", minimum length &lambda; " + Commas(params.min_length) + " frames (" +
-          Seconds(params.min_length, fps) + "), groups " +
+          ", minimum length &lambda; " + HtmlCommas(params.min_length) + " frames (" +
+          HtmlSeconds(params.min_length, fps) + "), groups " +
           (params.groups ? std::to_string(params.groups) : std::string("auto")) + ", seed " +
           std::to_string(params.seed) +
           (info.parameters_text.empty()
@@ -244,18 +105,18 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
     double total = 0;
     for (const ReportStageTiming& timing : info.timings) {
       table += "<tr><td>" + HtmlEscape(timing.stage) + "</td><td>" +
-               Printf("%.2f s", timing.seconds) + "</td></tr>";
+               HtmlNumber("%.2f s", timing.seconds) + "</td></tr>";
       total += timing.seconds;
     }
-    table += "<tr><td><b>total</b></td><td><b>" + Printf("%.2f s", total) + "</b></td></tr>";
+    table += "<tr><td><b>total</b></td><td><b>" + HtmlNumber("%.2f s", total) + "</b></td></tr>";
     row("timings", table + "</table>");
   }
-  if (info.peak_memory_bytes > 0) row("peak memory", Bytes(info.peak_memory_bytes));
-  row("motifs", Commas(document.motifs.size()) + " motifs, " + Commas(instance_count) +
+  if (info.peak_memory_bytes > 0) row("peak memory", HtmlBytes(info.peak_memory_bytes));
+  row("motifs", HtmlCommas(document.motifs.size()) + " motifs, " + HtmlCommas(instance_count) +
                     " instances");
   row("coverage",
-      Commas(covered_frames) + " frames in some instance (" +
-          Printf("%.1f%%", reader.frame_count()
+      HtmlCommas(covered_frames) + " frames in some instance (" +
+          HtmlNumber("%.1f%%", reader.frame_count()
                                ? 100.0 * static_cast<double>(covered_frames) / reader.frame_count()
                                : 0.0) +
           " of the archive)");
@@ -264,12 +125,12 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
     row("planted motifs",
         (info.truth_path.empty() ? std::string() : "<code>" + HtmlEscape(info.truth_path) +
                                                         "</code>: ") +
-            std::to_string(score.planted_motifs) + " motifs, " + Commas(score.planted) +
-            " instances; recall " + Printf("%.3f", score.recall) + " (" +
-            Commas(score.planted_hit) + " hit), precision " + Printf("%.3f", score.precision) +
-            " (" + Commas(score.found_hitting) + " of " + Commas(score.found) +
+            std::to_string(score.planted_motifs) + " motifs, " + HtmlCommas(score.planted) +
+            " instances; recall " + HtmlNumber("%.3f", score.recall) + " (" +
+            HtmlCommas(score.planted_hit) + " hit), precision " + HtmlNumber("%.3f", score.precision) +
+            " (" + HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
             " found instances), adjusted Rand index " +
-            Printf("%.3f", score.adjusted_rand_index));
+            HtmlNumber("%.3f", score.adjusted_rand_index));
   }
   row("figures", ViewName(options.view) + " view, heading removed; " +
                      std::to_string(options.keyframes) +
@@ -315,8 +176,8 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
     const double width_percent =
         std::max(2.0, 100.0 * static_cast<double>(clip.frame_count) / longest);
     out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + " (" +
-           Commas(clip.frame_count) + " frames)\">" + name + "</span><span class=\"w\"><svg " +
-           "class=\"tl\" style=\"width:" + Printf("%.1f", width_percent) +
+           HtmlCommas(clip.frame_count) + " frames)\">" + name + "</span><span class=\"w\"><svg " +
+           "class=\"tl\" style=\"width:" + HtmlNumber("%.1f", width_percent) +
            "%\" viewBox=\"0 0 " + std::to_string(clip.frame_count) +
            " 1\" preserveAspectRatio=\"none\">";
     for (const Mark& mark : clip_marks) {
@@ -326,12 +187,12 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
       out += "<rect class=\"c" + id + "\" x=\"" + std::to_string(mark.start) + "\" width=\"" +
              std::to_string(mark.end - mark.start) + "\" height=\"1\"><title>motif " + id +
              ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) +
-             " (" + Seconds(mark.end - mark.start, fps) + ")</title></rect>";
+             " (" + HtmlSeconds(mark.end - mark.start, fps) + ")</title></rect>";
     }
     out += "</svg></span></div>\n";
   }
   if (!empty_clips.empty()) {
-    out += "<details><summary>" + Commas(empty_clips.size()) +
+    out += "<details><summary>" + HtmlCommas(empty_clips.size()) +
            " clips without instances</summary><p class=\"note\">";
     for (size_t idx = 0; idx < empty_clips.size(); ++idx) {
       if (idx > 0) out += ", ";
@@ -343,22 +204,6 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
 }
 
 }  // namespace
-
-std::string HtmlEscape(const std::string& text) {
-  std::string escaped;
-  escaped.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&#39;"; break;
-      default: escaped += c;
-    }
-  }
-  return escaped;
-}
 
 Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFileReader& reader,
                                    const ReportInfo& info, const ReportOptions& options) {
@@ -403,7 +248,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     return a_start != b_start ? a_start < b_start
                               : std::tie(a.motif_idx, a.slot) < std::tie(b.motif_idx, b.slot);
   });
-  FigureRenderer renderer(reader, options);
+  KeyframeFigures renderer(reader, options.view, options.keyframes);
   const FigureProjection& projection = renderer.projection();
   std::vector<std::vector<std::string>> strips(document.motifs.size());
   for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
@@ -411,7 +256,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
   }
   for (const FigureJob& job : jobs) {
     MOTIF_ASSIGN_OR_RETURN(std::vector<std::vector<FigurePoint>> keyframes,
-                           renderer.Project(job));
+                           renderer.Project(*job.clip, job.start, job.end));
     std::string& strip = strips[job.motif_idx][job.slot];
     const bool eager = job.motif_idx < options.eager_motifs;
     for (const std::vector<FigurePoint>& points : keyframes) {
@@ -424,13 +269,12 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
   const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
   std::string html;
   html.reserve(1 << 20);
-  html += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
-          "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">\n"
-          "<title>motifmine report: " + HtmlEscape(archive) + "</title>\n<style>" + kStyle;
+  std::string motif_css;
   for (const MotifsJsonMotif& motif : document.motifs) {
-    html += ".c" + std::to_string(motif.id) + "{color:" + MotifColour(motif.id) + "}\n";
+    motif_css += ".c" + std::to_string(motif.id) + "{color:" + HtmlColour(motif.id) + "}\n";
   }
-  html += "</style></head><body>\n<h1>motifmine report</h1>\n<nav><a href=\"#overview\">"
+  html += HtmlPageStart("motifmine report: " + archive, motif_css);
+  html += "<h1>motifmine report</h1>\n<nav><a href=\"#overview\">"
           "overview</a><a href=\"#timeline\">timeline</a><a href=\"#motifs\">motifs</a></nav>\n";
   AppendOverview(document, reader, info, options, instance_count, covered_frames, &html);
   AppendTimeline(document, reader, &html);
@@ -463,19 +307,19 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     const uint64_t mean = count ? (total_frames + count / 2) / count : 0;
     html += "<section class=\"motif\" id=\"m" + id + "\"><h3><span class=\"sw c" + id +
             "\"></span>motif " + id + "</h3><p class=\"meta\">" +
-            Commas(count) + (count == 1 ? " instance" : " instances") + " &middot; " +
-            Commas(mean) + " frames (" + Seconds(mean, fps) + ") on average";
+            HtmlCommas(count) + (count == 1 ? " instance" : " instances") + " &middot; " +
+            HtmlCommas(mean) + " frames (" + HtmlSeconds(mean, fps) + ") on average";
     if (count > 1 && shortest != longest) {
-      html += ", " + Commas(shortest) + "\u2013" + Commas(longest);
+      html += ", " + HtmlCommas(shortest) + "\u2013" + HtmlCommas(longest);
     }
-    html += " &middot; " + Commas(clip_names.size()) +
+    html += " &middot; " + HtmlCommas(clip_names.size()) +
             (clip_names.size() == 1 ? " clip: " : " clips: ");
     for (size_t idx = 0; idx < clip_names.size() && idx < options.clip_names_per_motif; ++idx) {
       if (idx > 0) html += ", ";
       html += HtmlEscape(clip_names[idx]);
     }
     if (clip_names.size() > options.clip_names_per_motif) {
-      html += " +" + Commas(clip_names.size() - options.clip_names_per_motif) + " more";
+      html += " +" + HtmlCommas(clip_names.size() - options.clip_names_per_motif) + " more";
     }
     const bool eager = motif_idx < options.eager_motifs;
     html += "</p><div class=\"insts c" + id + "\"" +
@@ -488,7 +332,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
       const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
       html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(instance.clip) + " " +
               std::to_string(instance.start) + "\u2013" + std::to_string(instance.end) + " (" +
-              Seconds(instance.length(), fps) + ")</div><div class=\"figs\">" +
+              HtmlSeconds(instance.length(), fps) + ")</div><div class=\"figs\">" +
               (eager ? strips[motif_idx][slot] : std::string()) + "</div></div>";
       if (!eager) {
         if (slot > 0) lazy_json += ",";
@@ -498,7 +342,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     if (!eager) lazy_json += "]";
     html += "</div>";
     if (count > chosen[motif_idx].size()) {
-      html += "<p class=\"note\">" + Commas(count - chosen[motif_idx].size()) +
+      html += "<p class=\"note\">" + HtmlCommas(count - chosen[motif_idx].size()) +
               " more instances not drawn.</p>";
     }
     html += "</section>\n";
@@ -523,7 +367,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     html += "],\"motifs\":{\n" + lazy_json + "}}</script>\n";
   }
   html += std::string("<script>") + kScript + "</script>\n";
-  html += "</body></html>\n";
+  html += HtmlPageEnd();
   return html;
 }
 

@@ -22,6 +22,7 @@
 #include "common/status.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/planted_motif_score.h"
+#include "engine/report/html_page.h"
 #include "engine/report/stick_figure_svg.h"
 #include "formats/frame_file/frame_file_reader.h"
 
@@ -60,8 +61,5 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
 Status WriteReportHtml(const std::string& path, const MotifsDocument& document,
                        const FrameFileReader& reader, const ReportInfo& info,
                        const ReportOptions& options = {});
-
-// `text` with & < > " ' replaced by character references, safe in HTML text and attributes.
-std::string HtmlEscape(const std::string& text);
 
 }  // namespace motif

@@ -136,17 +136,8 @@ void FileHeader::EncodeTo(std::string* out) const {
 }
 
 Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* header) {
-  if (size == 0) return Status::Corruption("empty file");
-  if (size < kFileMagic.size() || std::memcmp(bytes, kFileMagic.data(), kFileMagic.size()) != 0) {
-    return Status::Corruption("bad magic at offset 0x0: not a paths file");
-  }
-  if (size < 10) return Status::Corruption("file of " + std::to_string(size) + " bytes: truncated header");
+  MOTIF_RETURN_IF_ERROR(CheckMagicAndMajor(bytes, size, kFileMagic.data(), "paths file", kFormatMajor));
   header->format_major = LoadU16(bytes + 8);
-  if (header->format_major != kFormatMajor) {
-    return Status::Corruption("unsupported format major version " +
-                              std::to_string(header->format_major) + " (this reader knows " +
-                              std::to_string(kFormatMajor) + ")");
-  }
   if (size < kHeaderBytes) {
     return Status::Corruption("file of " + std::to_string(size) +
                               " bytes is shorter than the header (" +

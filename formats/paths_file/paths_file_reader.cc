@@ -68,13 +68,7 @@ Result<std::unique_ptr<PathsFileReader>> PathsFileReader::FromBytes(const std::s
 }
 
 Result<std::unique_ptr<PathsFileReader>> PathsFileReader::Open(const std::string& path) {
-  std::error_code error;
-  const std::filesystem::file_status file_status = std::filesystem::status(path, error);
-  if (!std::filesystem::exists(file_status)) return Status::NotFound(path + ": no such file");
-  if (!std::filesystem::is_regular_file(file_status)) {
-    return Status::IOError(path + ": not a regular file");
-  }
-  MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadFileToString(path));
+  MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadRegularFile(path));
   return FromBytes(bytes, path);
 }
 

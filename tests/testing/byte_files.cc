@@ -1,5 +1,7 @@
 #include "tests/testing/byte_files.h"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -36,6 +38,18 @@ void TruncateFile(const std::string& path, uint64_t size) {
 bool FileExists(const std::string& path) {
   std::error_code error;
   return std::filesystem::exists(path, error);
+}
+
+void ForEachFlippedByte(const std::string& bytes,
+                        const std::function<void(const std::string&, const std::string&)>& check) {
+  for (size_t byte_idx = 0; byte_idx < bytes.size(); ++byte_idx) {
+    for (uint8_t mask : {0x01, 0x10, 0x80}) {
+      std::string damaged = bytes;
+      damaged[byte_idx] = static_cast<char>(damaged[byte_idx] ^ mask);
+      check(damaged, "byte " + std::to_string(byte_idx) + " ^ " + std::to_string(mask));
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
 }
 
 }  // namespace motif::testing

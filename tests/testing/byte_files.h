@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace motif::testing {
@@ -16,5 +17,10 @@ void CopyFile(const std::string& from, const std::string& to);
 void PatchByte(const std::string& path, uint64_t offset, char value);
 void TruncateFile(const std::string& path, uint64_t size);
 bool FileExists(const std::string& path);
+
+// Calls check(damaged, what) for `bytes` with each byte in turn flipped by 0x01, 0x10 and 0x80
+// ("byte 17 ^ 16"); stops at the first check that leaves the test failed.
+void ForEachFlippedByte(const std::string& bytes,
+                        const std::function<void(const std::string&, const std::string&)>& check);
 
 }  // namespace motif::testing

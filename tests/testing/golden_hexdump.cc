@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+
+#include <gtest/gtest.h>
 
 #include "tests/testing/byte_files.h"
 
@@ -53,6 +56,22 @@ std::string BytesFromSpecHexdump(const std::string& spec_path, std::string* erro
     while (hex >> pair) bytes.push_back(static_cast<char>(std::stoul(pair, nullptr, 16)));
   }
   return bytes;
+}
+
+void ExpectSpecHexdump(const std::string& spec_path, const std::string& dump,
+                       const std::string& bytes) {
+  const char* update = std::getenv("MOTIF_UPDATE_GOLDEN");
+  if (update != nullptr && std::string(update) == "1") std::printf("%s", dump.c_str());
+  const std::string spec = ReadBytes(spec_path);
+  const size_t begin = spec.find(kGoldenBegin);
+  const size_t end = spec.find(kGoldenEnd);
+  ASSERT_NE(begin, std::string::npos) << spec_path;
+  ASSERT_NE(end, std::string::npos) << spec_path;
+  const size_t body = begin + sizeof(kGoldenBegin) - 1 + 1;  // after the marker's newline
+  EXPECT_EQ(spec.substr(body, end - body), dump)
+      << spec_path << " is out of date; run with MOTIF_UPDATE_GOLDEN=1";
+  std::string error;
+  EXPECT_EQ(BytesFromSpecHexdump(spec_path, &error), bytes) << error;
 }
 
 }  // namespace motif::testing

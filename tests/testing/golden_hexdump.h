@@ -21,4 +21,10 @@ void DumpHexLines(const std::string& bytes, size_t offset, size_t size, const st
 // other). "" with *error set if the markers are missing or the offsets do not follow.
 std::string BytesFromSpecHexdump(const std::string& spec_path, std::string* error);
 
+// The golden check of a spec's worked example: with MOTIF_UPDATE_GOLDEN=1 in the environment,
+// prints `dump` (an annotated hexdump, fenced) to paste between the markers; then expects the
+// text between the markers of `spec_path` to be `dump` exactly, and its bytes to be `bytes`.
+void ExpectSpecHexdump(const std::string& spec_path, const std::string& dump,
+                       const std::string& bytes);
+
 }  // namespace motif::testing

@@ -63,18 +63,7 @@ std::string AnnotatedHexdump(const std::string& bytes) {
 TEST(PathsFileGolden, TheSpecsHexdumpIsTheEncodedExample) {
   auto bytes = EncodePathsFile(ExampleParams(), ExampleCandidates());
   ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
-  const std::string dump = AnnotatedHexdump(*bytes);
-  const char* update = std::getenv("MOTIF_UPDATE_GOLDEN");
-  if (update != nullptr && std::string(update) == "1") std::printf("%s", dump.c_str());
-  auto spec = ReadFileToString(kSpec);
-  ASSERT_TRUE(spec.ok()) << spec.status().ToString();
-  const size_t begin = spec->find(kGoldenBegin);
-  const size_t end = spec->find(kGoldenEnd);
-  ASSERT_NE(begin, std::string::npos);
-  ASSERT_NE(end, std::string::npos);
-  const size_t body = begin + sizeof(kGoldenBegin) - 1 + 1;  // after the marker's newline
-  EXPECT_EQ(spec->substr(body, end - body), dump)
-      << "docs/formats/paths_file.md is out of date; run with MOTIF_UPDATE_GOLDEN=1";
+  ExpectSpecHexdump(kSpec, AnnotatedHexdump(*bytes), *bytes);
   auto reader = PathsFileReader::FromBytes(*bytes, "example.mpa");
   ASSERT_TRUE(reader.ok());
   EXPECT_EQ((*reader)->candidates(), ExampleCandidates());

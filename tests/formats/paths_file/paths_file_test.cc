@@ -13,6 +13,7 @@
 #include "formats/paths_file/paths_file_format.h"
 #include "formats/paths_file/paths_file_reader.h"
 #include "formats/paths_file/paths_file_writer.h"
+#include "tests/testing/byte_files.h"
 #include "tests/testing/fault_injection.h"
 #include "tests/testing/temp_dir.h"
 
@@ -176,14 +177,9 @@ TEST_F(PathsFileCorruptionTest, RejectsTruncationAtEveryLength) {
 }
 
 TEST_F(PathsFileCorruptionTest, RejectsEveryFlippedByte) {
-  for (size_t byte_idx = 0; byte_idx < bytes_.size(); ++byte_idx) {
-    for (uint8_t mask : {0x01, 0x10, 0x80}) {
-      std::string damaged = bytes_;
-      damaged[byte_idx] = static_cast<char>(damaged[byte_idx] ^ mask);
-      ExpectCorruption(damaged, "byte " + std::to_string(byte_idx) + " ^ " + std::to_string(mask));
-      if (HasFailure()) return;
-    }
-  }
+  ForEachFlippedByte(bytes_, [&](const std::string& damaged, const std::string& what) {
+    ExpectCorruption(damaged, what);
+  });
 }
 
 TEST_F(PathsFileCorruptionTest, RejectsAppendedBytesAnotherVersionAndOtherFiles) {

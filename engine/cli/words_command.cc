@@ -1,0 +1,187 @@
+// motifmine words ARCHIVE [...]: the motion words of an archive, their embedding (trained, reused,
+// resumed or loaded), the motifs and every take's signature (engine/words/words_builder.h).
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "common/file_util.h"
+#include "engine/cli/cli_common.h"
+#include "engine/words/words_builder.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+nlohmann::json ReportJson(const std::string& archive, const WordsReport& report) {
+  nlohmann::json json;
+  json["version"] = 1;
+  json["archive"] = archive;
+  json["files"] = {{"embedding", report.paths.embedding},
+                   {"motifs", report.paths.motifs},
+                   {"signatures", report.paths.signatures}};
+  json["clips"] = report.clips;
+  json["takes"] = report.takes;
+  json["words"] = report.words;
+  json["motifs"] = report.motifs;
+  json["dims"] = report.dims;
+  json["embedding"] = report.embedding_loaded   ? "loaded"
+                      : report.embedding_reused ? "reused"
+                                                : "trained";
+  json["resumed_from_epoch"] = report.resumed_from_epoch;
+  json["motifs_reused"] = report.motifs_reused;
+  json["signatures_reused"] = report.signatures_reused;
+  json["training"] = {{"pool_words", report.pool_words},
+                      {"epoch_loss", report.epoch_loss},
+                      {"held_out_triplets", report.accuracy.triplets},
+                      {"accuracy_raw", report.accuracy.raw},
+                      {"accuracy_untrained", report.accuracy.untrained},
+                      {"accuracy_trained", report.accuracy.trained}};
+  json["kmeans"] = {{"inertia", report.kmeans_inertia}, {"iterations", report.kmeans_iterations}};
+  json["seconds"] = {{"pool", report.seconds_pool},       {"neighbours", report.seconds_neighbours},
+                     {"train", report.seconds_train},     {"embed", report.seconds_embed},
+                     {"kmeans", report.seconds_kmeans},   {"signatures", report.seconds_signatures}};
+  return json;
+}
+
+}  // namespace
+
+int RunWords(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "words";
+  spec.usage = "motifmine words ARCHIVE [--motifs K] [--embedding FILE.mwe] [--epochs E] "
+               "[--seed S] [--threads T] [options]";
+  spec.summary =
+      "Cuts ARCHIVE into motion words (16 frames at 24 Hz every 4 frames), trains their\n"
+      "embedding with a triplet loss (temporal and DTW neighbours as positives, time-warped\n"
+      "copies, far or other-take negatives), embeds every word, clusters them into K motifs\n"
+      "(k-means) and writes every take's TF-IDF motion signature, beside the archive:\n"
+      "ARCHIVE.mwe (embedding), ARCHIVE.mwm (motifs), ARCHIVE.mws (signatures). Each stage is\n"
+      "reused when its inputs did not change; interrupted training resumes from its last epoch.\n"
+      "--embedding loads an embedding trained elsewhere instead of training one.";
+  WordsOptions defaults;
+  spec.options.add_options()
+      ("motifs", po::value<uint32_t>()->default_value(defaults.motifs), "number of motifs K")
+      ("embedding", po::value<std::string>()->default_value(""),
+       "use this trained embedding (.mwe) instead of training one")
+      ("prefix", po::value<std::string>()->default_value(""),
+       "write PREFIX.mwe, PREFIX.mwm, PREFIX.mws (default: ARCHIVE without .mfs)")
+      ("seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of every random choice")
+      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
+      ("weights", po::value<std::string>()->default_value(""),
+       "per-joint weights file (default: the skeleton's)")
+      ("word-frames", po::value<uint32_t>()->default_value(defaults.words.word_frames),
+       "frames per word")
+      ("stride", po::value<uint32_t>()->default_value(defaults.words.stride_frames),
+       "frames between word starts")
+      ("word-fps", po::value<double>()->default_value(defaults.words.word_fps),
+       "rate the words are sampled at")
+      ("epochs", po::value<uint32_t>()->default_value(defaults.train.epochs), "training epochs")
+      ("pool-words", po::value<uint64_t>()->default_value(defaults.pool.max_words),
+       "at most this many words are trained on (whole clips, seeded)")
+      ("warp-copies", po::value<uint32_t>()->default_value(defaults.pool.warp_copies),
+       "time-warped copies per training word")
+      ("held-out", po::value<double>()->default_value(defaults.pool.held_out_fraction),
+       "fraction of the training clips held out to measure the embedding")
+      ("batch", po::value<uint32_t>()->default_value(defaults.train.batch_triplets),
+       "triplets per training batch")
+      ("learning-rate", po::value<double>()->default_value(defaults.train.learning_rate),
+       "Adam's learning rate")
+      ("margin", po::value<double>()->default_value(defaults.train.margin), "triplet margin")
+      ("dims", po::value<uint32_t>()->default_value(defaults.train.shape.embedding_dims),
+       "embedding dimensions")
+      ("channels", po::value<uint32_t>()->default_value(defaults.train.shape.conv1_channels),
+       "channels of both convolutions")
+      ("json", po::value<std::string>()->default_value(""), "also write this summary as JSON");
+  AddProgressOptions(spec);
+  spec.positional = {{"archive", 1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const std::string archive = vm["archive"].as<std::string>();
+  WordsOptions options;
+  options.motifs = vm["motifs"].as<uint32_t>();
+  options.embedding_in = vm["embedding"].as<std::string>();
+  options.seed = vm["seed"].as<uint64_t>();
+  options.threads = vm["threads"].as<int>();
+  options.weights_path = vm["weights"].as<std::string>();
+  options.words.word_frames = vm["word-frames"].as<uint32_t>();
+  options.words.stride_frames = vm["stride"].as<uint32_t>();
+  options.words.word_fps = vm["word-fps"].as<double>();
+  options.train.epochs = vm["epochs"].as<uint32_t>();
+  options.pool.max_words = vm["pool-words"].as<uint64_t>();
+  options.pool.warp_copies = vm["warp-copies"].as<uint32_t>();
+  options.pool.held_out_fraction = vm["held-out"].as<double>();
+  options.train.batch_triplets = vm["batch"].as<uint32_t>();
+  options.train.learning_rate = vm["learning-rate"].as<double>();
+  options.train.margin = vm["margin"].as<double>();
+  options.train.shape.embedding_dims = vm["dims"].as<uint32_t>();
+  options.train.shape.conv1_channels = vm["channels"].as<uint32_t>();
+  options.train.shape.conv2_channels = vm["channels"].as<uint32_t>();
+  const std::string prefix = vm["prefix"].as<std::string>();
+  const WordsPaths paths = DefaultWordsPaths(prefix.empty() ? archive : prefix + ".mfs");
+
+  ProgressReporter progress(ProgressModeFrom(vm));
+  std::string stage;
+  options.progress = [&](const std::string& name, uint64_t done, uint64_t total,
+                         const std::string& unit) {
+    if (name != stage) {
+      if (!stage.empty()) progress.EndStage();
+      stage = name;
+      progress.BeginStage(name, total, unit);
+    }
+    progress.Update(done);
+  };
+  options.note = [&](const std::string& message) { progress.Note(message); };
+  Result<WordsReport> report = BuildWords(archive, paths, options);
+  if (!stage.empty()) progress.EndStage();
+  if (!report.ok()) return ReportError("words", report.status());
+
+  const WordsReport& r = *report;
+  std::printf("motifmine words: %s\n", archive.c_str());
+  std::printf("  words        %s in %s takes (%s clips)\n", WithCommas(r.words).c_str(),
+              WithCommas(r.takes).c_str(), WithCommas(r.clips).c_str());
+  if (r.embedding_loaded) {
+    std::printf("  embedding    loaded from %s (%u dimensions)\n", options.embedding_in.c_str(),
+                r.dims);
+  } else {
+    std::printf("  embedding    %s%s: %u dimensions, %s training words, %zu epochs",
+                r.embedding_reused ? "reused" : "trained",
+                r.resumed_from_epoch ? (" (resumed after epoch " +
+                                        std::to_string(r.resumed_from_epoch) + ")").c_str()
+                                     : "",
+                r.dims, WithCommas(r.pool_words).c_str(), r.epoch_loss.size());
+    if (!r.epoch_loss.empty()) {
+      std::printf(", loss %.4f -> %.4f", r.epoch_loss.front(), r.epoch_loss.back());
+    }
+    std::printf("\n");
+  }
+  if (r.accuracy.triplets > 0) {
+    std::printf("  held out     triplet accuracy %.3f trained, %.3f untrained, %.3f raw "
+                "features (%s triplets)\n",
+                r.accuracy.trained, r.accuracy.untrained, r.accuracy.raw,
+                WithCommas(r.accuracy.triplets).c_str());
+  }
+  std::printf("  motifs       %u%s (k-means inertia %.4g, %u iterations)\n", r.motifs,
+              r.motifs_reused ? ", reused" : "", r.kmeans_inertia, r.kmeans_iterations);
+  std::printf("  signatures   %s takes%s\n", WithCommas(r.takes).c_str(),
+              r.signatures_reused ? ", reused" : "");
+  std::printf("  time         pool %.1fs, neighbours %.1fs, train %.1fs, embed %.1fs, k-means "
+              "%.1fs, signatures %.1fs\n",
+              r.seconds_pool, r.seconds_neighbours, r.seconds_train, r.seconds_embed,
+              r.seconds_kmeans, r.seconds_signatures);
+  std::printf("  memory       peak resident %s\n", FormatBytes(PeakResidentBytes()).c_str());
+  std::printf("  wrote        %s, %s, %s\n", r.paths.embedding.c_str(), r.paths.motifs.c_str(),
+              r.paths.signatures.c_str());
+  const std::string json_path = vm["json"].as<std::string>();
+  if (!json_path.empty()) {
+    nlohmann::json json = ReportJson(archive, r);
+    json["peak_resident_bytes"] = PeakResidentBytes();
+    if (Status status = AtomicWriteFile(json_path, json.dump(2) + "\n"); !status.ok()) {
+      return ReportError("words", status);
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace motif::cli

@@ -1,0 +1,90 @@
+#include "engine/report/keyframe_figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/report/forward_kinematics.h"
+#include "formats/motion/quaternion_math.h"
+
+namespace motif {
+namespace {
+
+// Frames read from the archive at a time: ranges are visited in archive order, so one chunk
+// usually serves several of them, and a column block is decoded about once.
+constexpr uint64_t kChunkFrames = 4096;
+
+}  // namespace
+
+KeyframeFigures::KeyframeFigures(const FrameFileReader& reader, FigureView view,
+                                 uint32_t keyframes)
+    : reader_(reader),
+      keyframes_(std::max<uint32_t>(1, keyframes)),
+      layout_(MakeStickFigureLayout(reader.skeleton())),
+      stride_(reader.layout().stride()) {
+  projection_.view = view;
+  projection_.pixels_per_unit =
+      FigureScaleFor(reader.skeleton(), projection_.height_px, projection_.margin_px);
+}
+
+Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const ClipInfo& clip,
+                                                                      uint64_t start,
+                                                                      uint64_t end) {
+  const uint32_t keyframes = keyframes_;
+  const uint64_t global_start = clip.first_frame + start;
+  const uint64_t global_end = clip.first_frame + end;
+  MOTIF_RETURN_IF_ERROR(EnsureCached(global_start, global_end));
+  std::vector<float> rows(keyframes * stride_);
+  const uint64_t length = end - start;
+  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
+    const uint64_t offset =
+        keyframes == 1 ? 0
+                       : static_cast<uint64_t>(std::llround(static_cast<double>(key_idx) *
+                                                            static_cast<double>(length - 1) /
+                                                            (keyframes - 1)));
+    const float* row = &cache_[(global_start + offset - cache_first_) * stride_];
+    std::copy(row, row + stride_, rows.begin() + key_idx * stride_);
+  }
+  // The keyframes are not consecutive, so the root's integrated horizontal path is
+  // meaningless; each figure is centred on its own root below, which cancels it. Height,
+  // heading and joint rotations come straight from each row.
+  const Take take = ClipFramesToTake(reader_.skeleton(), clip, rows.data(), keyframes);
+  std::vector<std::vector<Eigen::Vector3d>> positions(keyframes);
+  double floor = std::numeric_limits<double>::max();
+  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
+    positions[key_idx] = TakeFramePositions(take, key_idx);
+    for (const Eigen::Vector3d& point : positions[key_idx]) floor = std::min(floor, point.y());
+  }
+  FigureProjection projection = projection_;
+  projection.heading_rad = HeadingOf(take.rotation(0, 0));
+  std::vector<std::vector<FigurePoint>> projected(keyframes);
+  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
+    const Eigen::Vector3d& root = take.root_positions[key_idx];
+    projection.origin = Eigen::Vector3d(root.x(), floor, root.z());
+    projected[key_idx] = ProjectFigure(layout_, positions[key_idx], projection);
+  }
+  return projected;
+}
+
+Result<std::string> KeyframeFigures::Svg(const ClipInfo& clip, uint64_t start, uint64_t end) {
+  MOTIF_ASSIGN_OR_RETURN(std::vector<std::vector<FigurePoint>> keyframes, Project(clip, start, end));
+  std::string svg;
+  for (const std::vector<FigurePoint>& points : keyframes) {
+    svg += StickFigureSvg(layout_, points, projection_.width_px, projection_.height_px);
+  }
+  return svg;
+}
+
+Status KeyframeFigures::EnsureCached(uint64_t global_start, uint64_t global_end) {
+  if (global_start >= cache_first_ && global_end <= cache_first_ + cache_count_) {
+    return Status::Ok();
+  }
+  const uint64_t count = std::min(std::max(global_end - global_start, kChunkFrames),
+                                  reader_.frame_count() - global_start);
+  MOTIF_RETURN_IF_ERROR(reader_.ReadFrames(global_start, count, &cache_));
+  cache_first_ = global_start;
+  cache_count_ = count;
+  return Status::Ok();
+}
+
+}  // namespace motif

@@ -1,0 +1,47 @@
+// KeyframeFigures: stick figures of evenly spaced keyframes of a clip's frame range, read from
+// the archive (a chunk of frames at a time, cached, so ranges visited in archive order decode
+// each block about once) and projected for a page (stick_figure_svg.h). Each figure is centred
+// on its own root; the range's first keyframe's heading is removed from all of them, so ranges
+// line up and a turn within one still shows. Used by the motif report and the search page.
+// Thread-safety: one thread at a time (the cache).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/status.h"
+#include "engine/report/stick_figure_svg.h"
+#include "formats/frame_file/frame_file_reader.h"
+
+namespace motif {
+
+class KeyframeFigures {
+ public:
+  // `reader` must outlive this object.
+  KeyframeFigures(const FrameFileReader& reader, FigureView view, uint32_t keyframes);
+
+  const StickFigureLayout& layout() const { return layout_; }
+  const FigureProjection& projection() const { return projection_; }
+
+  // The keyframes of frames [start, end) of `clip` (clip-relative, start < end <=
+  // clip.frame_count): the first and last frames and evenly spaced ones between, projected.
+  // Errors of the reader pass through.
+  Result<std::vector<std::vector<FigurePoint>>> Project(const ClipInfo& clip, uint64_t start,
+                                                        uint64_t end);
+  // The same, as SVG strings side by side.
+  Result<std::string> Svg(const ClipInfo& clip, uint64_t start, uint64_t end);
+
+ private:
+  Status EnsureCached(uint64_t global_start, uint64_t global_end);
+
+  const FrameFileReader& reader_;
+  uint32_t keyframes_ = 5;
+  StickFigureLayout layout_;
+  FigureProjection projection_;
+  size_t stride_ = 0;
+  std::vector<float> cache_;
+  uint64_t cache_first_ = 0;
+  uint64_t cache_count_ = 0;
+};
+
+}  // namespace motif

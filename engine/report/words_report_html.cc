@@ -1,0 +1,288 @@
+#include "engine/report/words_report_html.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "common/file_util.h"
+#include "engine/report/html_page.h"
+#include "engine/report/keyframe_figures.h"
+
+namespace motif {
+namespace {
+
+constexpr char kWordsCss[] = R"css(
+.heat{display:block;height:14px;width:100%;background:#eee}
+.heat rect.best{stroke:#c00;stroke-width:2px;vector-effect:non-scaling-stroke;fill:none}
+.match{border-top:1px solid #ddd;padding:8px 0 4px;margin-top:6px}
+.match h3{margin:0;font-size:15px}
+.map{background:#fafafa;border:1px solid #ddd}
+.map circle{stroke:#fff;stroke-width:.5}
+table.g{border-collapse:collapse;font-size:12px}table.g td,table.g th{border:1px solid #ddd;padding:2px 6px;text-align:right}
+table.g th{background:#f3f3f3}table.g td.ok{background:#dff0d8}
+table.l{border-collapse:collapse;font-size:12px}table.l td,table.l th{padding:1px 10px 1px 0;text-align:left}
+.dm rect{shape-rendering:crispEdges}
+)css";
+
+// A grey for a distance between lo and hi: darker is closer.
+std::string Shade(double value, double lo, double hi) {
+  const double t = hi > lo ? std::clamp((value - lo) / (hi - lo), 0.0, 1.0) : 0.0;
+  const int level = static_cast<int>(std::lround(30 + 205 * t));
+  return "rgb(" + std::to_string(level) + "," + std::to_string(level) + "," +
+         std::to_string(std::min(255, level + 20)) + ")";
+}
+
+std::string Row(const std::string& key, const std::string& value_html) {
+  return "<tr><td>" + key + "</td><td>" + value_html + "</td></tr>\n";
+}
+
+}  // namespace
+
+Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileReader& reader,
+                                   const SearchPageInfo& info) {
+  const double fps = reader.fps();
+  KeyframeFigures figures(reader, FigureView::kSide, 5);
+  std::string html = HtmlPageStart("motifmine search: " + info.archive, kWordsCss);
+  html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
+  html += Row("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
+                             HtmlCommas(reader.clips().size()) + " clips)");
+  html += Row("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
+                           (info.query_words == 1 ? " word" : " words"));
+  html += Row("search", result.whole_take
+                            ? "whole takes: the EMD between take signatures over " +
+                                  std::to_string(info.motifs) + " motifs"
+                            : "a window of " + HtmlCommas(info.query_words) +
+                                  " words slid along every take, one word at a time (" +
+                                  HtmlCommas(result.windows) + " windows); EMD over " +
+                                  std::to_string(info.motifs) + " motifs");
+  html += Row("time", HtmlNumber("%.2f s", info.seconds));
+  html += "</table>\n";
+  if (info.query_in_archive) {
+    const ClipInfo& clip = reader.clips()[info.query_clip];
+    MOTIF_ASSIGN_OR_RETURN(std::string svg, figures.Svg(clip, info.query_start, info.query_end));
+    html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(clip.name) + " " +
+            std::to_string(info.query_start) + "\u2013" + std::to_string(info.query_end) +
+            "</div><div class=\"figs\">" + svg + "</div></div>\n";
+  }
+  html += "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "
+          "one per take (its best window). The strip under each match shows the EMD of every "
+          "window along its take, darker where closer; the box marks the match. Frames are "
+          "0-based within the clip, the end excluded.</p>\n";
+  if (result.matches.empty()) html += "<p>No take holds enough words for the query.</p>\n";
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = 0;
+  for (const std::vector<float>& profile : result.profiles) {
+    for (float value : profile) {
+      if (std::isnan(value)) continue;
+      lo = std::min<double>(lo, value);
+      hi = std::max<double>(hi, value);
+    }
+  }
+  for (size_t rank = 0; rank < result.matches.size(); ++rank) {
+    const WindowMatch& match = result.matches[rank];
+    const ClipInfo& clip = reader.clips()[match.clip];
+    MOTIF_ASSIGN_OR_RETURN(std::string svg, figures.Svg(clip, match.start_frame, match.end_frame));
+    html += "<div class=\"match\"><h3>" + std::to_string(rank + 1) + ". " +
+            HtmlEscape(clip.name) + " <span class=\"note\">frames " +
+            std::to_string(match.start_frame) + "\u2013" + std::to_string(match.end_frame) +
+            " (" + HtmlSeconds(match.start_frame, fps) + " to " +
+            HtmlSeconds(match.end_frame, fps) + "), EMD " + HtmlNumber("%.4f", match.distance) +
+            "</span></h3><div class=\"figs\">" + svg + "</div>";
+    const std::vector<float>& profile = result.profiles[rank];
+    if (!result.whole_take && !profile.empty()) {
+      html += "<svg class=\"heat\" viewBox=\"0 0 " + std::to_string(profile.size()) +
+              " 1\" preserveAspectRatio=\"none\">";
+      for (size_t window = 0; window < profile.size(); ++window) {
+        if (std::isnan(profile[window])) continue;
+        html += "<rect x=\"" + std::to_string(window) + "\" width=\"1\" height=\"1\" fill=\"" +
+                Shade(profile[window], lo, hi) + "\"><title>window at word " +
+                std::to_string(window) + ": EMD " + HtmlNumber("%.4f", profile[window]) +
+                "</title></rect>";
+      }
+      html += "<rect class=\"best\" x=\"" + std::to_string(match.first_word) +
+              "\" width=\"1\" height=\"1\"/></svg>";
+    }
+    html += "</div>\n";
+  }
+  html += "</section>\n" + HtmlPageEnd();
+  return html;
+}
+
+Status WriteSearchHtml(const std::string& path, const SearchResult& result,
+                       const FrameFileReader& reader, const SearchPageInfo& info) {
+  MOTIF_ASSIGN_OR_RETURN(std::string html, SearchHtmlText(result, reader, info));
+  return AtomicWriteFile(path, html);
+}
+
+std::string ClassificationHtmlText(const TakeClassification& r, const std::string& archive) {
+  const size_t n = r.names.size();
+  const bool labelled = !r.label_names.empty();
+  std::string css = kWordsCss;
+  for (uint32_t id = 0; id < std::max<size_t>(r.group_count, r.label_names.size()); ++id) {
+    css += ".c" + std::to_string(id) + "{color:" + HtmlColour(id) + ";fill:" + HtmlColour(id) + "}\n";
+  }
+  std::string html = HtmlPageStart("motifmine classify: " + archive, css);
+  html += "<h1>motifmine classify</h1>\n<nav><a href=\"#overview\">overview</a><a "
+          "href=\"#map\">map</a>" +
+          std::string(labelled ? "<a href=\"#confusion\">confusion</a>" : "") +
+          "<a href=\"#matrix\">distances</a><a href=\"#takes\">takes</a></nav>\n";
+  html += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">";
+  html += Row("archive", "<code>" + HtmlEscape(archive) + "</code>");
+  const std::string distance_text =
+      r.distance == "emd"      ? "Earth Mover's Distance between TF-IDF motion signatures"
+      : r.distance == "emd-tf" ? "Earth Mover's Distance between signatures without TF-IDF"
+                               : "dynamic time warping over the takes' frames";
+  html += Row("distance", HtmlEscape(r.distance) + ": " + distance_text + " (" +
+                              HtmlNumber("%.2f s", r.seconds_distances) + ")");
+  html += Row("takes", HtmlCommas(n) + (labelled ? ", " + HtmlCommas(r.knn.labelled) +
+                                                        " labelled with " +
+                                                        std::to_string(r.label_names.size()) +
+                                                        " labels"
+                                                  : std::string()));
+  std::string unsupervised = "classical MDS into " + std::to_string(r.mds.coordinates.cols()) +
+                             " dimensions, then k-means into " + std::to_string(r.group_count) +
+                             " groups";
+  if (labelled) {
+    unsupervised += "; against the labels: adjusted Rand index " +
+                    HtmlNumber("%.3f", r.adjusted_rand_index) + ", purity " +
+                    HtmlNumber("%.3f", r.purity);
+  }
+  html += Row("unsupervised", unsupervised);
+  if (labelled) {
+    html += Row("supervised", std::to_string(r.knn.k) + "-nearest-neighbour, leave one out: "
+                                  "accuracy <b>" + HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
+                                  HtmlCommas(r.knn.correct) + " of " + HtmlCommas(r.knn.labelled) + ")");
+    html += Row("retrieval", "whole-take precision@" + std::to_string(r.top) + " <b>" +
+                                 HtmlNumber("%.3f", r.precision_at_top) + "</b>");
+  }
+  html += "</table></section>\n";
+
+  // The MDS map: first two coordinates, by group and by label.
+  html += "<section id=\"map\"><h2>MDS map</h2><p class=\"note\">The takes at their first two "
+          "MDS coordinates; hover for the clip. Left: coloured by unsupervised group";
+  html += labelled ? "; right: by label.</p>" : ".</p>";
+  const Eigen::Index dims = r.mds.coordinates.cols();
+  double min_x = 0, max_x = 1, min_y = 0, max_y = 1;
+  if (n > 0) {
+    min_x = max_x = r.mds.coordinates(0, 0);
+    min_y = max_y = dims > 1 ? r.mds.coordinates(0, 1) : 0.0;
+    for (size_t take = 0; take < n; ++take) {
+      const double x = r.mds.coordinates(static_cast<Eigen::Index>(take), 0);
+      const double y = dims > 1 ? r.mds.coordinates(static_cast<Eigen::Index>(take), 1) : 0.0;
+      min_x = std::min(min_x, x);
+      max_x = std::max(max_x, x);
+      min_y = std::min(min_y, y);
+      max_y = std::max(max_y, y);
+    }
+  }
+  const double size = 420;
+  auto map = [&](bool by_label) {
+    std::string svg = "<svg class=\"map\" width=\"" + HtmlNumber("%.0f", size) + "\" height=\"" +
+                      HtmlNumber("%.0f", size) + "\">";
+    for (size_t take = 0; take < n; ++take) {
+      const double x = r.mds.coordinates(static_cast<Eigen::Index>(take), 0);
+      const double y = dims > 1 ? r.mds.coordinates(static_cast<Eigen::Index>(take), 1) : 0.0;
+      const double px = 12 + (size - 24) * (max_x > min_x ? (x - min_x) / (max_x - min_x) : 0.5);
+      const double py = 12 + (size - 24) * (max_y > min_y ? (max_y - y) / (max_y - min_y) : 0.5);
+      const uint32_t label = r.labels[take];
+      const std::string cls = by_label ? (label == kUnlabelled ? "" : "c" + std::to_string(label))
+                                       : "c" + std::to_string(r.groups[take]);
+      svg += "<circle class=\"" + cls + "\" cx=\"" + HtmlNumber("%.1f", px) + "\" cy=\"" +
+             HtmlNumber("%.1f", py) + "\" r=\"5\"" +
+             (by_label && label == kUnlabelled ? " fill=\"#999\"" : "") + "><title>" +
+             HtmlEscape(r.names[take]) +
+             (label == kUnlabelled ? "" : " (" + HtmlEscape(r.label_names[label]) + ")") +
+             ", group " + std::to_string(r.groups[take]) + "</title></circle>";
+    }
+    return svg + "</svg>";
+  };
+  html += map(false);
+  if (labelled) {
+    html += " " + map(true) + "<p>";
+    for (size_t label = 0; label < r.label_names.size(); ++label) {
+      html += "<span class=\"sw c" + std::to_string(label) + "\"></span>" +
+              HtmlEscape(r.label_names[label]) + " &nbsp; ";
+    }
+    html += "</p>";
+  }
+  html += "</section>\n";
+
+  if (labelled) {
+    html += "<section id=\"confusion\"><h2>Confusion matrix</h2><p class=\"note\">Rows: the "
+            "label; columns: the " + std::to_string(r.knn.k) +
+            "-NN prediction with the take left out.</p><table class=\"g\"><tr><th></th>";
+    for (const std::string& name : r.label_names) html += "<th>" + HtmlEscape(name) + "</th>";
+    html += "</tr>";
+    for (size_t truth = 0; truth < r.label_names.size(); ++truth) {
+      html += "<tr><th>" + HtmlEscape(r.label_names[truth]) + "</th>";
+      for (size_t predicted = 0; predicted < r.label_names.size(); ++predicted) {
+        const uint64_t count = r.knn.confusion[truth][predicted];
+        html += std::string("<td") + (truth == predicted && count ? " class=\"ok\"" : "") + ">" +
+                (count ? std::to_string(count) : "") + "</td>";
+      }
+      html += "</tr>";
+    }
+    html += "</table></section>\n";
+  }
+
+  // The distance matrix, takes ordered by label then group.
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return std::make_pair(r.labels[a], r.groups[a]) < std::make_pair(r.labels[b], r.groups[b]);
+  });
+  html += "<section id=\"matrix\"><h2>Distance matrix</h2>";
+  if (n <= 400) {
+    double hi = 0;
+    for (Eigen::Index idx = 0; idx < r.distances.size(); ++idx) hi = std::max(hi, r.distances.data()[idx]);
+    html += "<p class=\"note\">Takes ordered by label, then group; darker is closer.</p>"
+            "<svg class=\"dm\" width=\"" + std::to_string(std::max<size_t>(n * 4, 200)) +
+            "\" height=\"" + std::to_string(std::max<size_t>(n * 4, 200)) + "\" viewBox=\"0 0 " +
+            std::to_string(n) + " " + std::to_string(n) + "\">";
+    for (size_t row = 0; row < n; ++row) {
+      for (size_t col = 0; col < n; ++col) {
+        const double value = r.distances(order[row], order[col]);
+        html += "<rect x=\"" + std::to_string(col) + "\" y=\"" + std::to_string(row) +
+                "\" width=\"1\" height=\"1\" fill=\"" + Shade(value, 0, hi) + "\"/>";
+      }
+    }
+    html += "</svg>";
+  } else {
+    html += "<p class=\"note\">Not drawn above 400 takes (classify.json has the nearest takes "
+            "of each).</p>";
+  }
+  html += "</section>\n";
+
+  html += "<section id=\"takes\"><h2>Takes</h2><table class=\"l\"><tr><th>clip</th><th>label"
+          "</th><th>group</th>" + std::string(labelled ? "<th>predicted</th>" : "") +
+          "<th>nearest takes (distance)</th></tr>";
+  for (uint32_t take : order) {
+    const uint32_t label = r.labels[take];
+    html += "<tr><td>" + HtmlEscape(r.names[take]) + "</td><td>" +
+            (label == kUnlabelled ? "" : HtmlEscape(r.label_names[label])) + "</td><td><span "
+            "class=\"sw c" + std::to_string(r.groups[take]) + "\"></span>" +
+            std::to_string(r.groups[take]) + "</td>";
+    if (labelled) {
+      const uint32_t predicted = r.knn.predicted[take];
+      html += "<td>" + (predicted == kUnlabelled ? std::string() : HtmlEscape(r.label_names[predicted])) +
+              (predicted != kUnlabelled && predicted != label ? " &#10007;" : "") + "</td>";
+    }
+    html += "<td>";
+    for (size_t idx = 0; idx < r.nearest[take].size(); ++idx) {
+      const uint32_t other = r.nearest[take][idx];
+      html += (idx ? ", " : "") + HtmlEscape(r.names[other]) + " (" +
+              HtmlNumber("%.3f", r.distances(take, other)) + ")";
+    }
+    html += "</td></tr>";
+  }
+  html += "</table></section>\n" + HtmlPageEnd();
+  return html;
+}
+
+Status WriteClassificationHtml(const std::string& path, const TakeClassification& result,
+                               const std::string& archive) {
+  return AtomicWriteFile(path, ClassificationHtmlText(result, archive));
+}
+
+}  // namespace motif

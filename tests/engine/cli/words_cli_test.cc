@@ -1,0 +1,187 @@
+// End-to-end tests of `motifmine words`, `search` and `classify` with the built binary, as a user
+// would run them on a small synthetic archive: the files and documents they write, reuse, a query
+// exported as BVH finding where it came from, and clear errors on bad input.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/file_util.h"
+#include "tests/testing/byte_files.h"
+#include "tests/testing/run_tool.h"
+#include "tests/testing/temp_dir.h"
+
+namespace motif {
+namespace {
+
+using testing::RunResult;
+using testing::RunTool;
+
+nlohmann::json ReadJson(const std::string& path) {
+  auto text = ReadFileToString(path);
+  EXPECT_TRUE(text.ok()) << path;
+  return text.ok() ? nlohmann::json::parse(*text) : nlohmann::json();
+}
+
+// A small archive and its words (fast options), shared by the tests of this file.
+class WordsCliTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new testing::TempDir();
+    archive_ = dir_->File("s.mfs");
+    ASSERT_EQ(RunTool("synth " + archive_ + " --frames 24000 --motifs 2 --seed 3 " +
+                      "--clip-seconds-min 15 --clip-seconds-max 25 --quiet")
+                  .exit_code,
+              0);
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static std::string WordsArgs() {
+    return " --epochs 2 --channels 16 --dims 8 --motifs 12 --quiet";
+  }
+  static testing::TempDir* dir_;
+  static std::string archive_;
+};
+
+testing::TempDir* WordsCliTest::dir_ = nullptr;
+std::string WordsCliTest::archive_;
+
+TEST_F(WordsCliTest, WordsWritesItsFilesThenReusesThem) {
+  RunResult help = RunTool("words --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("usage: motifmine words"), std::string::npos);
+  RunResult first = RunTool("words " + archive_ + WordsArgs() + " --json " + dir_->File("w.json"));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_NE(first.output.find("embedding    trained"), std::string::npos) << first.output;
+  EXPECT_NE(first.output.find("held out     triplet accuracy"), std::string::npos);
+  for (const char* ext : {".mwe", ".mwm", ".mws"}) {
+    EXPECT_TRUE(testing::FileExists(dir_->File(std::string("s") + ext))) << ext;
+  }
+  const nlohmann::json json = ReadJson(dir_->File("w.json"));
+  EXPECT_EQ(json["embedding"], "trained");
+  EXPECT_EQ(json["motifs"], 12);
+  EXPECT_EQ(json["training"]["epoch_loss"].size(), 2u);
+  EXPECT_GT(json["words"].get<uint64_t>(), 1000u);
+  RunResult second = RunTool("words " + archive_ + WordsArgs());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find("embedding    reused"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("signatures   "), std::string::npos);
+  EXPECT_NE(second.output.find(", reused"), std::string::npos) << second.output;
+}
+
+TEST_F(WordsCliTest, SearchFindsAnExportedRangeAndTheWholeTake) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  // A clip range, searched from inside the archive: its own windows are left out.
+  RunResult range = RunTool("search " + archive_ + " --clip synth_000001 --start 600 --end 1200 " +
+                            "--top 3 --out " + dir_->File("range") + " --quiet");
+  ASSERT_EQ(range.exit_code, 0) << range.output;
+  nlohmann::json json = ReadJson(dir_->File("range/search.json"));
+  EXPECT_EQ(json["query"]["kind"], "clip-range");
+  EXPECT_EQ(json["query"]["words"], 27);  // words [30, 57) read frames [600, 1196)
+  ASSERT_EQ(json["matches"].size(), 3u);
+  EXPECT_LE(json["matches"][0]["distance"].get<double>(), json["matches"][1]["distance"].get<double>());
+  EXPECT_TRUE(testing::FileExists(dir_->File("range/search.html")));
+  // The same range exported as BVH and searched as a file: found where it came from.
+  ASSERT_EQ(RunTool("export " + archive_ + " --clip synth_000001 --start 600 --end 1200 --out " +
+                    dir_->File("q.bvh"))
+                .exit_code,
+            0);
+  RunResult file = RunTool("search " + archive_ + " --query " + dir_->File("q.bvh") +
+                           " --top 2 --out " + dir_->File("file") + " --quiet");
+  ASSERT_EQ(file.exit_code, 0) << file.output;
+  json = ReadJson(dir_->File("file/search.json"));
+  EXPECT_EQ(json["query"]["kind"], "file");
+  ASSERT_FALSE(json["matches"].empty());
+  EXPECT_EQ(json["matches"][0]["clip"], "synth_000001");
+  const int64_t start = json["matches"][0]["start"].get<int64_t>();
+  const int64_t end = json["matches"][0]["end"].get<int64_t>();
+  EXPECT_LT(std::max<int64_t>(start, 600), std::min<int64_t>(end, 1200))
+      << file.output;
+  // The whole take: every other take ranked.
+  RunResult whole = RunTool("search " + archive_ + " --clip synth_000001 --top 100 --out " +
+                            dir_->File("whole") + " --quiet");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  json = ReadJson(dir_->File("whole/search.json"));
+  EXPECT_EQ(json["query"]["kind"], "take");
+  for (const auto& match : json["matches"]) EXPECT_NE(match["clip"], "synth_000001");
+}
+
+TEST_F(WordsCliTest, ClassifyWritesItsDocumentWithAndWithoutLabels) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  RunResult plain = RunTool("classify " + archive_ + " --groups 3 --out " + dir_->File("c1"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  nlohmann::json json = ReadJson(dir_->File("c1/classify.json"));
+  EXPECT_EQ(json["distance"], "emd");
+  EXPECT_EQ(json["groups"], 3);
+  EXPECT_FALSE(json.contains("supervised"));
+  const size_t takes = json["takes"].size();
+  EXPECT_GT(takes, 5u);
+  EXPECT_TRUE(testing::FileExists(dir_->File("c1/classify.html")));
+  // Labels: a header, a comment, two labels alternating, and a clip the archive does not have.
+  {
+    std::ofstream labels(dir_->File("labels.tsv"));
+    labels << "clip\tlabel\n# comment\n";
+    for (size_t take = 0; take < takes; ++take) {
+      labels << json["takes"][take]["clip"].get<std::string>() << "\t"
+             << (take % 2 ? "odd" : "even") << "\textra field\n";
+    }
+    labels << "not_a_clip\teven\n";
+  }
+  for (const char* distance : {"emd", "emd-tf", "dtw"}) {
+    RunResult labelled = RunTool("classify " + archive_ + " --labels " + dir_->File("labels.tsv") +
+                                 " --distance " + distance + " --out " + dir_->File(distance));
+    ASSERT_EQ(labelled.exit_code, 0) << labelled.output;
+    EXPECT_NE(labelled.output.find("1 labelled clips"), std::string::npos) << labelled.output;
+    const nlohmann::json doc = ReadJson(dir_->File(std::string(distance) + "/classify.json"));
+    EXPECT_EQ(doc["distance"], distance);
+    EXPECT_EQ(doc["labels"], nlohmann::json({"even", "odd"}));
+    EXPECT_EQ(doc["supervised"]["labelled"], takes);
+    EXPECT_EQ(doc["takes"].size(), takes);
+  }
+}
+
+TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  const std::string signatures = testing::ReadBytes(dir_->File("s.mws"));
+  const std::string embedding = testing::ReadBytes(dir_->File("s.mwe"));
+  auto expect = [](const std::string& args, int code, const std::string& text) {
+    RunResult result = RunTool(args);
+    EXPECT_EQ(result.exit_code, code) << args << "\n" << result.output;
+    EXPECT_NE(result.output.find(text), std::string::npos) << args << "\n" << result.output;
+  };
+  expect("words " + dir_->File("missing.mfs"), 11, "missing.mfs");
+  expect("words " + archive_ + " --motifs 0", 13, "motifs");
+  expect("words " + archive_ + " --motifs 60000 --epochs 1", 13, "fewer than the 60000 motifs");
+  expect("words " + archive_ + " --held-out 1", 13, "held_out_fraction");
+  expect("classify " + archive_ + " --prefix " + dir_->File("none"), 11, "run `motifmine words`");
+  expect("classify " + archive_ + " --distance cosine", 13, "--distance must be");
+  {
+    std::ofstream bad(dir_->File("bad.tsv"));
+    bad << "synth_000001 walk\n";
+  }
+  expect("classify " + archive_ + " --labels " + dir_->File("bad.tsv"), 13, "bad.tsv:1:");
+  expect("classify " + archive_ + " --labels " + dir_->File("nothing.tsv"), 11, "nothing.tsv");
+  expect("search " + archive_, 2, "either --clip NAME or --query FILE");
+  expect("search " + archive_ + " --clip synth_000001 --query x.bvh", 2, "either --clip");
+  expect("search " + archive_ + " --clip synth_000001 --start 5", 2, "--start and --end go together");
+  expect("search " + archive_ + " --clip nope", 11, "no clip named 'nope'");
+  expect("search " + archive_ + " --clip synth_000001 --start 10 --end 50", 13, "no whole motion word");
+  expect("search " + archive_ + " --clip synth_000001 --start 10 --end 99999999", 13, "not a range");
+  expect("search " + archive_ + " --query " + dir_->File("none.bvh"), 11, "none.bvh");
+  // Refused options (other epochs included) did not retrain or rewrite anything.
+  EXPECT_EQ(testing::ReadBytes(dir_->File("s.mwe")), embedding);
+  EXPECT_EQ(testing::ReadBytes(dir_->File("s.mws")), signatures);
+  // A damaged signatures file is refused by name, and words makes it again.
+  const std::string damaged = dir_->File("s.mws");
+  testing::PatchByte(damaged, 70, static_cast<char>(signatures[70] ^ 0x20));
+  expect("classify " + archive_, 12, "s.mws");
+  expect("search " + archive_ + " --clip synth_000001", 12, "s.mws");
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  EXPECT_EQ(testing::ReadBytes(damaged), signatures);
+}
+
+}  // namespace
+}  // namespace motif
