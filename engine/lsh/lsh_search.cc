@@ -100,9 +100,11 @@ class LshSearch::Query {
                      (search.family_.hashes_per_table() + 1)),
         distance_(search.features_) {}
 
-  // `previous`: the neighbours of column - 1 in the same chain (seeds), or null.
+  // `previous`: the neighbours of column - 1 in the same chain (seeds), or null. With
+  // `reverse_query`, the verified older frames within their thresholds go to *reverse.
   void Run(uint64_t column, const std::vector<Neighbour>* previous, std::vector<Neighbour>* out,
-           SearchStats* stats, LshQueryStats* lsh_stats);
+           SearchStats* stats, LshQueryStats* lsh_stats,
+           const ReverseQuery* reverse_query = nullptr, std::vector<Neighbour>* reverse = nullptr);
   // Hashes the column and lists its probes (sorted) in probes_.
   void Prepare(uint64_t column);
   // Appends the probes of rank [skip, wanted) of every table, sorted among themselves.
@@ -401,7 +403,8 @@ std::vector<LshSearch::ProbeInfo> LshSearch::ProbeSequence(uint64_t column) cons
 
 void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previous,
                            std::vector<Neighbour>* out, SearchStats* stats,
-                           LshQueryStats* lsh_stats) {
+                           LshQueryStats* lsh_stats, const ReverseQuery* reverse_query,
+                           std::vector<Neighbour>* reverse) {
   const HashFamily& family = search_.family_;
   const LshIndex& index = search_.index_;
   const PoseFeatures& features = search_.features_;
@@ -444,11 +447,19 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
     best_.resize(k_max);
     bound = std::min(eps, best_[k_max - 1].distance);
   };
+  if (reverse != nullptr) reverse->clear();
   auto verify = [&](const uint32_t* candidates, uint32_t count) {
-    distance_.ToBatch(candidates, count, bound, distances);
+    // For the reverse neighbours every distance up to eps is needed exactly; a distance within
+    // the bound is the same either way (the joints are summed in the same order).
+    distance_.ToBatch(candidates, count, reverse != nullptr ? eps : bound, distances);
     for (uint32_t idx = 0; idx < count; ++idx) {
       const float distance = distances[idx];
       ++evaluations;
+      if (reverse != nullptr && candidates[idx] < reverse_query->frame_limit && distance <= eps &&
+          (reverse_query->thresholds == nullptr ||
+           distance <= reverse_query->thresholds[candidates[idx]])) {
+        reverse->push_back({candidates[idx], distance});
+      }
       // A value above the bound may be a partial sum: it only says D > bound. capped_columns
       // counts a column when more than k_max candidates came out at or below eps this way.
       if (distance <= eps) ++within_eps;
@@ -768,6 +779,27 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
 Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
                                 std::vector<std::vector<Neighbour>>* columns, SearchStats* stats,
                                 LshQueryStats* lsh_stats) const {
+  return Search(first_column, count, nullptr, columns, nullptr, stats, lsh_stats);
+}
+
+Status LshSearch::SearchColumnsAndReverse(uint64_t first_column, uint64_t count,
+                                          const ReverseQuery& query,
+                                          std::vector<std::vector<Neighbour>>* columns,
+                                          std::vector<std::vector<Neighbour>>* reverse,
+                                          SearchStats* stats) const {
+  if (query.frame_limit > features_.frame_count()) {
+    return Status::InvalidArgument("lsh search: reverse frame limit " +
+                                   std::to_string(query.frame_limit) + " beyond " +
+                                   std::to_string(features_.frame_count()) + " frames");
+  }
+  if (reverse->size() < count) reverse->resize(count);
+  return Search(first_column, count, &query, columns, reverse, stats, nullptr);
+}
+
+Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,
+                         std::vector<std::vector<Neighbour>>* columns,
+                         std::vector<std::vector<Neighbour>>* reverse, SearchStats* stats,
+                         LshQueryStats* lsh_stats) const {
   if (first_column + count > features_.frame_count()) {
     return Status::InvalidArgument("lsh search: columns [" + std::to_string(first_column) + ", " +
                                    std::to_string(first_column + count) + ") beyond " +
@@ -810,7 +842,8 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
                 continue;
               }
               std::vector<Neighbour>& out = (*columns)[column - first_column];
-              query.Run(column, seeds, &out, &local, &local_lsh);
+              query.Run(column, seeds, &out, &local, &local_lsh, reverse_query,
+                        reverse != nullptr ? &(*reverse)[column - first_column] : nullptr);
               if (chain) previous = out;
             }
           }

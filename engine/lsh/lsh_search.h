@@ -83,6 +83,15 @@ class LshSearch final : public NeighbourSearch {
   Status SearchColumns(uint64_t first_column, uint64_t count,
                        std::vector<std::vector<Neighbour>>* columns, SearchStats* stats,
                        LshQueryStats* lsh_stats) const;
+  // The same columns, and the older frames among each column's verified candidates
+  // (NeighbourSearch). Candidates are then verified up to eps rather than abandoned at the
+  // column's shrinking radius, so their distances are exact; which candidates are verified,
+  // and so the columns, do not change. An older frame the query did not reach (beyond its
+  // radius, or in buckets it did not probe) is not reported.
+  Status SearchColumnsAndReverse(uint64_t first_column, uint64_t count, const ReverseQuery& query,
+                                 std::vector<std::vector<Neighbour>>* columns,
+                                 std::vector<std::vector<Neighbour>>* reverse,
+                                 SearchStats* stats) const override;
 
   // The buckets column `column` visits, in order, as (table, bucket key, lower bound on D), before
   // any early stop (diagnostics and tests).
@@ -105,6 +114,11 @@ class LshSearch final : public NeighbourSearch {
   LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
             HashFamily family, LshIndex index, float extension_radius);
   class Query;
+  // Every search; `reverse_query` and `reverse` null for the columns alone.
+  Status Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,
+                std::vector<std::vector<Neighbour>>* columns,
+                std::vector<std::vector<Neighbour>>* reverse, SearchStats* stats,
+                LshQueryStats* lsh_stats) const;
 
   const PoseFeatures& features_;
   NeighbourRules rules_;

@@ -80,6 +80,16 @@ class TrellisFileWriter {
   // ResourceExhausted on write failure. Durable (fsynced) when it returns OK.
   Status AppendBlock(const std::vector<std::vector<Neighbour>>& columns);
 
+  // Appends a block already encoded (`size` bytes: header, sections, trailer), such as an
+  // unchanged block of another trellis read with TrellisFileReader::ReadEncodedBlock or one
+  // made by trellis_file::BlockEncoder, without decoding it: an incremental update copies the
+  // blocks it does not change. Checked: the framing and the trailer checksum, that the block
+  // holds columns [next_column(), next_column() + block size) and at most k_max neighbours a
+  // column on average (InvalidArgument, the writer unchanged). The caller guarantees what only a
+  // decode would show: it was encoded with this file's eps, and its frames are below
+  // frame_count and at most k_max a column. IOError / ResourceExhausted as AppendBlock.
+  Status AppendEncodedBlock(const uint8_t* bytes, uint64_t size);
+
   // After all frame_count columns: index, footer, sync, rename into place, sync the directory.
   // InvalidArgument before all columns are written. The writer is closed afterwards.
   Status Finish();
