@@ -2,7 +2,8 @@
 // its options with Boost.Program_options.
 //
 // Exit codes (pinned; documented in docs/guide.md for cron users):
-//   0 success; 1 internal error; 2 usage error (unknown option, missing argument);
+//   0 success; 1 internal error; 2 usage error (unknown option, missing argument); 3 done, with
+//   warnings (reindex: files not imported);
 //   10 + Status code for failures: 11 not found, 12 corruption, 13 invalid input,
 //   14 I/O error, 15 not supported, 16 resource exhausted (disk full).
 #pragma once
@@ -20,6 +21,7 @@ namespace motif::cli {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitInternal = 1;
 inline constexpr int kExitUsage = 2;
+inline constexpr int kExitWarnings = 3;
 inline constexpr int kExitStatusBase = 10;
 
 // 10 + the status code for a failure, 0 for OK.
@@ -75,5 +77,6 @@ int RunCluster(const std::vector<std::string>& args);
 int RunExportMotif(const std::vector<std::string>& args);
 int RunReport(const std::vector<std::string>& args);
 int RunMine(const std::vector<std::string>& args);
+int RunReindex(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

@@ -105,6 +105,13 @@ class LshSearch::Query {
   void Run(uint64_t column, const std::vector<Neighbour>* previous, std::vector<Neighbour>* out,
            SearchStats* stats, LshQueryStats* lsh_stats,
            const ReverseQuery* reverse_query = nullptr, std::vector<Neighbour>* reverse = nullptr);
+  // The older frames whose columns the new frame `column` may enter (SearchColumnsAndReverse):
+  // appended to *out, at most `budget` evaluations.
+  // `seeds`: the previous column's reverse frames in the same chain (or null), verified first
+  // advanced by 0..chain_advance frames, as a chained forward query verifies its predecessor's
+  // neighbours.
+  void RunReverse(uint64_t column, const ReverseQuery& reverse_query, uint32_t budget,
+                  const std::vector<Neighbour>* seeds, std::vector<Neighbour>* out);
   // Hashes the column and lists its probes (sorted) in probes_.
   void Prepare(uint64_t column);
   // Appends the probes of rank [skip, wanted) of every table, sorted among themselves.
@@ -705,6 +712,110 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
   if (lsh_stats) lsh_stats->Add(local);
 }
 
+// A new frame n enters an old column t when D(n, t) is below t's own k_max-th distance, which
+// may well be farther than n's: so n's probed buckets are scanned breadth first out to eps (not
+// to n's shrinking radius, as the forward query does), and each older frame is skipped without
+// an evaluation when its lower bound already exceeds its column's threshold. Bucket collisions
+// and the sort-value gaps are symmetric in n and t, so this finds what t's own query would find
+// of n, within the budget.
+void LshSearch::Query::RunReverse(uint64_t column, const ReverseQuery& reverse_query,
+                                  uint32_t budget, const std::vector<Neighbour>* seeds,
+                                  std::vector<Neighbour>* out) {
+  const LshIndex& index = search_.index_;
+  const PoseFeatures& features = search_.features_;
+  const NeighbourRules& rules = search_.rules_;
+  const LshOptions& options = search_.options_;
+  const float eps = rules.eps;
+  const float limit = eps + kBoundSlack;
+  const float sort_step = search_.family_.sort_value_step();
+  Prepare(column);
+  visited_.Clear();
+  distance_.SetQuery(column);
+  const uint32_t clip_of_column = features.ClipOf(column);
+  constexpr uint32_t kBatch = 16;
+  uint32_t batch[kBatch];
+  float distances[kBatch];
+  uint32_t batch_size = 0;
+  uint32_t evaluations = 0;
+  auto threshold_of = [&](uint32_t frame) {
+    return reverse_query.thresholds ? reverse_query.thresholds[frame] : eps;
+  };
+  auto flush = [&] {
+    distance_.ToBatch(batch, batch_size, eps, distances);
+    for (uint32_t idx = 0; idx < batch_size; ++idx) {
+      if (distances[idx] <= eps && distances[idx] <= threshold_of(batch[idx])) {
+        out->push_back({batch[idx], distances[idx]});
+      }
+    }
+    evaluations += batch_size;
+    batch_size = 0;
+  };
+  auto excluded = [&](uint32_t frame) {
+    const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+    return frame_gap < rules.exclusion_frames &&
+           rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame));
+  };
+  // New frames come in runs (clips), and so do the old frames they match: the previous column's
+  // reverse frames, advanced, are the likeliest ones of this column. Not counted in the budget.
+  if (seeds != nullptr) {
+    for (const Neighbour& seed : *seeds) {
+      for (uint32_t advance = 0; advance <= options.chain_advance; ++advance) {
+        const uint64_t frame = uint64_t{seed.frame} + advance;
+        if (frame >= reverse_query.frame_limit) break;
+        const uint32_t candidate = static_cast<uint32_t>(frame);
+        if (threshold_of(candidate) < 0 || excluded(candidate)) continue;
+        if (!visited_.Insert(candidate)) continue;
+        batch[batch_size++] = candidate;
+        if (batch_size == kBatch) flush();
+      }
+    }
+    flush();
+    evaluations = 0;
+  }
+  cursors_.clear();
+  uint64_t capped = 0;
+  uint32_t depth = options.first_round_scan;
+  bool budget_spent = false;
+  while (!budget_spent) {
+    bool more = false;
+    for (size_t probe_idx = 0; probe_idx < probes_.size() && !budget_spent; ++probe_idx) {
+      const Probe& probe = probes_[probe_idx];
+      if (probe.score > limit * limit) break;  // sorted: the later probes are farther
+      if (probe_idx == cursors_.size()) cursors_.push_back(OpenBucket(probe));
+      Cursor& cursor = cursors_[probe_idx];
+      if (cursor.done) continue;
+      const LshTableEntries& table = index.table(probe.table_idx);
+      const uint32_t round_limit = std::min(depth, cursor.scan_limit);
+      while (cursor.examined < round_limit) {
+        uint32_t position = 0;
+        float gap = 0;
+        const Step step = NextEntry(&cursor, probe.score, table.sort_values.data(), sort_step,
+                                    limit * limit, &position, &gap);
+        if (step == Step::kDone) break;
+        if (step == Step::kSkipped) continue;
+        const uint32_t frame = table.frames[position];
+        if (frame >= reverse_query.frame_limit) continue;  // a new frame: searched itself
+        const float threshold = threshold_of(frame);
+        if (threshold < 0) continue;  // its column is not wanted
+        const float reach = threshold + kBoundSlack;
+        if (probe.score + gap * gap > reach * reach) continue;  // cannot enter that column
+        if (excluded(frame) || !visited_.Insert(frame)) continue;
+        distance_.Prefetch(frame);
+        batch[batch_size++] = frame;
+        if (batch_size == kBatch) flush();
+        if (evaluations + batch_size >= budget) {
+          budget_spent = true;
+          break;
+        }
+      }
+      more = cursor.EndRound(&capped) || more;
+    }
+    if (!more || depth >= options.max_bucket_scan) break;
+    depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+  }
+  flush();
+}
+
 LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
                      HashFamily family, LshIndex index, float extension_radius)
     : features_(features),
@@ -829,6 +940,7 @@ Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQue
           LshQueryStats local_lsh;
           SearchStats warm_stats;
           std::vector<Neighbour> previous, warm;
+          std::vector<Neighbour> previous_reverse;  // the chain's previous reverse frames
           for (uint64_t task = range.begin(); task != range.end(); ++task) {
             const uint64_t task_first = (first_task + task) * grain;
             const uint64_t begin = chain ? task_first : std::max(task_first, first_column);
@@ -842,8 +954,23 @@ Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQue
                 continue;
               }
               std::vector<Neighbour>& out = (*columns)[column - first_column];
-              query.Run(column, seeds, &out, &local, &local_lsh, reverse_query,
-                        reverse != nullptr ? &(*reverse)[column - first_column] : nullptr);
+              std::vector<Neighbour>* found =
+                  reverse != nullptr ? &(*reverse)[column - first_column] : nullptr;
+              query.Run(column, seeds, &out, &local, &local_lsh, reverse_query, found);
+              if (found != nullptr) {
+                // The forward query's verified older frames, and the wider reverse scan's.
+                const bool chained = chain && column != task_first && column != first_column;
+                query.RunReverse(column, *reverse_query, options_.max_candidates,
+                                 chained ? &previous_reverse : nullptr, found);
+                std::sort(found->begin(), found->end(),
+                          [](const Neighbour& a, const Neighbour& b) { return a.frame < b.frame; });
+                found->erase(std::unique(found->begin(), found->end(),
+                                         [](const Neighbour& a, const Neighbour& b) {
+                                           return a.frame == b.frame;
+                                         }),
+                             found->end());
+                if (chain) previous_reverse = *found;
+              }
               if (chain) previous = out;
             }
           }

@@ -83,11 +83,12 @@ class LshSearch final : public NeighbourSearch {
   Status SearchColumns(uint64_t first_column, uint64_t count,
                        std::vector<std::vector<Neighbour>>* columns, SearchStats* stats,
                        LshQueryStats* lsh_stats) const;
-  // The same columns, and the older frames among each column's verified candidates
-  // (NeighbourSearch). Candidates are then verified up to eps rather than abandoned at the
-  // column's shrinking radius, so their distances are exact; which candidates are verified,
-  // and so the columns, do not change. An older frame the query did not reach (beyond its
-  // radius, or in buckets it did not probe) is not reported.
+  // The same columns, and the older frames each new column may enter (NeighbourSearch): those
+  // among the forward query's verified candidates (verified up to eps rather than abandoned at
+  // the column's shrinking radius, so which candidates are verified, and so the columns, do not
+  // change), and those of a second, reverse scan of the column's probed buckets out to eps with
+  // max_candidates evaluations, which skips an older frame whose lower bound exceeds its own
+  // threshold. An older frame outside the probed buckets or beyond the budget is missed.
   Status SearchColumnsAndReverse(uint64_t first_column, uint64_t count, const ReverseQuery& query,
                                  std::vector<std::vector<Neighbour>>* columns,
                                  std::vector<std::vector<Neighbour>>* reverse,

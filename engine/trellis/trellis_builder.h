@@ -71,6 +71,10 @@ struct TrellisReport {
   uint64_t resumed_from_column = 0; // > 0 when an interrupted build was continued
   TrellisParams params;             // eps, mu, sigma, k_max, exclusion, ...
   TrellisSearchMode search = TrellisSearchMode::kLsh;  // the search used: kLsh or kExact
+  // With LSH: the options as used, hashes_per_table and bucket_width resolved from the data
+  // (LshSearch::options()); also when the trellis is reused. Passing them explicitly builds the
+  // same hash family again (an incremental update does).
+  LshOptions lsh_resolved;
   uint64_t columns = 0;
   uint64_t neighbours = 0;          // entries in the trellis
   double mean_k = 0;                // achieved mean neighbours per column (after the k_max cap)

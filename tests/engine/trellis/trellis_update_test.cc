@@ -309,3 +309,4 @@ TEST_F(TrellisUpdateTest, LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree)
 
 }  // namespace
 }  // namespace motif
+
