@@ -63,6 +63,7 @@ void PrintSummary(const ReindexReport& report, int exit_code, bool json) {
         {"takes_known", report.takes_known},
         {"changed", report.changed},
         {"failed", report.failed},
+        {"warnings", report.warnings},
         {"settling", report.settling.size()},
         {"archive_frames", manifest.archive.frames},
         {"archive_clips", manifest.archive.clips},
@@ -122,6 +123,9 @@ void PrintSummary(const ReindexReport& report, int exit_code, bool json) {
   }
   for (const std::string& failed : report.failed) {
     std::fprintf(stderr, "motifmine reindex: warning: not imported: %s\n", failed.c_str());
+  }
+  for (const std::string& warning : report.warnings) {
+    std::fprintf(stderr, "motifmine reindex: warning: %s\n", warning.c_str());
   }
 }
 
@@ -273,7 +277,9 @@ int RunReindex(const std::vector<std::string>& args) {
     }
     return code;
   }
-  const int code = report->changed.empty() && report->failed.empty() ? kExitOk : kExitWarnings;
+  const int code = report->changed.empty() && report->failed.empty() && report->warnings.empty()
+                       ? kExitOk
+                       : kExitWarnings;
   PrintSummary(*report, code, mode == ProgressMode::kJson);
   return code;
 }

@@ -331,8 +331,25 @@ Result<ReindexManifest> ReadManifest(const std::string& out_dir) {
 }
 
 Status WriteManifest(const std::string& out_dir, const ReindexManifest& manifest,
-                     FileSystem* file_system) {
-  return AtomicWriteFile(ManifestPath(out_dir), ManifestText(manifest), file_system);
+                     FileSystem* file_system, bool* switched) {
+  if (switched) *switched = false;
+  const std::string path = ManifestPath(out_dir);
+  const std::string temp = TemporaryPathFor(path);
+  const std::string text = ManifestText(manifest);
+  Status status = [&]() -> Status {
+    MOTIF_ASSIGN_OR_RETURN(auto file, file_system->OpenWritable(temp, OpenMode::kCreateExclusive));
+    MOTIF_RETURN_IF_ERROR(file->WriteAt(0, text.data(), text.size()));
+    MOTIF_RETURN_IF_ERROR(file->Sync());
+    MOTIF_RETURN_IF_ERROR(file->Close());
+    return file_system->Rename(temp, path);
+  }();
+  if (!status.ok()) {
+    file_system->Remove(temp);  // best effort: the error that matters is `status`
+    return status.WithContext(path);
+  }
+  if (switched) *switched = true;
+  status = file_system->SyncParentDir(path);
+  return status.ok() ? status : status.WithContext(path);
 }
 
 }  // namespace motif

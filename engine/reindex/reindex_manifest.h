@@ -103,9 +103,11 @@ std::string ManifestText(const ReindexManifest& manifest);
 Result<ReindexManifest> ParseManifest(const std::string& text, const std::string& name);
 // NotFound if OUTDIR has no manifest (no version yet); as ParseManifest otherwise.
 Result<ReindexManifest> ReadManifest(const std::string& out_dir);
-// The switch: written whole to a temporary file, synced, renamed over OUTDIR/manifest.json,
-// directory synced. IOError / ResourceExhausted (the old manifest then stays current).
+// The switch: written whole to a temporary file, synced, renamed over OUTDIR/manifest.json (the
+// commit point), directory synced. IOError / ResourceExhausted; *switched (if given) says
+// whether the rename was done: a failure after it (the directory's sync) leaves the new
+// manifest current, only not yet certain to survive a power loss.
 Status WriteManifest(const std::string& out_dir, const ReindexManifest& manifest,
-                     FileSystem* file_system = PosixFileSystem());
+                     FileSystem* file_system = PosixFileSystem(), bool* switched = nullptr);
 
 }  // namespace motif

@@ -180,7 +180,7 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
                                 "rebuild from scratch)");
     }
   }
-  // A run killed between the switch and the publication of motifs.json.
+  // A run killed (or short of room) between the switch and the publication of motifs.json.
   if (current) MOTIF_RETURN_IF_ERROR(PublishCurrent(out_dir, *current, file_system));
 
   // 2. New takes: scanned against the archive's clips, imported in one commit.
@@ -527,8 +527,20 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
   manifest.params = params;
   manifest.written = UtcNow();
   manifest.build.seconds = SecondsSince(run_start);
-  MOTIF_RETURN_IF_ERROR(WriteManifest(out_dir, manifest, file_system));
-  MOTIF_RETURN_IF_ERROR(PublishCurrent(out_dir, manifest, file_system));
+  bool switched = false;
+  Status status = WriteManifest(out_dir, manifest, file_system, &switched);
+  if (!switched) return status;
+  if (!status.ok()) {
+    report.warnings.push_back("version " + std::to_string(version) +
+                              " is current, but the folder could not be synced: " +
+                              status.message());
+  }
+  status = PublishCurrent(out_dir, manifest, file_system);
+  if (!status.ok()) {
+    report.warnings.push_back(Join(out_dir, "motifs.json") +
+                              " is still the previous version's (the next run replaces it): " +
+                              status.message());
+  }
   for (uint64_t old : ListVersions(out_dir)) {
     if (old + 1 >= version && old <= version) continue;  // the current and the previous
     fs::remove_all(Join(out_dir, VersionDirName(old)), error);

@@ -83,6 +83,9 @@ struct ReindexReport {
   std::vector<std::string> failed;    // takes that failed to import (skip_bad)
   std::vector<std::string> settling;  // too recent, left for the next run
   std::vector<std::string> notes;     // why the build was full, etc.
+  // Problems after the switch (the new version is current): a failed sync of the folder, or
+  // OUTDIR/motifs.json not replaced yet (the next run replaces it).
+  std::vector<std::string> warnings;
   std::vector<uint64_t> removed_versions;
   double import_seconds = 0;
   double trellis_seconds = 0;
@@ -95,7 +98,8 @@ struct ReindexReport {
 // Busy if another run holds OUTDIR's lock; NotFound if DIR does not exist or there is neither
 // an archive nor a take to make one; the errors of each stage (InvalidArgument for a malformed
 // take without skip_bad, Corruption, IOError, ResourceExhausted on a full disk). On any error
-// the current version (manifest.json and every file it names) is unchanged.
+// the current version (manifest.json and every file it names) is unchanged; a failure after
+// the switch (the manifest renamed into place) is a warning of a successful run instead.
 Result<ReindexReport> Reindex(const ReindexOptions& options);
 
 }  // namespace motif

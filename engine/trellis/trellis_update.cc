@@ -213,7 +213,9 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileWriter> writer,
                          TrellisFileWriter::OpenOrResume(out_path, params, writer_options));
   const uint64_t block_columns = writer->block_columns();
-  const uint64_t first_out_block = writer->next_column() / block_columns;
+  // next_column is a multiple of B, or N when every block was written (an update interrupted
+  // while finishing).
+  const uint64_t first_out_block = (writer->next_column() + block_columns - 1) / block_columns;
   const uint64_t out_blocks = (frame_count + block_columns - 1) / block_columns;
   report.resumed_from_column = writer->next_column();
   // Blocks [0, mixed_block) hold old columns only; from mixed_block on they hold new columns

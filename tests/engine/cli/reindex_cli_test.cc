@@ -9,11 +9,13 @@
 // The takes are a synthetic archive with planted motifs (`motifmine synth`), each clip exported
 // as a BVH file (`motifmine export`), so the truth file names the imported clips.
 #include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -22,6 +24,7 @@
 #include "common/file_util.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/planted_motif_score.h"
+#include "engine/reindex/mined_version.h"
 #include "engine/reindex/reindex_manifest.h"
 #include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -308,6 +311,101 @@ TEST_F(ReindexCliTest, ProgressJsonGivesLogLinesAndASummaryLine) {
   }
   EXPECT_NE(run.output.find("\"event\":\"reindex\""), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\"exit_code\":0"), std::string::npos) << run.output;
+}
+
+// What a reader holds of a version: everything it can read, decoded.
+struct VersionContent {
+  std::vector<std::vector<Neighbour>> columns;
+  std::vector<PathCandidate> candidates;
+  MotifsDocument motifs;
+  std::vector<float> last_frames;  // the archive's last 100 frames
+  uint64_t archive_frames = 0;
+};
+
+VersionContent ReadAll(const MinedVersion& version) {
+  VersionContent content;
+  EXPECT_TRUE(
+      version.trellis->ReadColumns(0, version.trellis->column_count(), &content.columns).ok());
+  content.candidates = version.paths->candidates();
+  content.motifs = version.motifs;
+  content.archive_frames = version.archive->frame_count();
+  EXPECT_TRUE(version.archive->ReadFrames(content.archive_frames - 100, 100, &content.last_frames)
+                  .ok());
+  return content;
+}
+
+TEST_F(ReindexCliTest, AReaderOfTheOldVersionKeepsReadingItWhileNewVersionsAreSwitchedIn) {
+  Arrive("batch1", 0, 3);
+  ASSERT_EQ(Reindex().exit_code, 0);
+  auto opened = OpenMinedVersion(out_);
+  ASSERT_TRUE(opened.ok()) << opened.status().ToString();
+  const MinedVersion& v1 = *opened;
+  EXPECT_EQ(v1.manifest.version, 1u);
+  const VersionContent before = ReadAll(v1);
+
+  // Two more nights: version 3 is current, version 2 kept, version 1 removed.
+  Arrive("batch1", 3);
+  ASSERT_EQ(Reindex().exit_code, 0);
+  Arrive("batch2");
+  ASSERT_EQ(Reindex().exit_code, 0);
+  EXPECT_EQ(Manifest().version, 3u);
+  EXPECT_FALSE(fs::exists(out_ + "/v000001")) << "older than the previous: removed";
+  EXPECT_TRUE(fs::exists(out_ + "/v000002"));
+  auto archive_now = FrameFileReader::Open(archive_);
+  ASSERT_TRUE(archive_now.ok());
+  EXPECT_GT((*archive_now)->frame_count(), before.archive_frames);
+
+  // The reader of version 1 still reads exactly what it read: its files are mapped or held,
+  // and its archive reader is at version 1's commit.
+  const VersionContent after = ReadAll(v1);
+  EXPECT_EQ(after.columns, before.columns);
+  EXPECT_EQ(after.candidates, before.candidates);
+  EXPECT_EQ(after.motifs, before.motifs);
+  EXPECT_EQ(after.archive_frames, before.archive_frames);
+  EXPECT_EQ(after.last_frames, before.last_frames);
+  // A new reader gets version 3, consistent with the archive as it is now.
+  auto current = OpenMinedVersion(out_);
+  ASSERT_TRUE(current.ok()) << current.status().ToString();
+  EXPECT_EQ(current->manifest.version, 3u);
+  EXPECT_EQ(current->archive->frame_count(), (*archive_now)->frame_count());
+  EXPECT_EQ(current->motifs.frames, (*archive_now)->frame_count());
+  // motifs.json at its documented path is version 3's, and still opens against the archive
+  // version it names (report and export-motif read it so).
+  EXPECT_EQ(Bytes(out_ + "/motifs.json"), Bytes(out_ + "/v000003/motifs.json"));
+  RunResult report = RunTool("report " + out_ + " --out " + dir_.File("r.html"));
+  EXPECT_EQ(report.exit_code, 0) << report.output;
+}
+
+TEST_F(ReindexCliTest, ReadersOpeningWhileARunSwitchesAlwaysSeeOneWholeVersion) {
+  Arrive("batch1");
+  ASSERT_EQ(Reindex().exit_code, 0);
+  Arrive("batch2");
+  RunResult run;
+  std::atomic<bool> finished{false};
+  std::thread writer([&] {
+    run = Reindex();
+    finished = true;
+  });
+  uint64_t opens = 0;
+  std::set<uint64_t> versions;
+  // Open, check, close, again, until the run has switched to version 2 (and a little more).
+  for (int after_switch = 0; after_switch < 20;) {
+    if (finished && versions.count(2) == 0 && ReadManifest(out_)->version != 2) break;
+    auto version = OpenMinedVersion(out_);
+    ASSERT_TRUE(version.ok()) << version.status().ToString();
+    ++opens;
+    versions.insert(version->manifest.version);
+    const ReindexManifest& manifest = version->manifest;
+    EXPECT_EQ(version->trellis->params().archive_identity, manifest.archive.identity);
+    EXPECT_EQ(version->trellis->column_count(), version->archive->frame_count());
+    EXPECT_EQ(version->paths->params().trellis_identity, version->trellis->identity());
+    EXPECT_EQ(version->motifs.frames, version->archive->frame_count());
+    if (manifest.version == 2) ++after_switch;
+  }
+  writer.join();
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(versions, (std::set<uint64_t>{1, 2}));
+  std::printf("%llu consistent opens while the run switched\n", (unsigned long long)opens);
 }
 
 }  // namespace

@@ -233,6 +233,41 @@ TEST_F(TrellisUpdateTest, AnInterruptedUpdateResumesAndEndsTheSame) {
   EXPECT_EQ(ReadFileToString(out).value(), ReadFileToString(dir_.File("full.mtr")).value());
 }
 
+TEST_F(TrellisUpdateTest, AnUpdateInterruptedWhileFinishingResumesWithNothingLeftToWrite) {
+  // Every block written, then the index, footer or rename failed: the resumed update has no
+  // block left to write and only finishes the file.
+  const ArchiveRows old_rows = Prefix(full_, full_.clip_first_frames.size() / 2);
+  const float eps = EstimateEps(old_rows.Features());
+  const PoseFeatures old_features = old_rows.Features();
+  const PoseFeatures new_features = full_.Features();
+  const ExactSearch new_search(new_features, RulesFor(new_features, eps));
+  WriteFullTrellis(ExactSearch(old_features, RulesFor(old_features, eps)),
+                   ParamsFor(old_features, eps, 1, true), dir_.File("old.mtr"));
+  WriteFullTrellis(new_search, ParamsFor(new_features, eps, 2, true), dir_.File("full.mtr"));
+  auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
+  ASSERT_TRUE(previous.ok());
+  const std::string out = dir_.File("updated.mtr");
+  // Count the steps of a whole update, then fail its last write (the index and footer).
+  testing::FaultInjectingFileSystem counting;
+  TrellisUpdateOptions options;
+  options.file_system = &counting;
+  ASSERT_TRUE(UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
+                            ParamsFor(new_features, eps, 2, true), dir_.File("counted.mtr"),
+                            options)
+                  .ok());
+  testing::FaultInjectingFileSystem failing;
+  failing.FailAt(counting.steps() - 4);  // the tail's write, before its sync, rename, dir sync
+  options.file_system = &failing;
+  ASSERT_FALSE(UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
+                             ParamsFor(new_features, eps, 2, true), out, options)
+                   .ok());
+  auto resumed = UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
+                               ParamsFor(new_features, eps, 2, true), out);
+  ASSERT_TRUE(resumed.ok()) << resumed.status().ToString();
+  EXPECT_EQ(resumed->resumed_from_column, full_.frame_count);
+  EXPECT_EQ(ReadFileToString(out).value(), ReadFileToString(dir_.File("full.mtr")).value());
+}
+
 TEST_F(TrellisUpdateTest, RefusesAnOldTrellisOfOtherParameters) {
   const ArchiveRows old_rows = Prefix(full_, 2);
   const PoseFeatures old_features = old_rows.Features();
