@@ -828,6 +828,29 @@ LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOpti
 Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& features,
                                                      NeighbourRules rules,
                                                      const LshOptions& options) {
+  return Make(features, std::move(rules), options, nullptr);
+}
+
+Result<std::unique_ptr<LshSearch>> LshSearch::CreateWithIndex(const PoseFeatures& features,
+                                                              NeighbourRules rules,
+                                                              const LshOptions& options,
+                                                              LshIndex index) {
+  if (options.hashes_per_table == 0 || options.bucket_width == 0) {
+    return Status::InvalidArgument("lsh search: a given index needs the hash family's sizes");
+  }
+  if (index.frame_count() != features.frame_count() || index.table_count() != options.tables) {
+    return Status::InvalidArgument("lsh search: the given index holds " +
+                                   std::to_string(index.frame_count()) + " frames in " +
+                                   std::to_string(index.table_count()) + " tables, not " +
+                                   std::to_string(features.frame_count()) + " in " +
+                                   std::to_string(options.tables));
+  }
+  return Make(features, std::move(rules), options, &index);
+}
+
+Result<std::unique_ptr<LshSearch>> LshSearch::Make(const PoseFeatures& features,
+                                                   NeighbourRules rules,
+                                                   const LshOptions& options, LshIndex* given) {
   auto invalid = [](const std::string& what) {
     return Status::InvalidArgument("lsh search: " + what);
   };
@@ -872,9 +895,13 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& feature
       ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(), scale);
   HashFamily family = HashFamily::Draw(features.weights(), used.tables, used.hashes_per_table,
                                        used.bucket_width, used.seed);
-  MOTIF_ASSIGN_OR_RETURN(LshIndex index,
-                         LshIndex::Build(features, family, used.shard_frames, used.threads,
-                                         used.ranking == LshRanking::kPositionCode));
+  LshIndex index;
+  if (given != nullptr) {
+    index = std::move(*given);
+  } else {
+    MOTIF_ASSIGN_OR_RETURN(index, LshIndex::Build(features, family, used.shard_frames, used.threads,
+                                                  used.ranking == LshRanking::kPositionCode));
+  }
   const float extension_radius = options.sparse_radius_factor * scale.radius;
   return std::unique_ptr<LshSearch>(new LshSearch(features, std::move(rules), std::move(used),
                                                   std::move(family), std::move(index),

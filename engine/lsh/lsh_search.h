@@ -75,6 +75,15 @@ class LshSearch final : public NeighbourSearch {
   // width, 2^32 frames or more. Errors of the index build pass through.
   static Result<std::unique_ptr<LshSearch>> Create(const PoseFeatures& features,
                                                    NeighbourRules rules, const LshOptions& options);
+  // The same with the index given: built earlier over all of `features` with the family these
+  // options draw (HashFamily::Draw(features.weights(), tables, hashes_per_table, bucket_width,
+  // seed), both sizes given, not 0), e.g. a saved index extended with new frames
+  // (LshIndex::Extend). The search is then the one Create makes. InvalidArgument, besides
+  // Create's, if the index covers another frame count or table count.
+  static Result<std::unique_ptr<LshSearch>> CreateWithIndex(const PoseFeatures& features,
+                                                            NeighbourRules rules,
+                                                            const LshOptions& options,
+                                                            LshIndex index);
 
   Status SearchColumns(uint64_t first_column, uint64_t count,
                        std::vector<std::vector<Neighbour>>* columns,
@@ -114,6 +123,10 @@ class LshSearch final : public NeighbourSearch {
  private:
   LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
             HashFamily family, LshIndex index, float extension_radius);
+  // Create's work; with `index` null the index is built.
+  static Result<std::unique_ptr<LshSearch>> Make(const PoseFeatures& features,
+                                                 NeighbourRules rules, const LshOptions& options,
+                                                 LshIndex* index);
   class Query;
   // Every search; `reverse_query` and `reverse` null for the columns alone.
   Status Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "common/byte_coding.h"
@@ -15,12 +16,16 @@
 #include "engine/cluster/cluster_stage.h"
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
+#include "engine/grow/path_grower.h"
 #include "engine/grow/paths_builder.h"
 #include "engine/ingest/archive_import.h"
+#include "engine/lsh/hash_family.h"
 #include "engine/lsh/lsh_search.h"
+#include "engine/reindex/search_cache.h"
 #include "engine/reindex/watched_takes.h"
 #include "engine/report/report_html.h"
 #include "engine/trellis/trellis_update.h"
+#include "formats/paths_file/paths_file_writer.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
@@ -37,7 +42,9 @@ double SecondsSince(Clock::time_point start) {
 constexpr char kLockName[] = ".motifmine.lock";
 const std::vector<std::string> kTopFiles = {"manifest.json", "motifs.json", "report.html"};
 const std::vector<std::string> kVersionFiles = {"trellis.mtr", "paths.mpa", "motifs.json",
-                                                "cluster_state.json", "report.html"};
+                                                "cluster_state.json", "report.html",
+                                                "search.msc"};
+constexpr char kSearchCacheName[] = "search.msc";
 
 std::string Join(const std::string& dir, const std::string& name) {
   return (fs::path(dir) / name).string();
@@ -341,6 +348,9 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
   manifest.build.new_frames =
       plan.kind == "incremental" ? archive_version.frames - current->archive.frames : 0;
 
+  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
+                         LoadDistanceWeights(archive->skeleton(), params.weights_path));
+  const uint64_t weights_hash = WeightsHash(weights);
   start = Clock::now();
   std::string trellis_stage;
   auto trellis_progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
@@ -373,6 +383,17 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     if (options.lsh_width) trellis.lsh.bucket_width = *options.lsh_width;
     trellis.progress = trellis_progress;
     trellis.note = note;
+    // The features and the LSH tables, kept for the next run (not the thresholds: the next
+    // update decodes the trellis once for them). Best effort: it is a cache.
+    trellis.on_search_done = [&](const PoseFeatures& features, const NeighbourSearch& search) {
+      const auto* lsh_search = dynamic_cast<const LshSearch*>(&search);
+      SearchCacheKey key{archive_version.identity, weights_hash,
+                         lsh_search ? DescribeLshOptions(lsh_search->options()) : ""};
+      Status saved = WriteSearchCache(Join(version_path, kSearchCacheName), key, features,
+                                      lsh_search ? &lsh_search->index() : nullptr, 0, {},
+                                      file_system);
+      if (!saved.ok()) note("search cache not saved (the next run rebuilds it): " + saved.message());
+    };
     MOTIF_ASSIGN_OR_RETURN(TrellisReport built, BuildTrellis(archive_path, trellis_path, trellis));
     params.eps = built.params.eps;
     if (plan.estimate_eps) {
@@ -388,8 +409,6 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     const std::string previous_path = Join(out_dir, current->trellis.path);
     MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> previous,
                            TrellisFileReader::Open(previous_path));
-    MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
-                           LoadDistanceWeights(archive->skeleton(), params.weights_path));
     TrellisParams trellis_params = previous->params();
     trellis_params.frame_count = archive->frame_count();
     trellis_params.archive_identity = archive_version.identity;
@@ -399,6 +418,7 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     lsh.seed = params.seed;
     lsh.threads = options.threads;
     trellis_params.search_params = params.exact ? "exact" : DescribeLshOptions(lsh);
+    const std::string family = params.exact ? "" : DescribeLshOptions(lsh);
     // Reused when a killed run finished it.
     bool reused = false;
     if (fs::exists(trellis_path, error)) {
@@ -406,31 +426,93 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
       reused = done.ok() && (*done)->params() == trellis_params;
     }
     if (!reused) {
+      // The previous version's features, LSH tables and thresholds, extended with the new
+      // frames; computed from the whole archive when the cache is missing or stale.
+      auto features_progress = [&](uint64_t done, uint64_t total) {
+        progress("trellis features", done, total, "frames");
+      };
       progress("trellis features", 0, archive->frame_count(), "frames");
-      MOTIF_ASSIGN_OR_RETURN(
-          PoseFeatures features,
-          PoseFeatures::FromArchive(*archive, weights, [&](uint64_t done, uint64_t total) {
-            progress("trellis features", done, total, "frames");
-          }));
+      Result<SearchCache> cache = ReadSearchCache(Join(Join(out_dir, current->dir),
+                                                       kSearchCacheName));
+      const SearchCacheKey previous_key{current->archive.identity, weights_hash, family};
+      const bool cached = cache.ok() && cache->key == previous_key &&
+                          cache->features.frame_count() == current->archive.frames &&
+                          (params.exact || cache->tables.size() == lsh.tables);
+      if (!cached) {
+        note("no search cache of version " + std::to_string(current->version) +
+             (cache.ok() ? std::string(" for these parameters")
+                         : ": " + cache.status().message()) +
+             "; decoding the whole archive");
+      }
+      std::optional<PoseFeatures> features_holder;
+      if (cached) {
+        MOTIF_ASSIGN_OR_RETURN(features_holder,
+                               PoseFeatures::ExtendFromArchive(std::move(cache->features),
+                                                               *archive, weights,
+                                                               features_progress));
+      } else {
+        MOTIF_ASSIGN_OR_RETURN(features_holder,
+                               PoseFeatures::FromArchive(*archive, weights, features_progress));
+      }
+      const PoseFeatures& features = *features_holder;
       NeighbourRules rules;
       rules.eps = params.eps;
       rules.k_max = params.k_max;
       rules.exclusion_frames = params.exclusion_frames;
       rules.clip_first_frames = features.clip_first_frames();
       std::unique_ptr<NeighbourSearch> search;
+      const LshSearch* lsh_search = nullptr;
       if (params.exact) {
         ExactSearchOptions exact;
         exact.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
         search = std::make_unique<ExactSearch>(features, rules, exact);
       } else {
-        MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<LshSearch> lsh_search,
-                               LshSearch::Create(features, rules, lsh));
-        search = std::move(lsh_search);
+        std::unique_ptr<LshSearch> made;
+        if (cached) {
+          MOTIF_ASSIGN_OR_RETURN(LshIndex index,
+                                 LshIndex::FromTables(current->archive.frames,
+                                                      std::move(cache->tables),
+                                                      cache->position_codes));
+          const HashFamily hash_family =
+              HashFamily::Draw(features.weights(), lsh.tables, lsh.hashes_per_table,
+                               lsh.bucket_width, lsh.seed);
+          MOTIF_RETURN_IF_ERROR(
+              index.Extend(features, hash_family, lsh.shard_frames, options.threads));
+          MOTIF_ASSIGN_OR_RETURN(made,
+                                 LshSearch::CreateWithIndex(features, rules, lsh, std::move(index)));
+        } else {
+          MOTIF_ASSIGN_OR_RETURN(made, LshSearch::Create(features, rules, lsh));
+        }
+        lsh_search = made.get();
+        search = std::move(made);
       }
+      // The paths grow as the blocks are written (one pass over the new trellis, beside the
+      // merge), unless the update resumes an interrupted one: BuildPaths grows them then.
+      std::vector<uint64_t> clip_starts;
+      for (const ClipInfo& clip : archive->clips()) clip_starts.push_back(clip.first_frame);
+      GrowOptions grow;
+      grow.branch = params.branch;
+      grow.min_length = params.min_length;
+      MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathGrower> grower,
+                             PathGrower::Create(archive->frame_count(), clip_starts, grow));
+      std::vector<float> next_thresholds;
       TrellisUpdateOptions update;
       update.threads = options.threads;
       update.file_system = file_system;
       update.progress = trellis_progress;
+      const bool thresholds_cached =
+          cached && cache->trellis_identity == previous->identity() &&
+          cache->thresholds.size() == previous->column_count();
+      if (thresholds_cached) update.thresholds = &cache->thresholds;
+      update.next_thresholds = &next_thresholds;
+      update.on_block = [&](uint64_t first_column,
+                            const std::vector<std::vector<Neighbour>>& columns) -> Status {
+        if (grower->next_column() != first_column) return Status::Ok();  // resumed: BuildPaths
+        for (const std::vector<Neighbour>& column : columns) {
+          MOTIF_RETURN_IF_ERROR(grower->AddColumn(column.data(), column.size()));
+        }
+        return Status::Ok();
+      };
       MOTIF_ASSIGN_OR_RETURN(TrellisUpdateReport updated,
                              UpdateTrellis(*previous, features, rules, *search, trellis_params,
                                            trellis_path, update));
@@ -442,6 +524,24 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
            std::to_string(updated.old_columns) + " old columns changed; " +
            std::to_string(updated.copied_blocks) + " blocks copied, " +
            std::to_string(updated.rewritten_blocks) + " rewritten");
+      MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> written,
+                             TrellisFileReader::Open(trellis_path));
+      if (grower->next_column() == archive->frame_count()) {
+        MOTIF_ASSIGN_OR_RETURN(std::vector<PathCandidate> candidates, grower->Finish());
+        PathsParams paths_params;
+        paths_params.trellis_identity = written->identity();
+        paths_params.archive_identity = archive_version.identity;
+        paths_params.frame_count = archive->frame_count();
+        paths_params.branch = grow.branch;
+        paths_params.min_length = grow.min_length;
+        MOTIF_RETURN_IF_ERROR(
+            WritePathsFile(Join(version_path, "paths.mpa"), paths_params, candidates));
+      }
+      Status saved = WriteSearchCache(Join(version_path, kSearchCacheName),
+                                      {archive_version.identity, weights_hash, family}, features,
+                                      lsh_search ? &lsh_search->index() : nullptr,
+                                      written->identity(), next_thresholds, file_system);
+      if (!saved.ok()) note("search cache not saved (the next run rebuilds it): " + saved.message());
     }
   } else {  // regrow: the same trellis
     const std::string previous_path = Join(out_dir, current->trellis.path);

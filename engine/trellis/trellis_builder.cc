@@ -243,6 +243,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   }
   MOTIF_RETURN_IF_ERROR(finish_pending_write());
   MOTIF_RETURN_IF_ERROR(writer->Finish());
+  if (options.on_search_done) options.on_search_done(features, *search);
   report.search_seconds = SecondsSince(start);
   report.distance_evaluations = stats.distance_evaluations;
   report.capped_columns = stats.capped_columns;

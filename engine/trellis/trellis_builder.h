@@ -22,6 +22,7 @@
 
 #include "common/status.h"
 #include "engine/distance/neighbour_search.h"
+#include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_options.h"
 #include "formats/trellis_file/trellis_file_writer.h"
 
@@ -63,6 +64,10 @@ struct TrellisOptions {
   // Stages: "features", "eps", "index", "trellis"; (done, total) in frames / pairs / columns.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;
   std::function<void(const std::string&)> note;
+  // Called once a build has written every column, with the features and the search it used
+  // (not when a finished trellis is reused): a caller may keep them (motifmine reindex saves
+  // them for its next, incremental run).
+  std::function<void(const PoseFeatures&, const NeighbourSearch&)> on_search_done;
 };
 
 struct TrellisReport {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -34,10 +35,9 @@ struct ReversePair {
   float distance;  // exact (the search's)
 };
 
-// Per old column from `first_block`'s first column on: eps if the column holds fewer than k_max
-// entries (any frame within eps enters it), else a little more than its k_max-th distance (the
-// stored code's bound), beyond which no new frame can displace an entry. Columns before
-// first_block (already written by an interrupted update) get -1: nothing is wanted there.
+// The thresholds of the old columns from `first_block`'s first column on (ColumnThreshold);
+// columns before first_block (already written by an interrupted update) get -1: nothing is
+// wanted there.
 Status ComputeThresholds(const TrellisFileReader& previous, uint64_t first_block,
                          tbb::task_arena& arena,
                          const std::function<void(uint64_t, uint64_t)>& progress,
@@ -46,8 +46,6 @@ Status ComputeThresholds(const TrellisFileReader& previous, uint64_t first_block
   const uint64_t block_count = previous.block_count();
   thresholds->assign(params.frame_count, -1.0f);
   if (first_block >= block_count) return Status::Ok();
-  // Twice the quantisation bound: a stored code's distance is within one bound of the exact one.
-  const float slack = static_cast<float>(2 * trellis_file::QuantizationBound(params.eps));
   std::vector<Status> block_status(block_count - first_block);
   std::atomic<uint64_t> done{0};
   tbb::enumerable_thread_specific<TrellisBlock> scratch;
@@ -61,16 +59,9 @@ Status ComputeThresholds(const TrellisFileReader& previous, uint64_t first_block
       }
       for (uint32_t column_idx = 0; column_idx < block.column_count; ++column_idx) {
         const uint32_t begin = block.offsets[column_idx];
-        const uint32_t end = block.offsets[column_idx + 1];
-        float threshold = params.eps;
-        if (end - begin >= params.k_max) {
-          float farthest = 0;
-          for (uint32_t entry = begin; entry < end; ++entry) {
-            farthest = std::max(farthest, block.neighbours[entry].distance);
-          }
-          threshold = std::min(params.eps, farthest + slack);
-        }
-        (*thresholds)[block.first_column + column_idx] = threshold;
+        (*thresholds)[block.first_column + column_idx] =
+            ColumnThreshold(&block.neighbours[begin], block.offsets[column_idx + 1] - begin,
+                            params.eps, params.k_max);
       }
       (void)previous.ReleaseBlocks(block_idx, block_idx + 1);
       if (progress) progress(done.fetch_add(1) + 1, block_count - first_block);
@@ -80,15 +71,47 @@ Status ComputeThresholds(const TrellisFileReader& previous, uint64_t first_block
   return Status::Ok();
 }
 
+// Buffers reused across blocks (a block's columns and its encoded bytes are megabytes: fresh
+// ones would be mapped and faulted in again for every block).
+template <typename T>
+class BufferPool {
+ public:
+  std::unique_ptr<T> Take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (free_.empty()) return std::make_unique<T>();
+    std::unique_ptr<T> buffer = std::move(free_.back());
+    free_.pop_back();
+    return buffer;
+  }
+  void Give(std::unique_ptr<T> buffer) {
+    if (!buffer) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(buffer));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<T>> free_;
+};
+
+using Columns = std::vector<std::vector<Neighbour>>;
+
 // Column `column`'s k_max nearest among its old entries (sorted by frame, stored distances) and
 // its candidates (new frames, all after the old entries, sorted by frame, exact distances), in
 // FinishColumn's order (distance, then frame), into *out sorted by frame. True if a candidate
 // entered. Only the stored codes are known of the old entries; the code is monotone in the
 // distance, so entries are ordered by code, and only those sharing the code at the cut get
 // their exact distance computed again (PoseDistance: the bits the search computed).
+struct MergeItem {
+  uint16_t code;
+  bool is_new;
+  Neighbour neighbour;
+};
+
 bool MergeColumn(const PoseFeatures& features, uint64_t column, float eps, uint32_t k_max,
                  const Neighbour* old_entries, size_t old_count, const ReversePair* candidates,
-                 size_t candidate_count, std::vector<Neighbour>* out, uint64_t* recomputed) {
+                 size_t candidate_count, std::vector<Neighbour>* out, uint64_t* recomputed,
+                 std::vector<MergeItem>* scratch) {
   out->assign(old_entries, old_entries + old_count);
   if (candidate_count == 0) return false;
   if (old_count + candidate_count <= k_max) {
@@ -97,13 +120,9 @@ bool MergeColumn(const PoseFeatures& features, uint64_t column, float eps, uint3
     }
     return true;
   }
-  struct Item {
-    uint16_t code;
-    bool is_new;
-    Neighbour neighbour;
-  };
-  std::vector<Item> items;
-  items.reserve(old_count + candidate_count);
+  using Item = MergeItem;
+  std::vector<Item>& items = *scratch;
+  items.clear();
   for (size_t idx = 0; idx < old_count; ++idx) {
     items.push_back({trellis_file::QuantizeDistance(old_entries[idx].distance, eps), false,
                      old_entries[idx]});
@@ -162,15 +181,24 @@ struct OutputBlock {
   Status status;
   const uint8_t* bytes = nullptr;  // the block to append: into `owned` or the old file
   uint64_t size = 0;
-  std::string owned;
+  std::unique_ptr<std::string> owned;
+  std::unique_ptr<Columns> columns;  // the block's columns, when they were at hand or needed
   bool copied = false;    // an old block copied unchanged
   bool rewritten = false; // an old block with changed columns (or the mixed block)
   uint64_t changed_columns = 0;
   uint64_t recomputed = 0;
-  uint64_t neighbours = 0;
 };
 
 }  // namespace
+
+float ColumnThreshold(const Neighbour* entries, size_t count, float eps, uint32_t k_max) {
+  if (count < k_max) return eps;
+  float farthest = 0;
+  for (size_t idx = 0; idx < count; ++idx) farthest = std::max(farthest, entries[idx].distance);
+  // As stored: a distance decoded from its code is the same whatever it was before.
+  farthest = trellis_file::DequantizeDistance(trellis_file::QuantizeDistance(farthest, eps), eps);
+  return std::min(eps, farthest + static_cast<float>(2 * trellis_file::QuantizationBound(eps)));
+}
 
 Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
                                           const PoseFeatures& features,
@@ -224,35 +252,54 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
   const bool old_blocks_left = first_out_block * block_columns < old_columns;
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
 
-  // 1. Thresholds of the old columns still to write.
+  // 1. Thresholds of the old columns still to write: saved by the previous update, or decoded.
   Clock::time_point start = Clock::now();
-  std::vector<float> thresholds;
+  std::vector<float> computed_thresholds;
+  const std::vector<float>* thresholds = nullptr;
   if (old_blocks_left) {
-    progress("thresholds", 0, previous.block_count() - first_out_block);
-    MOTIF_RETURN_IF_ERROR(ComputeThresholds(previous, first_out_block, arena,
-                                            [&](uint64_t done, uint64_t total) {
-                                              progress("thresholds", done, total);
-                                            },
-                                            &thresholds));
+    if (options.thresholds != nullptr && options.thresholds->size() == old_columns) {
+      thresholds = options.thresholds;
+    } else {
+      progress("thresholds", 0, previous.block_count() - first_out_block);
+      MOTIF_RETURN_IF_ERROR(ComputeThresholds(previous, first_out_block, arena,
+                                              [&](uint64_t done, uint64_t total) {
+                                                progress("thresholds", done, total);
+                                              },
+                                              &computed_thresholds));
+      thresholds = &computed_thresholds;
+    }
   }
+  // The new trellis's thresholds, when every block goes through this update.
+  std::vector<float>* next_thresholds =
+      report.resumed_from_column == 0 ? options.next_thresholds : nullptr;
+  if (options.next_thresholds) options.next_thresholds->clear();
+  if (next_thresholds) next_thresholds->assign(frame_count, params.eps);
+  auto set_thresholds = [&](uint64_t first_column, const Columns& columns) {
+    if (next_thresholds == nullptr) return;
+    for (size_t idx = 0; idx < columns.size(); ++idx) {
+      (*next_thresholds)[first_column + idx] =
+          ColumnThreshold(columns[idx].data(), columns[idx].size(), params.eps, params.k_max);
+    }
+  };
   report.thresholds_seconds = SecondsSince(start);
 
-  // 2. The new columns, block by block of the output: whole new blocks are encoded at once, the
-  // new columns of the mixed block are kept for the merge. With old blocks still to write, the
-  // queries also report the old columns they enter.
+  // 2. The new columns, block by block of the output: whole new blocks are encoded at once
+  // (and kept for the block sink), the new columns of the mixed block are kept for the merge.
+  // With old blocks still to write, the queries also report the old columns they enter.
   start = Clock::now();
   const uint64_t search_first =
       old_blocks_left ? old_columns : std::max(old_columns, writer->next_column());
   std::vector<ReversePair> pairs;
-  std::vector<std::vector<Neighbour>> mixed_new_columns;  // columns [old_columns, mixed end)
-  std::vector<std::string> new_block_bytes(out_blocks);   // encoded whole new blocks
+  Columns mixed_new_columns;                                 // [old_columns, the mixed end)
+  std::vector<std::unique_ptr<std::string>> new_block_bytes(out_blocks);
+  std::vector<std::unique_ptr<Columns>> new_block_columns(out_blocks);
   {
     trellis_file::BlockEncoder encoder(kZstdLevel);
     ReverseQuery query;
     query.frame_limit = old_columns;
-    query.thresholds = thresholds.empty() ? nullptr : thresholds.data();
-    std::vector<std::vector<Neighbour>> columns;
-    std::vector<std::vector<Neighbour>> reverse;
+    query.thresholds = thresholds ? thresholds->data() : nullptr;
+    Columns columns;
+    Columns reverse;
     progress("new columns", 0, frame_count - search_first);
     for (uint64_t first = search_first; first < frame_count;) {
       const uint64_t block_idx = first / block_columns;
@@ -275,8 +322,14 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
         columns = {};
       } else if (block_idx >= first_out_block) {
         trellis_file::BlockHandle handle;
+        new_block_bytes[block_idx] = std::make_unique<std::string>();
         MOTIF_RETURN_IF_ERROR(encoder.Encode(first, columns, params.eps,
-                                             &new_block_bytes[block_idx], &handle));
+                                             new_block_bytes[block_idx].get(), &handle));
+        set_thresholds(first, columns);
+        if (options.on_block) {
+          new_block_columns[block_idx] = std::make_unique<Columns>(std::move(columns));
+          columns = {};
+        }
       }
       progress("new columns", end - search_first, frame_count - search_first);
       first = end;
@@ -289,19 +342,23 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
   report.search_seconds = SecondsSince(start);
 
   // 3. The output blocks in order: old blocks copied or merged, the mixed block, the new blocks.
-  // Blocks are prepared in parallel and appended in order.
+  // Blocks are prepared in parallel and appended (and given to the sink) in order.
   start = Clock::now();
   tbb::enumerable_thread_specific<std::unique_ptr<trellis_file::BlockEncoder>> encoders(
       [] { return std::make_unique<trellis_file::BlockEncoder>(kZstdLevel); });
   tbb::enumerable_thread_specific<TrellisBlock> blocks;
+  tbb::enumerable_thread_specific<std::vector<MergeItem>> merge_scratch;
+  BufferPool<Columns> column_pool;
+  BufferPool<std::string> byte_pool;
   auto prepare = [&](OutputBlock* out) {
     const uint64_t block_idx = out->block_idx;
     const uint64_t first_column = block_idx * block_columns;
     const uint64_t end_column = std::min(frame_count, first_column + block_columns);
     if (first_column >= old_columns) {  // a whole new block
       out->owned = std::move(new_block_bytes[block_idx]);
-      out->bytes = reinterpret_cast<const uint8_t*>(out->owned.data());
-      out->size = out->owned.size();
+      out->columns = std::move(new_block_columns[block_idx]);
+      out->bytes = reinterpret_cast<const uint8_t*>(out->owned->data());
+      out->size = out->owned->size();
       return;
     }
     const auto pairs_begin = std::lower_bound(
@@ -310,15 +367,22 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
     const auto pairs_end = std::lower_bound(
         pairs_begin, pairs.end(), end_column,
         [](const ReversePair& pair, uint64_t column) { return pair.old_frame < column; });
-    if (pairs_begin == pairs_end && end_column <= old_columns) {
+    const bool copy = pairs_begin == pairs_end && end_column <= old_columns;
+    if (copy) {
       out->status = previous.ReadEncodedBlock(block_idx, &out->bytes, &out->size);
       out->copied = true;
-      return;
+      if (next_thresholds) {
+        std::copy(thresholds->begin() + first_column, thresholds->begin() + end_column,
+                  next_thresholds->begin() + first_column);
+      }
+      if (!options.on_block || !out->status.ok()) return;
     }
     TrellisBlock& block = blocks.local();
     out->status = previous.ReadBlock(block_idx, &block, /*decode_distances=*/true);
     if (!out->status.ok()) return;
-    std::vector<std::vector<Neighbour>> columns(end_column - first_column);
+    out->columns = column_pool.Take();
+    Columns& columns = *out->columns;
+    columns.resize(end_column - first_column);
     auto pair = pairs_begin;
     for (uint32_t column_idx = 0; column_idx < block.column_count; ++column_idx) {
       const uint64_t column = first_column + column_idx;
@@ -329,17 +393,21 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
       if (MergeColumn(features, column, params.eps, params.k_max, &block.neighbours[begin],
                       end - begin, pairs.data() + (column_pairs_begin - pairs.begin()),
                       static_cast<size_t>(pair - column_pairs_begin), &columns[column_idx],
-                      &out->recomputed)) {
+                      &out->recomputed, &merge_scratch.local())) {
         ++out->changed_columns;
       }
     }
+    if (copy) return;  // decoded for the sink only
     for (uint64_t column = old_columns; column < end_column; ++column) {
       columns[column - first_column] = std::move(mixed_new_columns[column - old_columns]);
     }
+    if (first_column < old_columns || end_column > old_columns) set_thresholds(first_column, columns);
     trellis_file::BlockHandle handle;
-    out->status = encoders.local()->Encode(first_column, columns, params.eps, &out->owned, &handle);
-    out->bytes = reinterpret_cast<const uint8_t*>(out->owned.data());
-    out->size = out->owned.size();
+    out->owned = byte_pool.Take();
+    out->status =
+        encoders.local()->Encode(first_column, columns, params.eps, out->owned.get(), &handle);
+    out->bytes = reinterpret_cast<const uint8_t*>(out->owned->data());
+    out->size = out->owned->size();
     out->rewritten = true;
   };
 
@@ -375,6 +443,10 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
                   if (!failure.ok()) return;
                   Status status = out->status;
                   if (status.ok()) status = writer->AppendEncodedBlock(out->bytes, out->size);
+                  const uint64_t first_column = out->block_idx * block_columns;
+                  if (status.ok() && options.on_block && out->columns) {
+                    status = options.on_block(first_column, *out->columns);
+                  }
                   if (!status.ok()) {
                     failure = status;
                     return;
@@ -382,7 +454,6 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
                   if (out->block_idx < previous.block_count()) {
                     (void)previous.ReleaseBlocks(out->block_idx, out->block_idx + 1);
                   }
-                  const uint64_t first_column = out->block_idx * block_columns;
                   if (first_column >= old_columns || out->block_idx == mixed_block) {
                     ++report.new_blocks;
                   }
@@ -392,6 +463,10 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
                   }
                   report.changed_columns += out->changed_columns;
                   report.exact_recomputations += out->recomputed;
+                  if (first_column < old_columns) {
+                    column_pool.Give(std::move(out->columns));
+                    byte_pool.Give(std::move(out->owned));
+                  }
                   progress("merge", out->block_idx + 1 - first_out_block,
                            out_blocks - first_out_block);
                 }));

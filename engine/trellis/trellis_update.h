@@ -42,9 +42,24 @@
 
 namespace motif {
 
+// Each column's threshold: eps if it holds fewer than k_max entries (any frame within eps
+// enters it), else a little more than its k_max-th distance as stored (its 16-bit code's,
+// plus twice the quantisation bound), beyond which no new frame can displace an entry.
+float ColumnThreshold(const Neighbour* entries, size_t count, float eps, uint32_t k_max);
+
 struct TrellisUpdateOptions {
   int threads = 0;  // decoding, merging and encoding blocks (0: all cores)
   FileSystem* file_system = PosixFileSystem();
+  // The old trellis's column thresholds (ColumnThreshold), saved by the previous update; null:
+  // computed by decoding every old block (the "thresholds" stage).
+  const std::vector<float>* thresholds = nullptr;
+  // Filled with the new trellis's thresholds, for the next update (left empty when the update
+  // resumed an interrupted one: the blocks written before were not seen).
+  std::vector<float>* next_thresholds = nullptr;
+  // Called in column order with every block of the new trellis as it is written (the grower
+  // streams through them here instead of reading the file again). An error stops the update.
+  std::function<Status(uint64_t first_column, const std::vector<std::vector<Neighbour>>& columns)>
+      on_block;
   // Stages "thresholds" (old blocks decoded), "new columns" (columns searched), "merge"
   // (output blocks written); (done, total).
   std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;

@@ -121,7 +121,7 @@ class ReindexCliTest : public ::testing::Test {
 testing::TempDir* ReindexCliTest::takes_ = nullptr;
 
 TEST_F(ReindexCliTest, ExactIncrementalResultIsTheFromScratchMineByteForByte) {
-  Arrive("batch1");
+  Arrive("batch1", 0, 4);
   RunResult first = Reindex();
   ASSERT_EQ(first.exit_code, 0) << first.output;
   const ReindexManifest v1 = Manifest();
@@ -131,37 +131,43 @@ TEST_F(ReindexCliTest, ExactIncrementalResultIsTheFromScratchMineByteForByte) {
   EXPECT_TRUE(v1.params.eps_estimated);
   EXPECT_EQ(Bytes(out_ + "/motifs.json"), Bytes(out_ + "/v000001/motifs.json"));
 
-  Arrive("batch2");
+  // Two more nights: the first update decodes the trellis for its thresholds, the second uses
+  // the ones the first saved (search.msc); both extend the saved features.
+  Arrive("batch1", 4);
   RunResult second = Reindex();
   ASSERT_EQ(second.exit_code, 0) << second.output;
-  const ReindexManifest v2 = Manifest();
-  EXPECT_EQ(v2.version, 2u);
-  EXPECT_EQ(v2.build.kind, "incremental");
-  EXPECT_GT(v2.build.new_frames, 0u);
-  EXPECT_GT(v2.build.changed_columns, 0u);
-  EXPECT_EQ(v2.params.eps, v1.params.eps) << "eps is recorded at the first build";
-  EXPECT_EQ(v2.archive.frames, v1.archive.frames + v2.build.new_frames);
+  EXPECT_EQ(Manifest().build.kind, "incremental");
+  Arrive("batch2");
+  RunResult third = Reindex();
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  const ReindexManifest v3 = Manifest();
+  EXPECT_EQ(v3.version, 3u);
+  EXPECT_EQ(v3.build.kind, "incremental");
+  EXPECT_GT(v3.build.new_frames, 0u);
+  EXPECT_GT(v3.build.changed_columns, 0u);
+  EXPECT_EQ(v3.params.eps, v1.params.eps) << "eps is recorded at the first build";
+  EXPECT_TRUE(fs::exists(out_ + "/v000003/search.msc"));
 
   // From scratch over the same archive, the same eps and seed.
   char eps[32];
-  std::snprintf(eps, sizeof eps, "%.9g", v2.params.eps);
+  std::snprintf(eps, sizeof eps, "%.9g", v3.params.eps);
   const std::string scratch = dir_.File("scratch");
   RunResult mined = RunTool("mine " + archive_ + " --out " + scratch + " --eps " + eps +
                             " --seed 1 --search exact --no-report --quiet");
   ASSERT_EQ(mined.exit_code, 0) << mined.output;
-  EXPECT_EQ(Bytes(scratch + "/trellis.mtr"), Bytes(out_ + "/v000002/trellis.mtr"));
+  EXPECT_EQ(Bytes(scratch + "/trellis.mtr"), Bytes(out_ + "/v000003/trellis.mtr"));
+  EXPECT_EQ(Bytes(scratch + "/paths.mpa"), Bytes(out_ + "/v000003/paths.mpa"));
   EXPECT_EQ(Bytes(scratch + "/motifs.json"), Bytes(out_ + "/motifs.json"));
-  EXPECT_EQ(Bytes(scratch + "/paths.mpa"), Bytes(out_ + "/v000002/paths.mpa"));
   const PlantedMotifScore score = Score(out_ + "/motifs.json");
   EXPECT_EQ(score.recall, 1.0);
 
   // Nothing new: no new version, exit 0.
-  RunResult third = Reindex();
-  ASSERT_EQ(third.exit_code, 0) << third.output;
-  EXPECT_EQ(Manifest().version, 2u);
+  RunResult again = Reindex();
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(Manifest().version, 3u);
   RunResult verified = RunTool("verify " + out_);
   EXPECT_EQ(verified.exit_code, 0) << verified.output;
-  EXPECT_NE(verified.output.find("version 2"), std::string::npos) << verified.output;
+  EXPECT_NE(verified.output.find("version 3"), std::string::npos) << verified.output;
 }
 
 // (column, frame) entries of a trellis file.
@@ -311,6 +317,44 @@ TEST_F(ReindexCliTest, ProgressJsonGivesLogLinesAndASummaryLine) {
   }
   EXPECT_NE(run.output.find("\"event\":\"reindex\""), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\"exit_code\":0"), std::string::npos) << run.output;
+}
+
+TEST_F(ReindexCliTest, TheCronWrapperIsSilentWhenAllIsWellAndSaysWhatWasNotImported) {
+  Arrive("batch1");
+  const std::string wrapper = std::string("MOTIFMINE=") + MOTIF_TOOL + " " + MOTIF_CRON_SCRIPT +
+                              " " + archive_ + " " + watch_ + " " + out_ + " --min-age 0 " +
+                              "--first-frame keep --no-report";
+  RunResult night = testing::RunShell(wrapper + " 2>&1");
+  EXPECT_EQ(night.exit_code, 0) << night.output;
+  EXPECT_EQ(night.output, "") << "cron mails whatever a job prints";
+  EXPECT_EQ(Manifest().version, 1u);
+  // The day's log: JSON lines, the summary last.
+  std::vector<fs::path> logs;
+  for (const auto& entry : fs::directory_iterator(out_ + "/logs")) logs.push_back(entry.path());
+  ASSERT_EQ(logs.size(), 1u);
+  const std::string log = Bytes(logs[0].string());
+  EXPECT_NE(log.find("\"event\":\"reindex\""), std::string::npos) << log;
+  EXPECT_NE(log.find("\"exit_code\":0"), std::string::npos) << log;
+  EXPECT_NE(log.find("\"stage\":\"trellis\""), std::string::npos);
+
+  // A run still going (the lock held): silent, exit 0; tomorrow does it.
+  {
+    ExclusiveFileLock held;
+    ASSERT_TRUE(held.Acquire(out_ + "/.motifmine.lock", "test").ok());
+    RunResult busy = testing::RunShell(wrapper + " 2>&1");
+    EXPECT_EQ(busy.exit_code, 0) << busy.output;
+    EXPECT_EQ(busy.output, "");
+  }
+  // A changed take: exit 3, and the file is named.
+  const fs::path some_take = fs::directory_iterator(watch_)->path();
+  {
+    std::ofstream append(some_take, std::ios::app);
+    append << "\n";
+  }
+  RunResult changed = testing::RunShell(wrapper + " 2>&1");
+  EXPECT_EQ(changed.exit_code, 3) << changed.output;
+  EXPECT_NE(changed.output.find(some_take.filename().string()), std::string::npos)
+      << changed.output;
 }
 
 // What a reader holds of a version: everything it can read, decoded.
