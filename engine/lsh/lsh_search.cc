@@ -987,7 +987,10 @@ Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQue
               if (found != nullptr) {
                 // The forward query's verified older frames, and the wider reverse scan's.
                 const bool chained = chain && column != task_first && column != first_column;
-                query.RunReverse(column, *reverse_query, options_.max_candidates,
+                // The forward query's budgets: a chained column (with seeds) spends less.
+                query.RunReverse(column, *reverse_query,
+                                 chained ? options_.chained_max_candidates
+                                         : options_.max_candidates,
                                  chained ? &previous_reverse : nullptr, found);
                 std::sort(found->begin(), found->end(),
                           [](const Neighbour& a, const Neighbour& b) { return a.frame < b.frame; });

@@ -96,22 +96,31 @@ class BufferPool {
 
 using Columns = std::vector<std::vector<Neighbour>>;
 
+// Per-thread scratch of MergeColumn.
+struct MergeScratch {
+  std::vector<uint16_t> codes;   // old entries' codes, then the candidates'
+  std::vector<uint16_t> order;   // a copy for nth_element
+  std::vector<uint8_t> keep;     // per entry, in the order of `codes`
+  struct Tied {
+    float distance;
+    uint32_t frame;
+    uint32_t entry;
+  };
+  std::vector<Tied> tied;
+};
+
 // Column `column`'s k_max nearest among its old entries (sorted by frame, stored distances) and
 // its candidates (new frames, all after the old entries, sorted by frame, exact distances), in
 // FinishColumn's order (distance, then frame), into *out sorted by frame. True if a candidate
 // entered. Only the stored codes are known of the old entries; the code is monotone in the
 // distance, so entries are ordered by code, and only those sharing the code at the cut get
-// their exact distance computed again (PoseDistance: the bits the search computed).
-struct MergeItem {
-  uint16_t code;
-  bool is_new;
-  Neighbour neighbour;
-};
-
+// their exact distance computed again (PoseDistance: the bits the search computed). The old
+// entries keep their order and every candidate's frame is above them, so the result needs no
+// sort.
 bool MergeColumn(const PoseFeatures& features, uint64_t column, float eps, uint32_t k_max,
                  const Neighbour* old_entries, size_t old_count, const ReversePair* candidates,
                  size_t candidate_count, std::vector<Neighbour>* out, uint64_t* recomputed,
-                 std::vector<MergeItem>* scratch) {
+                 MergeScratch* scratch) {
   out->assign(old_entries, old_entries + old_count);
   if (candidate_count == 0) return false;
   if (old_count + candidate_count <= k_max) {
@@ -120,58 +129,66 @@ bool MergeColumn(const PoseFeatures& features, uint64_t column, float eps, uint3
     }
     return true;
   }
-  using Item = MergeItem;
-  std::vector<Item>& items = *scratch;
-  items.clear();
+  const size_t total = old_count + candidate_count;
+  std::vector<uint16_t>& codes = scratch->codes;
+  codes.resize(total);
   for (size_t idx = 0; idx < old_count; ++idx) {
-    items.push_back({trellis_file::QuantizeDistance(old_entries[idx].distance, eps), false,
-                     old_entries[idx]});
+    codes[idx] = trellis_file::QuantizeDistance(old_entries[idx].distance, eps);
   }
   for (size_t idx = 0; idx < candidate_count; ++idx) {
-    const Neighbour neighbour{candidates[idx].new_frame, candidates[idx].distance};
-    items.push_back({trellis_file::QuantizeDistance(neighbour.distance, eps), true, neighbour});
+    codes[old_count + idx] = trellis_file::QuantizeDistance(candidates[idx].distance, eps);
   }
-  auto by_code = [](const Item& a, const Item& b) { return a.code < b.code; };
-  std::nth_element(items.begin(), items.begin() + (k_max - 1), items.end(), by_code);
-  const uint16_t cut_code = items[k_max - 1].code;
+  scratch->order.assign(codes.begin(), codes.end());
+  std::nth_element(scratch->order.begin(), scratch->order.begin() + (k_max - 1),
+                   scratch->order.end());
+  const uint16_t cut_code = scratch->order[k_max - 1];
   // Kept for sure: codes below the cut. Out: codes above. The cut's code: as many as fit,
-  // nearest first by exact distance.
-  auto below_end = std::partition(items.begin(), items.end(),
-                                  [&](const Item& item) { return item.code < cut_code; });
-  auto tie_end = std::partition(below_end, items.end(),
-                                [&](const Item& item) { return item.code == cut_code; });
-  const size_t room = k_max - static_cast<size_t>(below_end - items.begin());
-  if (static_cast<size_t>(tie_end - below_end) > room) {
-    struct Exact {
-      float distance;
-      size_t item_idx;
-    };
-    std::vector<Exact> tied;
-    for (auto it = below_end; it != tie_end; ++it) {
-      float distance = it->neighbour.distance;
-      if (!it->is_new) {
-        distance = PoseDistance(features, column, it->neighbour.frame);
-        ++*recomputed;
-      }
-      tied.push_back({distance, static_cast<size_t>(it - items.begin())});
+  // nearest first by exact distance (then frame).
+  std::vector<uint8_t>& keep = scratch->keep;
+  keep.assign(total, 0);
+  size_t below = 0;
+  size_t at_cut = 0;
+  for (size_t idx = 0; idx < total; ++idx) {
+    if (codes[idx] < cut_code) {
+      keep[idx] = 1;
+      ++below;
+    } else if (codes[idx] == cut_code) {
+      ++at_cut;
     }
-    std::sort(tied.begin(), tied.end(), [&](const Exact& a, const Exact& b) {
-      if (a.distance != b.distance) return a.distance < b.distance;
-      return items[a.item_idx].neighbour.frame < items[b.item_idx].neighbour.frame;
+  }
+  const size_t room = k_max - below;
+  if (at_cut <= room) {
+    for (size_t idx = 0; idx < total; ++idx) keep[idx] |= codes[idx] == cut_code;
+  } else {
+    std::vector<MergeScratch::Tied>& tied = scratch->tied;
+    tied.clear();
+    for (size_t idx = 0; idx < total; ++idx) {
+      if (codes[idx] != cut_code) continue;
+      if (idx < old_count) {
+        ++*recomputed;
+        tied.push_back({PoseDistance(features, column, old_entries[idx].frame),
+                        old_entries[idx].frame, static_cast<uint32_t>(idx)});
+      } else {
+        const ReversePair& candidate = candidates[idx - old_count];
+        tied.push_back({candidate.distance, candidate.new_frame, static_cast<uint32_t>(idx)});
+      }
+    }
+    std::sort(tied.begin(), tied.end(), [](const MergeScratch::Tied& a, const MergeScratch::Tied& b) {
+      return a.distance != b.distance ? a.distance < b.distance : a.frame < b.frame;
     });
-    std::vector<Item> chosen;
-    for (size_t idx = 0; idx < room; ++idx) chosen.push_back(items[tied[idx].item_idx]);
-    std::copy(chosen.begin(), chosen.end(), below_end);
-    tie_end = below_end + static_cast<ptrdiff_t>(room);
+    for (size_t idx = 0; idx < room; ++idx) keep[tied[idx].entry] = 1;
   }
-  bool entered = false;
   out->clear();
-  for (auto it = items.begin(); it != tie_end; ++it) {
-    out->push_back(it->neighbour);
-    entered |= it->is_new;
+  bool entered = false;
+  for (size_t idx = 0; idx < old_count; ++idx) {
+    if (keep[idx]) out->push_back(old_entries[idx]);
   }
-  std::sort(out->begin(), out->end(),
-            [](const Neighbour& a, const Neighbour& b) { return a.frame < b.frame; });
+  for (size_t idx = 0; idx < candidate_count; ++idx) {
+    if (keep[old_count + idx]) {
+      out->push_back({candidates[idx].new_frame, candidates[idx].distance});
+      entered = true;
+    }
+  }
   return entered;
 }
 
@@ -238,6 +255,8 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
   writer_options.block_columns = previous.block_columns();
   writer_options.zstd_level = kZstdLevel;
   writer_options.file_system = options.file_system;
+  // Blocks come faster than a disk syncs them; Finish syncs the file before its rename.
+  writer_options.sync_each_block = false;
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileWriter> writer,
                          TrellisFileWriter::OpenOrResume(out_path, params, writer_options));
   const uint64_t block_columns = writer->block_columns();
@@ -347,7 +366,7 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
   tbb::enumerable_thread_specific<std::unique_ptr<trellis_file::BlockEncoder>> encoders(
       [] { return std::make_unique<trellis_file::BlockEncoder>(kZstdLevel); });
   tbb::enumerable_thread_specific<TrellisBlock> blocks;
-  tbb::enumerable_thread_specific<std::vector<MergeItem>> merge_scratch;
+  tbb::enumerable_thread_specific<MergeScratch> merge_scratch;
   BufferPool<Columns> column_pool;
   BufferPool<std::string> byte_pool;
   auto prepare = [&](OutputBlock* out) {

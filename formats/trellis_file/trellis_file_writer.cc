@@ -142,7 +142,7 @@ class TrellisFileWriter::Impl {
   // Writes a block of `handle.bytes` bytes at the end and syncs it; records it in the index.
   Status WriteBlock(const uint8_t* bytes, BlockHandle handle) {
     Status status = file_->WriteAt(write_offset_, bytes, handle.bytes);
-    if (status.ok()) status = file_->Sync();
+    if (status.ok() && options_.sync_each_block) status = file_->Sync();
     if (!status.ok()) return Fail(status);
     handle.offset = write_offset_;
     index_.push_back(handle);

@@ -52,6 +52,12 @@ struct TrellisFileWriterOptions {
   uint32_t block_columns = 4096;
   int zstd_level = 3;
   FileSystem* file_system = PosixFileSystem();
+  // fsync after every block, so that an interrupted build resumes after the last block written
+  // even after a power loss. false: only Finish syncs (before its rename); a build killed, not
+  // powered off, still resumes where it was (the page cache keeps what was written), and one
+  // cut by a power loss resumes after the last block that reached the disk (each block checks
+  // itself). For writers that write much faster than the disk syncs (an incremental update).
+  bool sync_each_block = true;
 };
 
 class TrellisFileWriter {
@@ -77,7 +83,8 @@ class TrellisFileWriter {
   // be block_columns except for the last block. Each column: at most k_max neighbours, frames
   // strictly increasing and below frame_count, distances in [0, eps]; a block holds at most
   // 2^28 neighbours. InvalidArgument if not (the writer is unchanged); IOError /
-  // ResourceExhausted on write failure. Durable (fsynced) when it returns OK.
+  // ResourceExhausted on write failure. Durable (fsynced) when it returns OK, with
+  // sync_each_block.
   Status AppendBlock(const std::vector<std::vector<Neighbour>>& columns);
 
   // Appends a block already encoded (`size` bytes: header, sections, trailer), such as an
