@@ -158,4 +158,17 @@ Status ParseGroups(const std::string& text, uint32_t* groups) {
   return Status::Ok();
 }
 
+Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy) {
+  if (text == "auto") {
+    *policy = FirstFramePolicy::kAuto;
+  } else if (text == "keep") {
+    *policy = FirstFramePolicy::kKeep;
+  } else if (text == "drop") {
+    *policy = FirstFramePolicy::kDrop;
+  } else {
+    return Status::InvalidArgument("--first-frame must be auto, keep or drop");
+  }
+  return Status::Ok();
+}
+
 }  // namespace motif::cli

@@ -15,6 +15,7 @@
 
 #include "common/status.h"
 #include "engine/cli/progress_reporter.h"
+#include "formats/import/take_importer.h"
 
 namespace motif::cli {
 
@@ -64,6 +65,8 @@ uint64_t PeakResidentBytes();
 Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds);
 // --groups: "auto" (*groups = 0) or a positive number. InvalidArgument otherwise.
 Status ParseGroups(const std::string& text, uint32_t* groups);
+// --first-frame: "auto", "keep" or "drop". InvalidArgument otherwise.
+Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy);
 
 int RunImport(const std::vector<std::string>& args);
 int RunInfo(const std::vector<std::string>& args);

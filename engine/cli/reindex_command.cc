@@ -245,15 +245,10 @@ int RunReindex(const std::vector<std::string>& args) {
     }
   }
   options.min_age_seconds = vm["min-age"].as<double>();
-  const std::string first_frame = vm["first-frame"].as<std::string>();
-  if (first_frame == "auto") {
-    options.import.first_frame = FirstFramePolicy::kAuto;
-  } else if (first_frame == "keep") {
-    options.import.first_frame = FirstFramePolicy::kKeep;
-  } else if (first_frame == "drop") {
-    options.import.first_frame = FirstFramePolicy::kDrop;
-  } else {
-    return fail(Status::InvalidArgument("--first-frame must be auto, keep or drop"));
+  if (Status status = ParseFirstFrame(vm["first-frame"].as<std::string>(),
+                                      &options.import.first_frame);
+      !status.ok()) {
+    return fail(status);
   }
   options.skip_bad = vm.count("skip-bad") > 0;
   options.report = vm.count("no-report") == 0;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/status.h"
@@ -66,6 +67,15 @@ struct ReverseQuery {
   // a full column accepts nothing farther than its k_max-th neighbour). Null: eps for all.
   const float* thresholds = nullptr;
 };
+
+// OK if `query` fits an archive of `frame_count` frames; InvalidArgument naming `search`.
+inline Status CheckReverseQuery(const ReverseQuery& query, uint64_t frame_count,
+                                const char* search) {
+  if (query.frame_limit <= frame_count) return Status::Ok();
+  return Status::InvalidArgument(std::string(search) + ": reverse frame limit " +
+                                 std::to_string(query.frame_limit) + " beyond " +
+                                 std::to_string(frame_count) + " frames");
+}
 
 class NeighbourSearch {
  public:

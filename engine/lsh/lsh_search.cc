@@ -925,11 +925,7 @@ Status LshSearch::SearchColumnsAndReverse(uint64_t first_column, uint64_t count,
                                           std::vector<std::vector<Neighbour>>* columns,
                                           std::vector<std::vector<Neighbour>>* reverse,
                                           SearchStats* stats) const {
-  if (query.frame_limit > features_.frame_count()) {
-    return Status::InvalidArgument("lsh search: reverse frame limit " +
-                                   std::to_string(query.frame_limit) + " beyond " +
-                                   std::to_string(features_.frame_count()) + " frames");
-  }
+  MOTIF_RETURN_IF_ERROR(CheckReverseQuery(query, features_.frame_count(), "lsh search"));
   if (reverse->size() < count) reverse->resize(count);
   return Search(first_column, count, &query, columns, reverse, stats, nullptr);
 }

@@ -543,7 +543,7 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
                                       written->identity(), next_thresholds, file_system);
       if (!saved.ok()) note("search cache not saved (the next run rebuilds it): " + saved.message());
     }
-  } else {  // regrow: the same trellis
+  } else {  // regrow: the same trellis, and the same search cache (best effort)
     const std::string previous_path = Join(out_dir, current->trellis.path);
     if (!fs::exists(trellis_path, error)) {
       fs::create_hard_link(previous_path, trellis_path, error);
@@ -552,6 +552,11 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
         return Status::IOError("cannot link " + previous_path + " to " + trellis_path + ": " +
                                error.message());
       }
+    }
+    const std::string cache_path = Join(version_path, kSearchCacheName);
+    if (!fs::exists(cache_path, error)) {
+      fs::create_hard_link(Join(Join(out_dir, current->dir), kSearchCacheName), cache_path,
+                           error);
     }
   }
   report.trellis_seconds = SecondsSince(start);

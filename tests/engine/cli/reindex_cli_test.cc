@@ -31,6 +31,7 @@
 #include "formats/trellis_file/trellis_file_reader.h"
 #include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/trellis_entries.h"
 
 namespace motif {
 namespace {
@@ -170,20 +171,6 @@ TEST_F(ReindexCliTest, ExactIncrementalResultIsTheFromScratchMineByteForByte) {
   EXPECT_NE(verified.output.find("version 3"), std::string::npos) << verified.output;
 }
 
-// (column, frame) entries of a trellis file.
-std::set<std::pair<uint64_t, uint32_t>> Entries(const std::string& path) {
-  std::set<std::pair<uint64_t, uint32_t>> entries;
-  auto reader = TrellisFileReader::Open(path);
-  EXPECT_TRUE(reader.ok()) << path;
-  if (!reader.ok()) return entries;
-  std::vector<std::vector<Neighbour>> columns;
-  EXPECT_TRUE((*reader)->ReadColumns(0, (*reader)->column_count(), &columns).ok());
-  for (uint64_t column = 0; column < columns.size(); ++column) {
-    for (const Neighbour& neighbour : columns[column]) entries.insert({column, neighbour.frame});
-  }
-  return entries;
-}
-
 // A night's takes are a small share of a grown archive: here every take but one is mined
 // first, then the first 240 frames of the remaining one (1 % of the frames) arrive. The LSH
 // columns are approximate either way; what differs is which new frames each old column gets:
@@ -230,16 +217,15 @@ TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSame
                             " --seed 1 --search lsh --no-report --quiet");
   ASSERT_EQ(mined.exit_code, 0) << mined.output;
 
-  const auto incremental = Entries(out_ + "/v000002/trellis.mtr");
-  const auto full = Entries(scratch + "/trellis.mtr");
-  std::vector<std::pair<uint64_t, uint32_t>> shared;
-  std::set_intersection(incremental.begin(), incremental.end(), full.begin(), full.end(),
-                        std::back_inserter(shared));
-  const double share = static_cast<double>(shared.size()) /
-                       static_cast<double>(std::max(incremental.size(), full.size()));
+  const std::string incremental_path = out_ + "/v000002/trellis.mtr";
+  const std::string full_path = scratch + "/trellis.mtr";
+  const double share = testing::SharedTrellisEntries(incremental_path, full_path);
   std::printf("LSH reindex: %.5f of the entries shared with the from-scratch build\n", share);
+  EXPECT_GE(share, 0.99);
   {
     // Where they differ: old or new columns, old or new frames.
+    const auto incremental = testing::TrellisEntries(incremental_path);
+    const auto full = testing::TrellisEntries(full_path);
     const uint64_t old_frames = v1.archive.frames;
     uint64_t counts[2][2][2] = {};  // [only in incremental?][new column?][new frame?]
     for (const auto& entry : incremental) {
@@ -257,9 +243,9 @@ TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSame
                   (unsigned long long)counts[only_incremental][1][0],
                   (unsigned long long)counts[only_incremental][1][1]);
     }
+    // The new frames' columns are a full build's.
+    EXPECT_EQ(counts[0][1][0] + counts[0][1][1] + counts[1][1][0] + counts[1][1][1], 0u);
   }
-  EXPECT_GE(share, 0.99) << shared.size() << " of " << full.size() << " / "
-                         << incremental.size();
 
   // The same planted motifs recovered, with the same quality.
   const PlantedMotifScore ours = Score(out_ + "/motifs.json");
@@ -267,6 +253,41 @@ TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSame
   EXPECT_EQ(ours.planted_hit, theirs.planted_hit);
   EXPECT_GE(ours.recall, 0.9);
   EXPECT_GE(ours.adjusted_rand_index, theirs.adjusted_rand_index - 0.05);
+}
+
+TEST_F(ReindexCliTest, AChangedParameterRegrowsOrRebuildsAsAFromScratchMineWould) {
+  Arrive("batch1");
+  ASSERT_EQ(Reindex().exit_code, 0);
+  const ReindexManifest v1 = Manifest();
+  char eps[32];
+  std::snprintf(eps, sizeof eps, "%.9g", v1.params.eps);
+  // A grow parameter: the same trellis (linked, with its search cache), paths grown again.
+  RunResult regrow = Reindex("--branch 3");
+  ASSERT_EQ(regrow.exit_code, 0) << regrow.output;
+  const ReindexManifest v2 = Manifest();
+  EXPECT_EQ(v2.build.kind, "regrow");
+  EXPECT_EQ(v2.params.branch, 3u);
+  EXPECT_EQ(v2.trellis.checksum, v1.trellis.checksum);
+  EXPECT_TRUE(fs::exists(out_ + "/v000002/search.msc"));
+  RunResult mined = RunTool("mine " + archive_ + " --out " + dir_.File("b3") + " --eps " + eps +
+                            " --branch 3 --search exact --no-report --quiet");
+  ASSERT_EQ(mined.exit_code, 0) << mined.output;
+  EXPECT_EQ(Bytes(dir_.File("b3") + "/motifs.json"), Bytes(out_ + "/motifs.json"));
+  // Recorded: the next run keeps B = 3 without being told.
+  EXPECT_EQ(Reindex().exit_code, 0);
+  EXPECT_EQ(Manifest().version, 2u);
+  // A trellis parameter: everything from the archive again, with the recorded eps.
+  RunResult rebuild = Reindex("--kmax 128");
+  ASSERT_EQ(rebuild.exit_code, 0) << rebuild.output;
+  const ReindexManifest v3 = Manifest();
+  EXPECT_EQ(v3.build.kind, "full");
+  EXPECT_EQ(v3.params.k_max, 128u);
+  EXPECT_EQ(v3.params.eps, v1.params.eps);
+  mined = RunTool("mine " + archive_ + " --out " + dir_.File("k128") + " --eps " + eps +
+                  " --branch 3 --kmax 128 --search exact --no-report --quiet");
+  ASSERT_EQ(mined.exit_code, 0) << mined.output;
+  EXPECT_EQ(Bytes(dir_.File("k128") + "/trellis.mtr"), Bytes(out_ + "/v000003/trellis.mtr"));
+  EXPECT_EQ(Bytes(dir_.File("k128") + "/motifs.json"), Bytes(out_ + "/motifs.json"));
 }
 
 TEST_F(ReindexCliTest, ARerunImportsNothingAndAChangedFileIsReportedNotImported) {

@@ -20,6 +20,7 @@
 #include "tests/engine/distance/distance_test_util.h"
 #include "tests/testing/fault_injection.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/trellis_entries.h"
 
 namespace motif {
 namespace {
@@ -146,6 +147,36 @@ class TrellisUpdateTest : public ::testing::Test {
     return report.ok() ? *report : TrellisUpdateReport{};
   }
 
+  // An exact update of the first `old_clips` clips to the whole archive: old.mtr and full.mtr
+  // written; Update() runs it into updated.mtr.
+  struct ExactCase {
+    float eps = 0;
+    PoseFeatures new_features;
+    std::unique_ptr<ExactSearch> search;
+    std::unique_ptr<TrellisFileReader> previous;
+  };
+  void PrepareExact(size_t old_clips, ExactCase* update) {
+    const ArchiveRows old_rows = Prefix(full_, old_clips);
+    const PoseFeatures old_features = old_rows.Features();
+    update->eps = EstimateEps(old_features);
+    update->new_features = full_.Features();
+    update->search = std::make_unique<ExactSearch>(
+        update->new_features, RulesFor(update->new_features, update->eps));
+    WriteFullTrellis(ExactSearch(old_features, RulesFor(old_features, update->eps)),
+                     ParamsFor(old_features, update->eps, 1, true), dir_.File("old.mtr"));
+    WriteFullTrellis(*update->search, ParamsFor(update->new_features, update->eps, 2, true),
+                     dir_.File("full.mtr"));
+    auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
+    ASSERT_TRUE(previous.ok());
+    update->previous = std::move(previous.value());
+  }
+  Result<TrellisUpdateReport> Update(const ExactCase& update, const std::string& out,
+                                     const TrellisUpdateOptions& options = {}) {
+    return UpdateTrellis(*update.previous, update.new_features,
+                         RulesFor(update.new_features, update.eps), *update.search,
+                         ParamsFor(update.new_features, update.eps, 2, true), out, options);
+  }
+
   testing::TempDir dir_;
   ArchiveRows full_;
 };
@@ -203,17 +234,8 @@ TEST_F(TrellisUpdateTest, ExactTiesBetweenOldAndNewFramesAreBrokenAsAFullBuildDo
 }
 
 TEST_F(TrellisUpdateTest, AnInterruptedUpdateResumesAndEndsTheSame) {
-  const size_t old_clips = full_.clip_first_frames.size() * 2 / 3;
-  const ArchiveRows old_rows = Prefix(full_, old_clips);
-  const float eps = EstimateEps(old_rows.Features());
-  const PoseFeatures old_features = old_rows.Features();
-  const PoseFeatures new_features = full_.Features();
-  const ExactSearch new_search(new_features, RulesFor(new_features, eps));
-  WriteFullTrellis(ExactSearch(old_features, RulesFor(old_features, eps)),
-                   ParamsFor(old_features, eps, 1, true), dir_.File("old.mtr"));
-  WriteFullTrellis(new_search, ParamsFor(new_features, eps, 2, true), dir_.File("full.mtr"));
-  auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
-  ASSERT_TRUE(previous.ok());
+  ExactCase update;
+  PrepareExact(full_.clip_first_frames.size() * 2 / 3, &update);
   // A disk that fills up after a few blocks: the update fails with a clear error, nothing is
   // renamed into place, and the blocks already written stay for the next run.
   testing::FaultInjectingFileSystem full_disk;
@@ -221,13 +243,11 @@ TEST_F(TrellisUpdateTest, AnInterruptedUpdateResumesAndEndsTheSame) {
   TrellisUpdateOptions options;
   options.file_system = &full_disk;
   const std::string out = dir_.File("updated.mtr");
-  auto failed = UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
-                              ParamsFor(new_features, eps, 2, true), out, options);
+  auto failed = Update(update, out, options);
   ASSERT_FALSE(failed.ok());
   EXPECT_EQ(failed.status().code(), Status::Code::kResourceExhausted) << failed.status().ToString();
   EXPECT_FALSE(std::filesystem::exists(out));
-  auto resumed = UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
-                               ParamsFor(new_features, eps, 2, true), out);
+  auto resumed = Update(update, out);
   ASSERT_TRUE(resumed.ok()) << resumed.status().ToString();
   EXPECT_GT(resumed->resumed_from_column, 0u);
   EXPECT_EQ(ReadFileToString(out).value(), ReadFileToString(dir_.File("full.mtr")).value());
@@ -236,33 +256,19 @@ TEST_F(TrellisUpdateTest, AnInterruptedUpdateResumesAndEndsTheSame) {
 TEST_F(TrellisUpdateTest, AnUpdateInterruptedWhileFinishingResumesWithNothingLeftToWrite) {
   // Every block written, then the index, footer or rename failed: the resumed update has no
   // block left to write and only finishes the file.
-  const ArchiveRows old_rows = Prefix(full_, full_.clip_first_frames.size() / 2);
-  const float eps = EstimateEps(old_rows.Features());
-  const PoseFeatures old_features = old_rows.Features();
-  const PoseFeatures new_features = full_.Features();
-  const ExactSearch new_search(new_features, RulesFor(new_features, eps));
-  WriteFullTrellis(ExactSearch(old_features, RulesFor(old_features, eps)),
-                   ParamsFor(old_features, eps, 1, true), dir_.File("old.mtr"));
-  WriteFullTrellis(new_search, ParamsFor(new_features, eps, 2, true), dir_.File("full.mtr"));
-  auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
-  ASSERT_TRUE(previous.ok());
-  const std::string out = dir_.File("updated.mtr");
+  ExactCase update;
+  PrepareExact(full_.clip_first_frames.size() / 2, &update);
   // Count the steps of a whole update, then fail its last write (the index and footer).
   testing::FaultInjectingFileSystem counting;
   TrellisUpdateOptions options;
   options.file_system = &counting;
-  ASSERT_TRUE(UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
-                            ParamsFor(new_features, eps, 2, true), dir_.File("counted.mtr"),
-                            options)
-                  .ok());
+  ASSERT_TRUE(Update(update, dir_.File("counted.mtr"), options).ok());
   testing::FaultInjectingFileSystem failing;
   failing.FailAt(counting.steps() - 4);  // the tail's write, before its sync, rename, dir sync
   options.file_system = &failing;
-  ASSERT_FALSE(UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
-                             ParamsFor(new_features, eps, 2, true), out, options)
-                   .ok());
-  auto resumed = UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
-                               ParamsFor(new_features, eps, 2, true), out);
+  const std::string out = dir_.File("updated.mtr");
+  ASSERT_FALSE(Update(update, out, options).ok());
+  auto resumed = Update(update, out);
   ASSERT_TRUE(resumed.ok()) << resumed.status().ToString();
   EXPECT_EQ(resumed->resumed_from_column, full_.frame_count);
   EXPECT_EQ(ReadFileToString(out).value(), ReadFileToString(dir_.File("full.mtr")).value());
@@ -281,19 +287,6 @@ TEST_F(TrellisUpdateTest, RefusesAnOldTrellisOfOtherParameters) {
                               ParamsFor(new_features, 1.5f, 2, true), dir_.File("u.mtr"));
   ASSERT_FALSE(report.ok());
   EXPECT_EQ(report.status().code(), Status::Code::kInvalidArgument);
-}
-
-// All (column, frame) entries of a trellis file.
-std::set<std::pair<uint64_t, uint32_t>> Entries(const std::string& path) {
-  std::set<std::pair<uint64_t, uint32_t>> entries;
-  auto reader = TrellisFileReader::Open(path);
-  EXPECT_TRUE(reader.ok());
-  std::vector<std::vector<Neighbour>> columns;
-  EXPECT_TRUE((*reader)->ReadColumns(0, (*reader)->column_count(), &columns).ok());
-  for (uint64_t column = 0; column < columns.size(); ++column) {
-    for (const Neighbour& neighbour : columns[column]) entries.insert({column, neighbour.frame});
-  }
-  return entries;
 }
 
 TEST_F(TrellisUpdateTest, LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree) {
@@ -329,17 +322,11 @@ TEST_F(TrellisUpdateTest, LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree)
   ASSERT_TRUE((*full)->ReadColumns(old_count, full_.frame_count - old_count, &full_new).ok());
   EXPECT_EQ(updated_new, full_new);
 
-  const auto updated_entries = Entries(dir_.File("updated.mtr"));
-  const auto full_entries = Entries(dir_.File("full.mtr"));
-  std::vector<std::pair<uint64_t, uint32_t>> shared;
-  std::set_intersection(updated_entries.begin(), updated_entries.end(), full_entries.begin(),
-                        full_entries.end(), std::back_inserter(shared));
-  const double share = static_cast<double>(shared.size()) /
-                       static_cast<double>(std::max(updated_entries.size(), full_entries.size()));
+  const double share =
+      testing::SharedTrellisEntries(dir_.File("updated.mtr"), dir_.File("full.mtr"));
   RecordProperty("shared_entries", std::to_string(share));
   std::printf("LSH: %.5f of the entries shared with the full build\n", share);
-  EXPECT_GE(share, 0.99) << shared.size() << " of " << full_entries.size() << " / "
-                         << updated_entries.size();
+  EXPECT_GE(share, 0.99);
 }
 
 }  // namespace
