@@ -1,6 +1,10 @@
 #include "common/file_util.h"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
 
 #include <atomic>
 #include <fstream>
@@ -53,6 +57,25 @@ Status AtomicWriteFile(const std::string& path, std::string_view content,
   }();
   if (!status.ok()) file_system->Remove(temp_path);  // best effort: the error that matters is `status`
   return status;
+}
+
+void RemoveStaleTemporaries(const std::string& dir, const std::vector<std::string>& names) {
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+    const std::string name = entry.path().filename().string();
+    for (const std::string& owned : names) {
+      const std::string prefix = owned + ".tmp-";
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      char* end = nullptr;
+      const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
+      if (pid <= 0 || end == name.c_str() + prefix.size() || *end != '-') break;
+      if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+        std::error_code ignored;
+        std::filesystem::remove(entry.path(), ignored);
+      }
+      break;
+    }
+  }
 }
 
 }  // namespace motif

@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/status.h"
 #include "common/writable_file.h"
@@ -24,5 +25,12 @@ std::string TemporaryPathFor(const std::string& path);
 // the temporary file is removed. IOError / ResourceExhausted on failure.
 Status AtomicWriteFile(const std::string& path, std::string_view content,
                        FileSystem* file_system = PosixFileSystem());
+
+// Removes what killed runs left in `dir`: the temporary files ("<name>.tmp-<pid>-<n>", see
+// TemporaryPathFor, and a writer's own "<name>.tmp-<pid>-<n>.tmp-<pid>-<m>") of the given file
+// names, when the process that made them is gone. A killed run can leave a whole half-written
+// archive behind, and no later run would ever reuse or remove it. Files of a process that still
+// runs are left alone. Best effort: a file that cannot be removed is skipped.
+void RemoveStaleTemporaries(const std::string& dir, const std::vector<std::string>& names);
 
 }  // namespace motif

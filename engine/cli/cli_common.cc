@@ -186,4 +186,17 @@ Result<WordsReaderOutput> WordsReaderOutputFrom(const po::variables_map& vm,
   return output;
 }
 
+Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy) {
+  if (text == "auto") {
+    *policy = FirstFramePolicy::kAuto;
+  } else if (text == "keep") {
+    *policy = FirstFramePolicy::kKeep;
+  } else if (text == "drop") {
+    *policy = FirstFramePolicy::kDrop;
+  } else {
+    return Status::InvalidArgument("--first-frame must be auto, keep or drop");
+  }
+  return Status::Ok();
+}
+
 }  // namespace motif::cli

@@ -2,7 +2,8 @@
 // its options with Boost.Program_options.
 //
 // Exit codes (pinned; documented in docs/guide.md for cron users):
-//   0 success; 1 internal error; 2 usage error (unknown option, missing argument);
+//   0 success; 1 internal error; 2 usage error (unknown option, missing argument); 3 done, with
+//   warnings (reindex: files not imported);
 //   10 + Status code for failures: 11 not found, 12 corruption, 13 invalid input,
 //   14 I/O error, 15 not supported, 16 resource exhausted (disk full).
 #pragma once
@@ -14,12 +15,14 @@
 
 #include "common/status.h"
 #include "engine/cli/progress_reporter.h"
+#include "formats/import/take_importer.h"
 
 namespace motif::cli {
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitInternal = 1;
 inline constexpr int kExitUsage = 2;
+inline constexpr int kExitWarnings = 3;
 inline constexpr int kExitStatusBase = 10;
 
 // 10 + the status code for a failure, 0 for OK.
@@ -62,6 +65,8 @@ uint64_t PeakResidentBytes();
 Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds);
 // --groups: "auto" (*groups = 0) or a positive number. InvalidArgument otherwise.
 Status ParseGroups(const std::string& text, uint32_t* groups);
+// --first-frame: "auto", "keep" or "drop". InvalidArgument otherwise.
+Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy);
 
 // What `search` and `classify` share: --prefix (where `motifmine words` wrote its files), --out
 // (the folder for DIR/<name>.json and DIR/<name>.html, default the archive's) and --threads.
@@ -92,5 +97,6 @@ int RunMine(const std::vector<std::string>& args);
 int RunWords(const std::vector<std::string>& args);
 int RunClassify(const std::vector<std::string>& args);
 int RunSearch(const std::vector<std::string>& args);
+int RunReindex(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cluster/cluster_stage.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/planted_motif_score.h"
@@ -159,6 +160,7 @@ int RunCluster(const std::vector<std::string>& args) {
   Result<MotifsDocument> document = MakeMotifsDocument(
       *result, archive, (*frames)->frame_count(), (*frames)->clips(), params);
   if (!document.ok()) return ReportError("cluster", document.status());
+  document->archive_version = ArchiveVersionOf(**frames);
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   if (error) {

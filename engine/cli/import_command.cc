@@ -48,15 +48,10 @@ int RunImport(const std::vector<std::string>& args) {
   options.import.asf_path = vm["asf"].as<std::string>();
   options.import.amc_fps = vm["amc-fps"].as<double>();
   options.import.bvh_fps = vm["bvh-fps"].as<double>();
-  const std::string first_frame = vm["first-frame"].as<std::string>();
-  if (first_frame == "auto") {
-    options.import.first_frame = FirstFramePolicy::kAuto;
-  } else if (first_frame == "keep") {
-    options.import.first_frame = FirstFramePolicy::kKeep;
-  } else if (first_frame == "drop") {
-    options.import.first_frame = FirstFramePolicy::kDrop;
-  } else {
-    return ReportError("import", Status::InvalidArgument("--first-frame must be auto, keep or drop"));
+  if (Status status = ParseFirstFrame(vm["first-frame"].as<std::string>(),
+                                      &options.import.first_frame);
+      !status.ok()) {
+    return ReportError("import", status);
   }
   if (options.fps < 0 || options.import.amc_fps <= 0 || options.import.bvh_fps < 0) {
     return ReportError("import", Status::InvalidArgument("frame rates must be positive"));

@@ -18,6 +18,7 @@ struct Command {
 
 const Command kCommands[] = {
     {"mine", motif::cli::RunMine, "the whole job: trellis, paths, motifs and report (synthetic demo without INPUT)"},
+    {"reindex", motif::cli::RunReindex, "cron job: import new takes of a folder, update the trellis incrementally, re-mine, switch atomically"},
     {"import", motif::cli::RunImport, "import BVH or ASF/AMC takes into an archive (creates or appends)"},
     {"info", motif::cli::RunInfo, "describe an archive: clips, frames, skeleton, size"},
     {"verify", motif::cli::RunVerify, "check every checksum of an archive"},

@@ -14,7 +14,6 @@
 // removes the temporary files a dead run left in DIR (RemoveStaleTemporaries). One run at a time
 // per DIR: DIR/.motifmine.lock (flock) is held for the whole run; a second run exits at once with
 // exit code 17 (busy).
-#include <signal.h>
 
 #include <cerrno>
 #include <chrono>
@@ -29,6 +28,7 @@
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
 #include "engine/cli/synthetic_archive.h"
+#include "engine/cluster/cluster_stage.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/planted_motif_score.h"
@@ -89,56 +89,10 @@ Status MakeSyntheticArchive(const std::string& archive, const SynthOptions& opti
       .status();
 }
 
-// Removes what a killed run left in DIR: the temporary files ("<name>.tmp-<pid>-<n>", see
-// TemporaryPathFor, and the writer's own "<name>.tmp-<pid>-<n>.tmp-<pid>-<m>") of the files this
-// command writes there, when the process that made them is gone. A killed synth stage leaves
-// the whole half-written archive behind, and no later run would ever reuse or remove it. Files of
-// a process that still runs (pid alive) are left alone.
-void RemoveStaleTemporaries(const std::filesystem::path& dir) {
-  static const char* const kOwned[] = {"archive.mfs", "archive.truth.json", "trellis.mtr",
-                                       "paths.mpa",   "motifs.json",        "mine_state.json",
-                                       "report.html"};
-  std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
-    const std::string name = entry.path().filename().string();
-    for (const char* owned : kOwned) {
-      const std::string prefix = std::string(owned) + ".tmp-";
-      if (name.compare(0, prefix.size(), prefix) != 0) continue;
-      char* end = nullptr;
-      const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
-      if (pid <= 0 || end == name.c_str() + prefix.size() || *end != '-') break;
-      if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
-        std::error_code ignored;  // best effort: a file that cannot be removed does no harm
-        std::filesystem::remove(entry.path(), ignored);
-      }
-      break;
-    }
-  }
-}
-
-// The key under which DIR/mine_state.json remembers a clustering: what determines the paths
-// (the grower is deterministic: the trellis, itself identified with its archive, and the grow
-// parameters) and every option that changes the result.
-std::string ClusterKey(const PathsReport& paths, const ClusterOptions& options) {
-  std::ostringstream key;
-  key << "trellis=" << paths.params.trellis_identity << " branch=" << paths.params.branch
-      << " min_length=" << paths.params.min_length << " all_branches=" << paths.params.all_branches
-      << " candidates=" << paths.candidates << " groups=" << options.cut.groups
-      << " max_ncut=" << options.cut.max_ncut
-      << " min_similarity=" << options.similarity.min_similarity
-      << " max_length_ratio=" << options.max_length_ratio << " seed=" << options.seed;
-  return key.str();
-}
-
-std::string StoredClusterKey(const std::string& state_path) {
-  Result<std::string> text = ReadFileToString(state_path);
-  if (!text.ok()) return "";
-  const nlohmann::json state = nlohmann::json::parse(*text, nullptr, /*allow_exceptions=*/false);
-  if (!state.is_object() || !state.contains("cluster_key") || !state["cluster_key"].is_string()) {
-    return "";
-  }
-  return state["cluster_key"].get<std::string>();
-}
+// The files this command writes in DIR, whose temporary files a killed run may have left.
+const std::vector<std::string> kOwnedFiles = {"archive.mfs", "archive.truth.json", "trellis.mtr",
+                                              "paths.mpa",   "motifs.json",        "mine_state.json",
+                                              "report.html"};
 
 }  // namespace
 
@@ -161,6 +115,10 @@ int RunMine(const std::vector<std::string>& args) {
        "same-clip exclusion radius in frames; 0: half the minimum length")
       ("search", po::value<std::string>()->default_value("auto"),
        "neighbour search: auto (exact on small archives), lsh or exact")
+      ("tables", po::value<uint32_t>()->default_value(LshOptions{}.tables), "LSH hash tables")
+      ("hashes", po::value<uint32_t>()->default_value(0),
+       "LSH projections per table (0: from the archive's size)")
+      ("width", po::value<float>()->default_value(0), "LSH bucket width (0: from the data)")
       ("branch", po::value<uint32_t>()->default_value(PathsOptions{}.branch),
        "branching factor B of the path grower")
       ("min-length", po::value<std::string>()->default_value("0.5s"),
@@ -203,6 +161,9 @@ int RunMine(const std::vector<std::string>& args) {
   Result<TrellisSearchMode> search = ParseTrellisSearchMode(vm["search"].as<std::string>());
   if (!search.ok()) return fail(search.status());
   trellis_options.search = *search;
+  trellis_options.lsh.tables = vm["tables"].as<uint32_t>();
+  trellis_options.lsh.hashes_per_table = vm["hashes"].as<uint32_t>();
+  trellis_options.lsh.bucket_width = vm["width"].as<float>();
   PathsOptions paths_options;
   paths_options.branch = vm["branch"].as<uint32_t>();
   if (Status status = ParseMinLength(vm["min-length"].as<std::string>(),
@@ -245,7 +206,7 @@ int RunMine(const std::vector<std::string>& args) {
       !status.ok()) {
     return fail(status);
   }
-  RemoveStaleTemporaries(out_dir);
+  RemoveStaleTemporaries(out_dir.string(), kOwnedFiles);
   ProgressReporter progress(ProgressModeFrom(vm));
   std::vector<StageTime> times;
   const Clock::time_point job_start = Clock::now();
@@ -330,51 +291,27 @@ int RunMine(const std::vector<std::string>& args) {
 
   // Stage 4: clustering, reused when the same paths were clustered with the same options.
   const std::string motifs_path = Join(out_dir, "motifs.json");
-  const std::string state_path = Join(out_dir, "mine_state.json");
-  const std::string cluster_key = ClusterKey(*paths, cluster_options);
   start = Clock::now();
-  MotifsDocument document;
-  bool cluster_reused = false;
-  if (StoredClusterKey(state_path) == cluster_key) {
-    Result<MotifsDocument> stored = ReadMotifsJson(motifs_path);
-    if (stored.ok() && stored->frames == (*frames)->frame_count()) {
-      document = std::move(stored.value());
-      cluster_reused = true;
-    }
-  }
-  if (!cluster_reused) {
-    Result<std::unique_ptr<TrellisFileReader>> trellis_reader =
-        TrellisFileReader::Open(trellis_path);
-    if (!trellis_reader.ok()) return fail(trellis_reader.status());
-    Result<std::unique_ptr<PathsFileReader>> candidates = PathsFileReader::Open(paths_path);
-    if (!candidates.ok()) return fail(candidates.status());
-    bool began = false;
-    cluster_options.progress = [&](const std::string&, uint64_t done, uint64_t total) {
-      if (!began) progress.BeginStage("cluster", total, "columns");
-      began = true;
-      progress.Update(done);
-    };
-    Result<ClusterResult> clustered =
-        ClusterMotifs((*candidates)->candidates(), **trellis_reader, cluster_options);
-    if (began) progress.EndStage();
-    if (!clustered.ok()) return fail(clustered.status());
-    MotifsJsonParams params;
-    params.eps = trellis->params.eps;
-    params.kmax = trellis->params.k_max;
-    params.branch = paths->params.branch;
-    params.min_length = paths->params.min_length;
-    params.groups = cluster_options.cut.groups;
-    params.seed = seed;
-    Result<MotifsDocument> made = MakeMotifsDocument(*clustered, archive, (*frames)->frame_count(),
-                                                     (*frames)->clips(), params);
-    if (!made.ok()) return fail(made.status());
-    document = std::move(made.value());
-    if (Status status = WriteMotifsJson(motifs_path, document); !status.ok()) return fail(status);
-    const nlohmann::json state = {{"version", 1}, {"cluster_key", cluster_key}};
-    if (Status status = AtomicWriteFile(state_path, state.dump(2) + "\n"); !status.ok()) {
-      return fail(status);
-    }
-  }
+  ClusterStageInput cluster_input;
+  cluster_input.archive_path = archive;
+  cluster_input.archive = frames->get();
+  cluster_input.trellis_path = trellis_path;
+  cluster_input.paths_path = paths_path;
+  cluster_input.paths_params = paths->params;
+  cluster_input.candidates = paths->candidates;
+  cluster_input.motifs_path = motifs_path;
+  cluster_input.state_path = Join(out_dir, "mine_state.json");
+  bool cluster_began = false;
+  cluster_options.progress = [&](const std::string&, uint64_t done, uint64_t total) {
+    if (!cluster_began) progress.BeginStage("cluster", total, "columns");
+    cluster_began = true;
+    progress.Update(done);
+  };
+  Result<ClusterStageResult> clustered = RunClusterStage(cluster_input, cluster_options);
+  if (cluster_began) progress.EndStage();
+  if (!clustered.ok()) return fail(clustered.status());
+  const MotifsDocument& document = clustered->document;
+  const bool cluster_reused = clustered->reused;
   times.push_back({"cluster", SecondsSince(start), cluster_reused});
 
   // The planted motifs, when the archive is synthetic.

@@ -19,7 +19,18 @@ Result<MinedMotifs> OpenMinedMotifs(const std::string& dir, const std::string& a
   }
   MOTIF_ASSIGN_OR_RETURN(mined.document, ReadMotifsJson(mined.motifs_path));
   const std::string archive = archive_path.empty() ? mined.document.archive : archive_path;
-  Result<std::unique_ptr<FrameFileReader>> opened = FrameFileReader::Open(archive);
+  // The version mined, when motifs.json records it: later appends to the archive (a reindex
+  // importing tonight's takes) do not change what this motifs.json describes.
+  const MotifsArchiveVersion& version = mined.document.archive_version;
+  Result<std::unique_ptr<FrameFileReader>> opened =
+      version.known() ? FrameFileReader::OpenCommit(archive, version.generation,
+                                                    version.committed_bytes)
+                      : FrameFileReader::Open(archive);
+  if (opened.ok() && version.known() && (*opened)->summary().identity != version.identity) {
+    return Status::InvalidArgument(archive + ": its version " +
+                                   std::to_string(version.generation) + " is not the one " +
+                                   mined.motifs_path + " was mined from (another archive?)");
+  }
   if (!opened.ok()) {
     if (opened.status().IsNotFound() && archive_path.empty()) {
       return Status::NotFound(opened.status().message() + " (the archive named in " +

@@ -103,6 +103,7 @@ int RunTrellis(const std::vector<std::string>& args) {
       ("tables", po::value<uint32_t>()->default_value(lsh_defaults.tables), "LSH hash tables")
       ("hashes", po::value<uint32_t>()->default_value(lsh_defaults.hashes_per_table),
        "LSH projections per table")
+      ("width", po::value<float>()->default_value(0), "LSH bucket width (0: from the data)")
       ("probes", po::value<uint32_t>()->default_value(lsh_defaults.probes_per_table),
        "LSH buckets visited per table (multi-probe)")
       ("width-per-hash", po::value<float>()->default_value(lsh_defaults.width_per_hash),
@@ -139,6 +140,7 @@ int RunTrellis(const std::vector<std::string>& args) {
   LshOptions lsh;
   lsh.tables = vm["tables"].as<uint32_t>();
   lsh.hashes_per_table = vm["hashes"].as<uint32_t>();
+  lsh.bucket_width = vm["width"].as<float>();
   lsh.probes_per_table = vm["probes"].as<uint32_t>();
   lsh.width_per_hash = vm["width-per-hash"].as<float>();
   lsh.max_candidates = vm["max-candidates"].as<uint32_t>();

@@ -1,6 +1,8 @@
 #include "engine/cluster/motifs_json.h"
 
 #include <algorithm>
+#include <cinttypes>
+#include <cstdio>
 #include <unordered_map>
 
 #include <nlohmann/json.hpp>
@@ -84,6 +86,15 @@ std::string MotifsJsonText(const MotifsDocument& document) {
   text += "  \"version\": 1,\n";
   text += "  \"archive\": " + Dump(document.archive) + ",\n";
   text += "  \"frames\": " + std::to_string(document.frames) + ",\n";
+  if (document.archive_version.known()) {
+    char identity[17];
+    std::snprintf(identity, sizeof identity, "%016" PRIx64, document.archive_version.identity);
+    Json version;
+    version["generation"] = document.archive_version.generation;
+    version["committed_bytes"] = document.archive_version.committed_bytes;
+    version["identity"] = identity;
+    text += "  \"archive_version\": " + Dump(version) + ",\n";
+  }
   text += "  \"clips\": [";
   for (size_t idx = 0; idx < document.clips.size(); ++idx) {
     const MotifsJsonClip& clip = document.clips[idx];
@@ -175,6 +186,22 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
   MotifsDocument document;
   MOTIF_RETURN_IF_ERROR(Get(root, "archive", name, &document.archive));
   MOTIF_RETURN_IF_ERROR(Get(root, "frames", name, &document.frames));
+  if (root.contains("archive_version")) {
+    const Json& version = root["archive_version"];
+    const std::string where = name + ": archive_version";
+    if (!version.is_object()) return Status::InvalidArgument(where + " is not an object");
+    MotifsArchiveVersion& out = document.archive_version;
+    MOTIF_RETURN_IF_ERROR(Get(version, "generation", where, &out.generation));
+    MOTIF_RETURN_IF_ERROR(Get(version, "committed_bytes", where, &out.committed_bytes));
+    std::string identity;
+    MOTIF_RETURN_IF_ERROR(Get(version, "identity", where, &identity));
+    char* end = nullptr;
+    out.identity = std::strtoull(identity.c_str(), &end, 16);
+    if (identity.size() != 16 || *end != '\0' || out.generation == 0) {
+      return Status::InvalidArgument(where + ": \"identity\" must be 16 hex digits and "
+                                     "\"generation\" at least 1");
+    }
+  }
   for (const char* key : {"clips", "motifs"}) {
     if (!root.contains(key) || !root[key].is_array()) {
       return Status::InvalidArgument(name + ": \"" + key + "\" must be an array");

@@ -14,8 +14,11 @@
 // Fields beyond the contract: per motif "instance_count", "mean_length" (frames),
 // "mean_seconds", "score" (instance count × mean length, in frames); per instance "frame" (its
 // global first frame) and "length"; at the top "summary" {"motifs", "instances",
-// "covered_frames"}. Readers must ignore fields they do not know; the version changes only if a
-// contract field changes meaning.
+// "covered_frames"}; and "archive_version" {"generation", "committed_bytes", "identity" (16 hex
+// digits)}: the archive version (commit) mined, so that a reader opens that version
+// (FrameFileReader::OpenCommit) even after later takes were appended to the archive. Readers
+// must ignore fields they do not know; the version changes only if a contract field changes
+// meaning.
 // Thread-safety: pure functions.
 #pragma once
 
@@ -64,15 +67,27 @@ struct MotifsJsonMotif {
   bool operator==(const MotifsJsonMotif&) const = default;
 };
 
+// The archive version mined (FrameFileSummary): generation and committed length locate it in
+// the file, identity checks it. All 0 when unknown (a motifs.json without "archive_version").
+struct MotifsArchiveVersion {
+  uint64_t generation = 0;
+  uint64_t committed_bytes = 0;
+  uint64_t identity = 0;
+  bool known() const { return generation != 0; }
+  bool operator==(const MotifsArchiveVersion&) const = default;
+};
+
 struct MotifsDocument {
   std::string archive;
   uint64_t frames = 0;
+  MotifsArchiveVersion archive_version;
   std::vector<MotifsJsonClip> clips;
   MotifsJsonParams params;
   std::vector<MotifsJsonMotif> motifs;
   uint64_t covered_frames = 0;  // summary (not compared: derived)
   bool operator==(const MotifsDocument& other) const {
-    return archive == other.archive && frames == other.frames && clips == other.clips &&
+    return archive == other.archive && frames == other.frames &&
+           archive_version == other.archive_version && clips == other.clips &&
            params == other.params && motifs == other.motifs;
   }
 };

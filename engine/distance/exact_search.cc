@@ -29,9 +29,12 @@ void KeepNearest(uint32_t k_max, std::vector<Neighbour>* column) {
 
 // One task's share: columns [first, first + count) of the archive, written to `columns`
 // (the caller's vector, from index first - first_column).
+// With `reverse`, also the frames below reverse_query->frame_limit within their thresholds,
+// into reverse[query_idx].
 void SearchQueryBlock(const PoseFeatures& features, const NeighbourRules& rules,
                       const ExactSearchOptions& options, const DistanceKernel& kernel,
                       uint64_t first, uint32_t count, std::vector<Neighbour>* columns,
+                      const ReverseQuery* reverse_query, std::vector<Neighbour>* reverse,
                       SearchStats* stats) {
   const uint64_t frame_count = features.frame_count();
   FrameBlock queries;
@@ -45,6 +48,7 @@ void SearchQueryBlock(const PoseFeatures& features, const NeighbourRules& rules,
   for (uint32_t query_idx = 0; query_idx < count; ++query_idx) {
     excluded[query_idx] = ExclusionRangeOf(rules, first + query_idx, frame_count);
     columns[query_idx].clear();
+    if (reverse != nullptr) reverse[query_idx].clear();
   }
   const float eps = rules.eps;
   for (uint64_t block_first = 0; block_first < frame_count; block_first += block_frames) {
@@ -70,7 +74,13 @@ void SearchQueryBlock(const PoseFeatures& features, const NeighbourRules& rules,
           if (row[candidate_idx] <= eps) {
             const uint64_t frame = block_first + candidate_idx;
             if (!skip.Contains(frame)) {
-              column.push_back(Neighbour{static_cast<uint32_t>(frame), row[candidate_idx]});
+              const Neighbour found{static_cast<uint32_t>(frame), row[candidate_idx]};
+              column.push_back(found);
+              if (reverse != nullptr && frame < reverse_query->frame_limit &&
+                  (reverse_query->thresholds == nullptr ||
+                   found.distance <= reverse_query->thresholds[frame])) {
+                reverse[query_idx].push_back(found);
+              }
             }
           }
         }
@@ -126,6 +136,23 @@ ExactSearch::ExactSearch(const PoseFeatures& features, NeighbourRules rules,
 Status ExactSearch::SearchColumns(uint64_t first_column, uint64_t count,
                                   std::vector<std::vector<Neighbour>>* columns,
                                   SearchStats* stats) const {
+  return Search(first_column, count, nullptr, columns, nullptr, stats);
+}
+
+Status ExactSearch::SearchColumnsAndReverse(uint64_t first_column, uint64_t count,
+                                            const ReverseQuery& query,
+                                            std::vector<std::vector<Neighbour>>* columns,
+                                            std::vector<std::vector<Neighbour>>* reverse,
+                                            SearchStats* stats) const {
+  MOTIF_RETURN_IF_ERROR(CheckReverseQuery(query, features_.frame_count(), "exact search"));
+  if (reverse->size() < count) reverse->resize(count);
+  return Search(first_column, count, &query, columns, reverse, stats);
+}
+
+Status ExactSearch::Search(uint64_t first_column, uint64_t count, const ReverseQuery* query,
+                           std::vector<std::vector<Neighbour>>* columns,
+                           std::vector<std::vector<Neighbour>>* reverse,
+                           SearchStats* stats) const {
   const uint64_t frame_count = features_.frame_count();
   if (first_column > frame_count || count > frame_count - first_column) {
     return Status::InvalidArgument("exact search: columns [" + std::to_string(first_column) + ", " +
@@ -162,7 +189,9 @@ Status ExactSearch::SearchColumns(uint64_t first_column, uint64_t count,
                 static_cast<uint32_t>(std::min<uint64_t>(block_frames, count - offset));
             try {
               SearchQueryBlock(features_, rules_, options_, kernel, first_column + offset,
-                               block_count, columns->data() + offset, &task_stats[task_idx]);
+                               block_count, columns->data() + offset, query,
+                               reverse != nullptr ? reverse->data() + offset : nullptr,
+                               &task_stats[task_idx]);
             } catch (const std::bad_alloc&) {
               task_status[task_idx] =
                   Status::ResourceExhausted("exact search: out of memory in columns from " +

@@ -46,11 +46,21 @@ class ExactSearch : public NeighbourSearch {
   Status SearchColumns(uint64_t first_column, uint64_t count,
                        std::vector<std::vector<Neighbour>>* columns,
                        SearchStats* stats) const override;
+  // Every frame below query.frame_limit within eps and its threshold (NeighbourSearch).
+  Status SearchColumnsAndReverse(uint64_t first_column, uint64_t count, const ReverseQuery& query,
+                                 std::vector<std::vector<Neighbour>>* columns,
+                                 std::vector<std::vector<Neighbour>>* reverse,
+                                 SearchStats* stats) const override;
 
   const NeighbourRules& rules() const { return rules_; }
   const ExactSearchOptions& options() const { return options_; }
 
  private:
+  // Both searches; `query` and `reverse` null for the columns alone.
+  Status Search(uint64_t first_column, uint64_t count, const ReverseQuery* query,
+                std::vector<std::vector<Neighbour>>* columns,
+                std::vector<std::vector<Neighbour>>* reverse, SearchStats* stats) const;
+
   const PoseFeatures& features_;
   NeighbourRules rules_;
   ExactSearchOptions options_;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/status.h"
@@ -54,6 +55,28 @@ struct SearchStats {
   uint64_t capped_columns = 0;        // columns that had more than k_max within eps
 };
 
+// What an incremental update asks of a search besides the columns of new frames: the older
+// frames each new column finds within eps that could enter those frames' own columns. D is
+// symmetric bit for bit (PoseDistance(a, b) == PoseDistance(b, a)), so an older frame t with
+// D(t, n) <= eps is a candidate of column t exactly when t is one of column n: the new frames'
+// own queries find the old columns they change (Meng et al.'s neighbourhood is symmetric).
+struct ReverseQuery {
+  // Frames below this are the older ones whose columns may change.
+  uint64_t frame_limit = 0;
+  // frame_limit entries: a frame t is reported only at a distance <= thresholds[t] (at most eps:
+  // a full column accepts nothing farther than its k_max-th neighbour). Null: eps for all.
+  const float* thresholds = nullptr;
+};
+
+// OK if `query` fits an archive of `frame_count` frames; InvalidArgument naming `search`.
+inline Status CheckReverseQuery(const ReverseQuery& query, uint64_t frame_count,
+                                const char* search) {
+  if (query.frame_limit <= frame_count) return Status::Ok();
+  return Status::InvalidArgument(std::string(search) + ": reverse frame limit " +
+                                 std::to_string(query.frame_limit) + " beyond " +
+                                 std::to_string(frame_count) + " frames");
+}
+
 class NeighbourSearch {
  public:
   virtual ~NeighbourSearch() = default;
@@ -62,6 +85,16 @@ class NeighbourSearch {
   virtual Status SearchColumns(uint64_t first_column, uint64_t count,
                                std::vector<std::vector<Neighbour>>* columns,
                                SearchStats* stats) const = 0;
+  // The same columns (identical to SearchColumns'), and (*reverse)[i] (resized to count) the
+  // frames t < query.frame_limit, not excluded from column first_column + i by the rules, that
+  // the search evaluated at D <= min(eps, thresholds[t]), with that exact distance, in no
+  // particular order. The exact search finds every one; an approximate search those it
+  // verified. Errors as SearchColumns.
+  virtual Status SearchColumnsAndReverse(uint64_t first_column, uint64_t count,
+                                         const ReverseQuery& query,
+                                         std::vector<std::vector<Neighbour>>* columns,
+                                         std::vector<std::vector<Neighbour>>* reverse,
+                                         SearchStats* stats) const = 0;
 };
 
 }  // namespace motif

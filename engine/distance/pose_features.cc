@@ -38,24 +38,79 @@ Result<PoseFeatures> PoseFeatures::FromArchive(
   for (const ClipInfo& clip : reader.clips()) features.clip_first_frames_.push_back(clip.first_frame);
   if (features.clip_first_frames_.empty()) features.clip_first_frames_.push_back(0);
   const uint64_t frame_count = reader.frame_count();
-  const size_t per_frame = 4 * features.joints_.size();
   features.frame_count_ = frame_count;
-  features.values_.resize(frame_count * per_frame);
-  std::unique_ptr<FrameStream> stream = reader.Stream();
+  features.values_.resize(frame_count * 4 * features.joints_.size());
+  MOTIF_RETURN_IF_ERROR(features.DecodeFrames(reader, 0, progress));
+  return features;
+}
+
+Status PoseFeatures::DecodeFrames(const FrameFileReader& reader, uint64_t first_frame,
+                                  const std::function<void(uint64_t, uint64_t)>& progress) {
+  const FrameLayout layout = reader.layout();
+  const size_t per_frame = 4 * joints_.size();
+  std::unique_ptr<FrameStream> stream = reader.Stream(first_frame);
   const size_t stride = layout.stride();
   while (true) {
     MOTIF_ASSIGN_OR_RETURN(bool more, stream->Next());
     if (!more) break;
     for (uint64_t offset = 0; offset < stream->frame_count(); ++offset) {
       const float* row = stream->rows() + offset * stride;
-      int16_t* out = &features.values_[(stream->first_frame() + offset) * per_frame];
-      for (uint32_t joint : features.joints_) {
+      int16_t* out = &values_[(stream->first_frame() + offset) * per_frame];
+      for (uint32_t joint : joints_) {
         const float* q = row + layout.quaternion_offset(joint);
         for (int component = 0; component < 4; ++component) *out++ = Quantise(q[component]);
       }
     }
-    if (progress) progress(stream->first_frame() + stream->frame_count(), frame_count);
+    if (progress) progress(stream->first_frame() + stream->frame_count(), frame_count_);
   }
+  return Status::Ok();
+}
+
+Result<PoseFeatures> PoseFeatures::ExtendFromArchive(
+    PoseFeatures prefix, const FrameFileReader& reader, const std::vector<float>& joint_weights,
+    const std::function<void(uint64_t, uint64_t)>& progress) {
+  std::vector<uint32_t> joints;
+  std::vector<float> weights;
+  for (uint32_t joint_idx = 0; joint_idx < joint_weights.size(); ++joint_idx) {
+    if (joint_weights[joint_idx] > 0) {
+      joints.push_back(joint_idx);
+      weights.push_back(joint_weights[joint_idx]);
+    }
+  }
+  if (joint_weights.size() != reader.layout().joint_count || joints != prefix.joints_ ||
+      weights != prefix.weights_) {
+    return Status::InvalidArgument("pose features: the saved features have other joint weights");
+  }
+  if (reader.frame_count() < prefix.frame_count_) {
+    return Status::InvalidArgument("pose features: " + std::to_string(prefix.frame_count_) +
+                                   " saved frames, the archive has " +
+                                   std::to_string(reader.frame_count()));
+  }
+  const uint64_t first_new = prefix.frame_count_;
+  prefix.frame_count_ = reader.frame_count();
+  prefix.values_.resize(prefix.frame_count_ * 4 * prefix.joints_.size());
+  prefix.clip_first_frames_.clear();
+  for (const ClipInfo& clip : reader.clips()) prefix.clip_first_frames_.push_back(clip.first_frame);
+  if (prefix.clip_first_frames_.empty()) prefix.clip_first_frames_.push_back(0);
+  MOTIF_RETURN_IF_ERROR(prefix.DecodeFrames(reader, first_new, progress));
+  return prefix;
+}
+
+Result<PoseFeatures> PoseFeatures::FromParts(uint64_t frame_count, std::vector<float> weights,
+                                             std::vector<uint32_t> joints,
+                                             std::vector<uint64_t> clip_first_frames,
+                                             const int16_t* values) {
+  if (weights.empty() || weights.size() != joints.size() || clip_first_frames.empty() ||
+      clip_first_frames[0] != 0 ||
+      !std::is_sorted(clip_first_frames.begin(), clip_first_frames.end())) {
+    return Status::InvalidArgument("pose features: malformed saved parts");
+  }
+  PoseFeatures features;
+  features.frame_count_ = frame_count;
+  features.weights_ = std::move(weights);
+  features.joints_ = std::move(joints);
+  features.clip_first_frames_ = std::move(clip_first_frames);
+  features.values_.assign(values, values + frame_count * 4 * features.weights_.size());
   return features;
 }
 

@@ -35,6 +35,22 @@ class PoseFeatures {
       const FrameFileReader& reader, const std::vector<float>& joint_weights,
       const std::function<void(uint64_t, uint64_t)>& progress = nullptr);
 
+  // `prefix` (the features of the archive's first prefix.frame_count() frames, with these
+  // weights) extended by the archive's later frames, streamed from the reader: an archive that
+  // grew by appended clips costs only its new frames. InvalidArgument if the weights select
+  // other joints or the archive has fewer frames; errors of the reader pass through.
+  static Result<PoseFeatures> ExtendFromArchive(
+      PoseFeatures prefix, const FrameFileReader& reader, const std::vector<float>& joint_weights,
+      const std::function<void(uint64_t, uint64_t)>& progress = nullptr);
+
+  // From saved parts (a cache of an earlier run): frame_count * 4 * weights.size() values,
+  // joints the archive joint of each weight, clip starts ascending from 0. InvalidArgument if
+  // the sizes do not match.
+  static Result<PoseFeatures> FromParts(uint64_t frame_count, std::vector<float> weights,
+                                        std::vector<uint32_t> joints,
+                                        std::vector<uint64_t> clip_first_frames,
+                                        const int16_t* values);
+
   // From rows in FrameLayout order (tests, benchmarks). `clip_first_frames` as below;
   // joint_weights.size() must be joint_count (checked: aborts otherwise).
   static PoseFeatures FromRows(const float* rows, uint64_t frame_count, uint32_t joint_count,
@@ -53,8 +69,14 @@ class PoseFeatures {
   // Index of the clip holding `frame_idx`.
   uint32_t ClipOf(uint64_t frame_idx) const;
   uint64_t memory_bytes() const { return values_.size() * sizeof(int16_t); }
+  // All frames' values, frame after frame (frame_count * 4 * weighted_joint_count()).
+  const int16_t* values() const { return values_.data(); }
 
  private:
+  // Quantises frames [first_frame, reader's end) of the archive into values_ (sized already).
+  Status DecodeFrames(const FrameFileReader& reader, uint64_t first_frame,
+                      const std::function<void(uint64_t, uint64_t)>& progress);
+
   uint64_t frame_count_ = 0;
   std::vector<float> weights_;
   std::vector<uint32_t> joints_;

@@ -47,12 +47,19 @@ TakeInFlight PrepareTake(const TakeSource& source, size_t index, const Skeleton&
 Result<ArchiveImportResult> ImportIntoArchive(const std::string& archive_path,
                                               const std::vector<std::string>& inputs,
                                               const ArchiveImportOptions& options) {
-  ArchiveImportResult result;
   MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources, DiscoverTakes(inputs, options.import));
-  result.takes_found = sources.size();
   if (sources.empty()) {
     return Status::InvalidArgument("no .bvh or .amc takes found under the given paths");
   }
+  return ImportTakesIntoArchive(archive_path, sources, options);
+}
+
+Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_path,
+                                                   const std::vector<TakeSource>& sources,
+                                                   const ArchiveImportOptions& options) {
+  ArchiveImportResult result;
+  result.takes_found = sources.size();
+  if (sources.empty()) return Status::InvalidArgument("no takes to import");
   auto note = [&](const std::string& message) {
     if (options.note) message.empty() ? void() : options.note(message);
   };

@@ -50,4 +50,10 @@ Result<ArchiveImportResult> ImportIntoArchive(const std::string& archive_path,
                                               const std::vector<std::string>& inputs,
                                               const ArchiveImportOptions& options);
 
+// The same for takes already listed (DiscoverTakes), in that order. InvalidArgument for an
+// empty list.
+Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_path,
+                                                   const std::vector<TakeSource>& sources,
+                                                   const ArchiveImportOptions& options);
+
 }  // namespace motif

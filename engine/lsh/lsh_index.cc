@@ -29,6 +29,7 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
   const uint32_t table_count = family.table_count();
   LshIndex index;
   index.frame_count_ = frame_count;
+  index.position_codes_ = position_codes;
   index.tables_.resize(table_count);
   index.directories_.resize(table_count);
   // One allocation per array for the whole build: shards fill their slices in place (large
@@ -64,11 +65,7 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                         }
                       });
   });
-  // About 16 entries per directory slot: a bucket lookup reads one slot pair and binary-searches
-  // a cache line or two of keys.
-  const uint32_t frame_bits = frame_count > 1 ? std::bit_width(frame_count - 1) : 1;
-  const uint32_t directory_bits = std::clamp<uint32_t>(frame_bits > 4 ? frame_bits - 4 : 1, 1, 24);
-  index.directory_shift_ = 32 - directory_bits;
+  index.SetDirectoryShift();
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, table_count, /*grainsize=*/1),
                       [&](const tbb::blocked_range<uint32_t>& range) {
@@ -80,6 +77,114 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                       });
   });
   return index;
+}
+
+Result<LshIndex> LshIndex::FromTables(uint64_t frame_count,
+                                      std::vector<LshTableEntries> tables, bool position_codes) {
+  if (frame_count >= (uint64_t{1} << 32)) {
+    return Status::InvalidArgument("lsh index: frame ids are 32-bit");
+  }
+  const bool with_codes = position_codes;
+  for (const LshTableEntries& table : tables) {
+    if (table.frames.size() != frame_count || table.keys.size() != frame_count ||
+        table.sort_values.size() != frame_count ||
+        table.codes.size() != (with_codes ? frame_count : 0)) {
+      return Status::InvalidArgument("lsh index: a saved table does not hold " +
+                                     std::to_string(frame_count) + " entries");
+    }
+    for (uint64_t idx = 1; idx < frame_count; ++idx) {
+      const bool ordered =
+          table.keys[idx - 1] != table.keys[idx]
+              ? table.keys[idx - 1] < table.keys[idx]
+              : (table.sort_values[idx - 1] != table.sort_values[idx]
+                     ? table.sort_values[idx - 1] < table.sort_values[idx]
+                     : table.frames[idx - 1] < table.frames[idx]);
+      if (!ordered) return Status::InvalidArgument("lsh index: a saved table is not sorted");
+    }
+  }
+  LshIndex index;
+  index.frame_count_ = frame_count;
+  index.position_codes_ = position_codes;
+  index.tables_ = std::move(tables);
+  index.directories_.resize(index.tables_.size());
+  index.SetDirectoryShift();
+  for (uint32_t table_idx = 0; table_idx < index.tables_.size(); ++table_idx) {
+    index.BuildDirectory(table_idx);
+  }
+  return index;
+}
+
+Status LshIndex::Extend(const PoseFeatures& features, const HashFamily& family,
+                        uint32_t shard_frames, int threads) {
+  const uint64_t old_count = frame_count_;
+  const uint64_t frame_count = features.frame_count();
+  if (frame_count < old_count || frame_count >= (uint64_t{1} << 32)) {
+    return Status::InvalidArgument("lsh index: cannot extend " + std::to_string(old_count) +
+                                   " frames to " + std::to_string(frame_count));
+  }
+  if (shard_frames == 0) return Status::InvalidArgument("lsh index: shard_frames is 0");
+  if (family.table_count() != tables_.size()) {
+    return Status::InvalidArgument("lsh index: another hash family");
+  }
+  const uint32_t table_count = family.table_count();
+  const bool position_codes = position_codes_;
+  for (LshTableEntries& table : tables_) {
+    table.keys.resize(frame_count);
+    table.sort_values.resize(frame_count);
+    table.frames.resize(frame_count);
+    if (position_codes) table.codes.resize(frame_count);
+  }
+  // The new frames in shards, as Build cuts them (aligned on multiples of shard_frames from
+  // frame 0, so the same frames share a shard): each shard sorted, then merged with the old
+  // entries, a sorted run of their own.
+  std::vector<uint64_t> run_starts = {0};
+  for (uint64_t first = old_count; first < frame_count;) {
+    if (first > 0) run_starts.push_back(first);
+    first = std::min(frame_count, (first / shard_frames + 1) * shard_frames);
+  }
+  run_starts.push_back(frame_count);
+  const LshShardBuilder builder(features, family);
+  tbb::task_arena arena(ArenaThreads(threads));
+  arena.execute([&] {
+    const size_t first_new_run = old_count > 0 ? 1 : 0;
+    tbb::parallel_for(tbb::blocked_range<size_t>(first_new_run, run_starts.size() - 1,
+                                                 /*grainsize=*/1),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        for (size_t run = range.begin(); run != range.end(); ++run) {
+                          const uint64_t first = run_starts[run];
+                          const uint64_t count = run_starts[run + 1] - first;
+                          std::vector<LshShardSlice> slices(table_count);
+                          for (uint32_t table_idx = 0; table_idx < table_count; ++table_idx) {
+                            LshTableEntries& table = tables_[table_idx];
+                            slices[table_idx] = {&table.keys[first], &table.sort_values[first],
+                                                 &table.frames[first],
+                                                 position_codes ? &table.codes[first] : nullptr};
+                          }
+                          builder.Build(first, count, slices);
+                        }
+                      });
+  });
+  frame_count_ = frame_count;
+  SetDirectoryShift();
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, table_count, /*grainsize=*/1),
+                      [&](const tbb::blocked_range<uint32_t>& range) {
+                        for (uint32_t table_idx = range.begin(); table_idx != range.end();
+                             ++table_idx) {
+                          MergeRuns(table_idx, run_starts);
+                          BuildDirectory(table_idx);
+                        }
+                      });
+  });
+  return Status::Ok();
+}
+
+void LshIndex::SetDirectoryShift() {
+  // About 16 entries per directory slot: a bucket lookup reads one slot pair and binary-searches
+  // a cache line or two of keys.
+  const uint32_t frame_bits = frame_count_ > 1 ? std::bit_width(frame_count_ - 1) : 1;
+  const uint32_t directory_bits = std::clamp<uint32_t>(frame_bits > 4 ? frame_bits - 4 : 1, 1, 24);
+  directory_shift_ = 32 - directory_bits;
 }
 
 void LshIndex::MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_starts) {

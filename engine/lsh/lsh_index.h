@@ -42,6 +42,23 @@ class LshIndex {
   static Result<LshIndex> Build(const PoseFeatures& features, const HashFamily& family,
                                 uint32_t shard_frames, int threads, bool position_codes = true);
 
+  // The index of tables saved earlier (each sorted by (key, sort value, frame), all of
+  // frame_count entries, with codes when position_codes): an incremental update keeps the
+  // index of the frames it had. InvalidArgument if the sizes do not match or a table is not
+  // sorted.
+  static Result<LshIndex> FromTables(uint64_t frame_count, std::vector<LshTableEntries> tables,
+                                     bool position_codes);
+  // Whether the tables hold position codes.
+  bool position_codes() const { return position_codes_; }
+
+  // Adds frames [frame_count(), features.frame_count()) of `features` (which extend the frames
+  // indexed so far) hashed with `family` (the one the index was built with), in shards as
+  // Build does, each table's new slices merged with its entries: the result is the index Build
+  // makes of all the frames, entry for entry. InvalidArgument if the features have fewer frames
+  // or 2^32 or more.
+  Status Extend(const PoseFeatures& features, const HashFamily& family, uint32_t shard_frames,
+                int threads);
+
   uint32_t table_count() const { return static_cast<uint32_t>(tables_.size()); }
   uint64_t frame_count() const { return frame_count_; }
   const LshTableEntries& table(uint32_t table_idx) const { return tables_[table_idx]; }
@@ -64,12 +81,15 @@ class LshIndex {
   uint64_t memory_bytes() const;
 
  private:
+  // directory_shift_ for frame_count_ frames.
+  void SetDirectoryShift();
   void BuildDirectory(uint32_t table_idx);
   // Merges the sorted runs of table `table_idx` (run r is [run_starts[r], run_starts[r + 1]))
   // into one sorted table.
   void MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_starts);
 
   uint64_t frame_count_ = 0;
+  bool position_codes_ = false;
   uint32_t directory_shift_ = 32;
   std::vector<LshTableEntries> tables_;
   // Per table: directory[slot] is the first entry whose key >> directory_shift_ >= slot.

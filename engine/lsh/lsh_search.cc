@@ -116,14 +116,23 @@ class LshSearch::Query {
                      (search.family_.hashes_per_table() + 1)),
         distance_(search.features_) {}
 
-  // `previous`: the neighbours of column - 1 in the same chain (seeds), or null.
+  // `previous`: the neighbours of column - 1 in the same chain (seeds), or null. With
+  // `reverse_query`, the verified older frames within their thresholds go to *reverse.
   void Run(uint64_t column, const std::vector<Neighbour>* previous, std::vector<Neighbour>* out,
-           ColumnWork* work);
+           ColumnWork* work, const ReverseQuery* reverse_query = nullptr,
+           std::vector<Neighbour>* reverse = nullptr);
   // A chain sweep: column `column` (*out, found already, sorted by frame) verifies the frames of
   // `from` (the neighbours of column + direction) moved by -direction * (0..chain_advance) that
   // it does not hold yet, and keeps the k_max nearest, sorted by frame.
   void Sweep(uint64_t column, const std::vector<Neighbour>& from, int direction,
              std::vector<Neighbour>* out, ColumnWork* work);
+  // The older frames whose columns the new frame `column` may enter (SearchColumnsAndReverse):
+  // appended to *out, at most `budget` evaluations.
+  // `seeds`: the previous column's reverse frames in the same chain (or null), verified first
+  // advanced by 0..chain_advance frames, as a chained forward query verifies its predecessor's
+  // neighbours.
+  void RunReverse(uint64_t column, const ReverseQuery& reverse_query, uint32_t budget,
+                  const std::vector<Neighbour>* seeds, std::vector<Neighbour>* out);
   // Hashes the column and lists its probes (sorted) in probes_.
   void Prepare(uint64_t column);
   // Appends the probes of rank [skip, wanted) of every table, sorted among themselves.
@@ -422,7 +431,8 @@ std::vector<LshSearch::ProbeInfo> LshSearch::ProbeSequence(uint64_t column) cons
 }
 
 void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previous,
-                           std::vector<Neighbour>* out, ColumnWork* work) {
+                           std::vector<Neighbour>* out, ColumnWork* work,
+                           const ReverseQuery* reverse_query, std::vector<Neighbour>* reverse) {
   const HashFamily& family = search_.family_;
   const LshIndex& index = search_.index_;
   const PoseFeatures& features = search_.features_;
@@ -460,11 +470,19 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
   // when twice k_max have been accepted (amortised O(1) per candidate, where a heap would pay
   // O(log k_max) on every improvement), and when a decision needs the exact radius.
   auto prune = [&] { bound = KeepNearest(k_max, eps, &best_); };
+  if (reverse != nullptr) reverse->clear();
   auto verify = [&](const uint32_t* candidates, uint32_t count) {
-    distance_.ToBatch(candidates, count, bound, distances);
+    // For the reverse neighbours every distance up to eps is needed exactly; a distance within
+    // the bound is the same either way (the joints are summed in the same order).
+    distance_.ToBatch(candidates, count, reverse != nullptr ? eps : bound, distances);
     for (uint32_t idx = 0; idx < count; ++idx) {
       const float distance = distances[idx];
       ++evaluations;
+      if (reverse != nullptr && candidates[idx] < reverse_query->frame_limit && distance <= eps &&
+          (reverse_query->thresholds == nullptr ||
+           distance <= reverse_query->thresholds[candidates[idx]])) {
+        reverse->push_back({candidates[idx], distance});
+      }
       // A value above the bound may be a partial sum: it only says D > bound. capped_columns
       // counts a column when more than k_max candidates came out at or below eps this way.
       if (distance <= eps) ++within_eps;
@@ -780,6 +798,110 @@ void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from
   FinishColumn(k_max, out);
 }
 
+// A new frame n enters an old column t when D(n, t) is below t's own k_max-th distance, which
+// may well be farther than n's: so n's probed buckets are scanned breadth first out to eps (not
+// to n's shrinking radius, as the forward query does), and each older frame is skipped without
+// an evaluation when its lower bound already exceeds its column's threshold. Bucket collisions
+// and the sort-value gaps are symmetric in n and t, so this finds what t's own query would find
+// of n, within the budget.
+void LshSearch::Query::RunReverse(uint64_t column, const ReverseQuery& reverse_query,
+                                  uint32_t budget, const std::vector<Neighbour>* seeds,
+                                  std::vector<Neighbour>* out) {
+  const LshIndex& index = search_.index_;
+  const PoseFeatures& features = search_.features_;
+  const NeighbourRules& rules = search_.rules_;
+  const LshOptions& options = search_.options_;
+  const float eps = rules.eps;
+  const float limit = eps + kBoundSlack;
+  const float sort_step = search_.family_.sort_value_step();
+  Prepare(column);
+  visited_.Clear();
+  distance_.SetQuery(column);
+  const uint32_t clip_of_column = features.ClipOf(column);
+  constexpr uint32_t kBatch = 16;
+  uint32_t batch[kBatch];
+  float distances[kBatch];
+  uint32_t batch_size = 0;
+  uint32_t evaluations = 0;
+  auto threshold_of = [&](uint32_t frame) {
+    return reverse_query.thresholds ? reverse_query.thresholds[frame] : eps;
+  };
+  auto flush = [&] {
+    distance_.ToBatch(batch, batch_size, eps, distances);
+    for (uint32_t idx = 0; idx < batch_size; ++idx) {
+      if (distances[idx] <= eps && distances[idx] <= threshold_of(batch[idx])) {
+        out->push_back({batch[idx], distances[idx]});
+      }
+    }
+    evaluations += batch_size;
+    batch_size = 0;
+  };
+  auto excluded = [&](uint32_t frame) {
+    const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+    return frame_gap < rules.exclusion_frames &&
+           rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame));
+  };
+  // New frames come in runs (clips), and so do the old frames they match: the previous column's
+  // reverse frames, advanced, are the likeliest ones of this column. Not counted in the budget.
+  if (seeds != nullptr) {
+    for (const Neighbour& seed : *seeds) {
+      for (uint32_t advance = 0; advance <= options.chain_advance; ++advance) {
+        const uint64_t frame = uint64_t{seed.frame} + advance;
+        if (frame >= reverse_query.frame_limit) break;
+        const uint32_t candidate = static_cast<uint32_t>(frame);
+        if (threshold_of(candidate) < 0 || excluded(candidate)) continue;
+        if (!visited_.Insert(candidate)) continue;
+        batch[batch_size++] = candidate;
+        if (batch_size == kBatch) flush();
+      }
+    }
+    flush();
+    evaluations = 0;
+  }
+  cursors_.clear();
+  uint64_t capped = 0;
+  uint32_t depth = options.first_round_scan;
+  bool budget_spent = false;
+  while (!budget_spent) {
+    bool more = false;
+    for (size_t probe_idx = 0; probe_idx < probes_.size() && !budget_spent; ++probe_idx) {
+      const Probe& probe = probes_[probe_idx];
+      if (probe.score > limit * limit) break;  // sorted: the later probes are farther
+      if (probe_idx == cursors_.size()) cursors_.push_back(OpenBucket(probe));
+      Cursor& cursor = cursors_[probe_idx];
+      if (cursor.done) continue;
+      const LshTableEntries& table = index.table(probe.table_idx);
+      const uint32_t round_limit = std::min(depth, cursor.scan_limit);
+      while (cursor.examined < round_limit) {
+        uint32_t position = 0;
+        float gap = 0;
+        const Step step = NextEntry(&cursor, probe.score, table.sort_values.data(), sort_step,
+                                    limit * limit, &position, &gap);
+        if (step == Step::kDone) break;
+        if (step == Step::kSkipped) continue;
+        const uint32_t frame = table.frames[position];
+        if (frame >= reverse_query.frame_limit) continue;  // a new frame: searched itself
+        const float threshold = threshold_of(frame);
+        if (threshold < 0) continue;  // its column is not wanted
+        const float reach = threshold + kBoundSlack;
+        if (probe.score + gap * gap > reach * reach) continue;  // cannot enter that column
+        if (excluded(frame) || !visited_.Insert(frame)) continue;
+        distance_.Prefetch(frame);
+        batch[batch_size++] = frame;
+        if (batch_size == kBatch) flush();
+        if (evaluations + batch_size >= budget) {
+          budget_spent = true;
+          break;
+        }
+      }
+      more = cursor.EndRound(&capped) || more;
+    }
+    if (!more || depth >= options.max_bucket_scan) break;
+    depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+  }
+  flush();
+}
+
 LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
                      HashFamily family, LshIndex index, float extension_radius)
     : features_(features),
@@ -792,6 +914,29 @@ LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOpti
 Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& features,
                                                      NeighbourRules rules,
                                                      const LshOptions& options) {
+  return Make(features, std::move(rules), options, nullptr);
+}
+
+Result<std::unique_ptr<LshSearch>> LshSearch::CreateWithIndex(const PoseFeatures& features,
+                                                              NeighbourRules rules,
+                                                              const LshOptions& options,
+                                                              LshIndex index) {
+  if (options.hashes_per_table == 0 || options.bucket_width == 0) {
+    return Status::InvalidArgument("lsh search: a given index needs the hash family's sizes");
+  }
+  if (index.frame_count() != features.frame_count() || index.table_count() != options.tables) {
+    return Status::InvalidArgument("lsh search: the given index holds " +
+                                   std::to_string(index.frame_count()) + " frames in " +
+                                   std::to_string(index.table_count()) + " tables, not " +
+                                   std::to_string(features.frame_count()) + " in " +
+                                   std::to_string(options.tables));
+  }
+  return Make(features, std::move(rules), options, &index);
+}
+
+Result<std::unique_ptr<LshSearch>> LshSearch::Make(const PoseFeatures& features,
+                                                   NeighbourRules rules,
+                                                   const LshOptions& options, LshIndex* given) {
   auto invalid = [](const std::string& what) {
     return Status::InvalidArgument("lsh search: " + what);
   };
@@ -836,9 +981,13 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& feature
       ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(), scale);
   HashFamily family = HashFamily::Draw(features.weights(), used.tables, used.hashes_per_table,
                                        used.bucket_width, used.seed);
-  MOTIF_ASSIGN_OR_RETURN(LshIndex index,
-                         LshIndex::Build(features, family, used.shard_frames, used.threads,
-                                         used.ranking == LshRanking::kPositionCode));
+  LshIndex index;
+  if (given != nullptr) {
+    index = std::move(*given);
+  } else {
+    MOTIF_ASSIGN_OR_RETURN(index, LshIndex::Build(features, family, used.shard_frames, used.threads,
+                                                  used.ranking == LshRanking::kPositionCode));
+  }
   const float extension_radius = options.sparse_radius_factor * scale.radius;
   return std::unique_ptr<LshSearch>(new LshSearch(features, std::move(rules), std::move(used),
                                                   std::move(family), std::move(index),
@@ -854,6 +1003,23 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
 Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
                                 std::vector<std::vector<Neighbour>>* columns, SearchStats* stats,
                                 LshQueryStats* lsh_stats) const {
+  return Search(first_column, count, nullptr, columns, nullptr, stats, lsh_stats);
+}
+
+Status LshSearch::SearchColumnsAndReverse(uint64_t first_column, uint64_t count,
+                                          const ReverseQuery& query,
+                                          std::vector<std::vector<Neighbour>>* columns,
+                                          std::vector<std::vector<Neighbour>>* reverse,
+                                          SearchStats* stats) const {
+  MOTIF_RETURN_IF_ERROR(CheckReverseQuery(query, features_.frame_count(), "lsh search"));
+  if (reverse->size() < count) reverse->resize(count);
+  return Search(first_column, count, &query, columns, reverse, stats, nullptr);
+}
+
+Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,
+                         std::vector<std::vector<Neighbour>>* columns,
+                         std::vector<std::vector<Neighbour>>* reverse, SearchStats* stats,
+                         LshQueryStats* lsh_stats) const {
   if (first_column + count > features_.frame_count()) {
     return Status::InvalidArgument("lsh search: columns [" + std::to_string(first_column) + ", " +
                                    std::to_string(first_column + count) + ") beyond " +
@@ -885,6 +1051,7 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
           LshQueryStats local_lsh;
           std::vector<std::vector<Neighbour>> chain_columns;
           std::vector<ColumnWork> work;
+          std::vector<Neighbour> previous_reverse;  // the chain's previous reverse frames
           for (uint64_t task = range.begin(); task != range.end(); ++task) {
             const uint64_t task_first = (first_task + task) * grain;
             const uint64_t begin = chain ? task_first : std::max(task_first, first_column);
@@ -894,9 +1061,29 @@ Status LshSearch::SearchColumns(uint64_t first_column, uint64_t count,
             chain_columns.resize(std::max(chain_columns.size(), size));
             work.assign(size, ColumnWork{});
             for (size_t idx = 0; idx < size; ++idx) {
+              const uint64_t column = begin + idx;
               const bool seeded = chain && idx > 0;
-              query.Run(begin + idx, seeded ? &chain_columns[idx - 1] : nullptr,
-                        &chain_columns[idx], &work[idx]);
+              const bool in_range = column >= first_column && column < end_column;
+              std::vector<Neighbour>* found =
+                  reverse != nullptr && in_range ? &(*reverse)[column - first_column] : nullptr;
+              query.Run(column, seeded ? &chain_columns[idx - 1] : nullptr, &chain_columns[idx],
+                        &work[idx], reverse_query, found);
+              if (found == nullptr) continue;
+              // The forward query's verified older frames, and the wider reverse scan's. A
+              // column whose predecessor's reverse frames are known spends the chained budget.
+              const bool chained = seeded && column > first_column;
+              query.RunReverse(column, *reverse_query,
+                               chained ? options_.chained_max_candidates
+                                       : options_.max_candidates,
+                               chained ? &previous_reverse : nullptr, found);
+              std::sort(found->begin(), found->end(),
+                        [](const Neighbour& a, const Neighbour& b) { return a.frame < b.frame; });
+              found->erase(std::unique(found->begin(), found->end(),
+                                       [](const Neighbour& a, const Neighbour& b) {
+                                         return a.frame == b.frame;
+                                       }),
+                           found->end());
+              if (chain) previous_reverse = *found;
             }
             for (uint32_t sweep = 0; sweep < sweeps && size > 1; ++sweep) {
               if (sweep % 2 == 0) {  // backward: from the successor

@@ -80,6 +80,15 @@ class LshSearch final : public NeighbourSearch {
   // width, 2^32 frames or more. Errors of the index build pass through.
   static Result<std::unique_ptr<LshSearch>> Create(const PoseFeatures& features,
                                                    NeighbourRules rules, const LshOptions& options);
+  // The same with the index given: built earlier over all of `features` with the family these
+  // options draw (HashFamily::Draw(features.weights(), tables, hashes_per_table, bucket_width,
+  // seed), both sizes given, not 0), e.g. a saved index extended with new frames
+  // (LshIndex::Extend). The search is then the one Create makes. InvalidArgument, besides
+  // Create's, if the index covers another frame count or table count.
+  static Result<std::unique_ptr<LshSearch>> CreateWithIndex(const PoseFeatures& features,
+                                                            NeighbourRules rules,
+                                                            const LshOptions& options,
+                                                            LshIndex index);
 
   Status SearchColumns(uint64_t first_column, uint64_t count,
                        std::vector<std::vector<Neighbour>>* columns,
@@ -88,6 +97,16 @@ class LshSearch final : public NeighbourSearch {
   Status SearchColumns(uint64_t first_column, uint64_t count,
                        std::vector<std::vector<Neighbour>>* columns, SearchStats* stats,
                        LshQueryStats* lsh_stats) const;
+  // The same columns, and the older frames each new column may enter (NeighbourSearch): those
+  // among the forward query's verified candidates (verified up to eps rather than abandoned at
+  // the column's shrinking radius, so which candidates are verified, and so the columns, do not
+  // change), and those of a second, reverse scan of the column's probed buckets out to eps with
+  // max_candidates evaluations, which skips an older frame whose lower bound exceeds its own
+  // threshold. An older frame outside the probed buckets or beyond the budget is missed.
+  Status SearchColumnsAndReverse(uint64_t first_column, uint64_t count, const ReverseQuery& query,
+                                 std::vector<std::vector<Neighbour>>* columns,
+                                 std::vector<std::vector<Neighbour>>* reverse,
+                                 SearchStats* stats) const override;
 
   // The buckets column `column` visits, in order, as (table, bucket key, lower bound on D), before
   // any early stop (diagnostics and tests).
@@ -109,7 +128,16 @@ class LshSearch final : public NeighbourSearch {
  private:
   LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
             HashFamily family, LshIndex index, float extension_radius);
+  // Create's work; with `index` null the index is built.
+  static Result<std::unique_ptr<LshSearch>> Make(const PoseFeatures& features,
+                                                 NeighbourRules rules, const LshOptions& options,
+                                                 LshIndex* index);
   class Query;
+  // Every search; `reverse_query` and `reverse` null for the columns alone.
+  Status Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,
+                std::vector<std::vector<Neighbour>>* columns,
+                std::vector<std::vector<Neighbour>>* reverse, SearchStats* stats,
+                LshQueryStats* lsh_stats) const;
 
   const PoseFeatures& features_;
   NeighbourRules rules_;

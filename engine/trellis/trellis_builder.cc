@@ -12,6 +12,7 @@
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_search.h"
+#include "engine/lsh/lsh_tuning.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
@@ -152,6 +153,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
     Result<std::unique_ptr<TrellisFileReader>> existing = TrellisFileReader::Open(trellis_path);
     if (existing.ok() && (*existing)->params() == params) {
       report.reused = true;
+      if (!exact) report.lsh_resolved = ResolveLshOptions(features, rules, lsh);
       report.columns = (*existing)->column_count();
       report.neighbours = (*existing)->neighbour_count();
       report.mean_k = report.columns ? static_cast<double>(report.neighbours) / report.columns : 0;
@@ -169,6 +171,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
     MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<LshSearch> lsh_search,
                            LshSearch::Create(features, rules, lsh));
     note("LSH index: " + lsh_search->DescribeParams());
+    report.lsh_resolved = lsh_search->options();
     search = std::move(lsh_search);
   }
   report.index_seconds = SecondsSince(start);
@@ -240,6 +243,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   }
   MOTIF_RETURN_IF_ERROR(finish_pending_write());
   MOTIF_RETURN_IF_ERROR(writer->Finish());
+  if (options.on_search_done) options.on_search_done(features, *search);
   report.search_seconds = SecondsSince(start);
   report.distance_evaluations = stats.distance_evaluations;
   report.capped_columns = stats.capped_columns;

@@ -22,6 +22,7 @@
 
 #include "common/status.h"
 #include "engine/distance/neighbour_search.h"
+#include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_options.h"
 #include "formats/trellis_file/trellis_file_writer.h"
 
@@ -63,6 +64,10 @@ struct TrellisOptions {
   // Stages: "features", "eps", "index", "trellis"; (done, total) in frames / pairs / columns.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;
   std::function<void(const std::string&)> note;
+  // Called once a build has written every column, with the features and the search it used
+  // (not when a finished trellis is reused): a caller may keep them (motifmine reindex saves
+  // them for its next, incremental run).
+  std::function<void(const PoseFeatures&, const NeighbourSearch&)> on_search_done;
 };
 
 struct TrellisReport {
@@ -71,6 +76,10 @@ struct TrellisReport {
   uint64_t resumed_from_column = 0; // > 0 when an interrupted build was continued
   TrellisParams params;             // eps, mu, sigma, k_max, exclusion, ...
   TrellisSearchMode search = TrellisSearchMode::kLsh;  // the search used: kLsh or kExact
+  // With LSH: the options as used, hashes_per_table and bucket_width resolved from the data
+  // (LshSearch::options()); also when the trellis is reused. Passing them explicitly builds the
+  // same hash family again (an incremental update does).
+  LshOptions lsh_resolved;
   uint64_t columns = 0;
   uint64_t neighbours = 0;          // entries in the trellis
   double mean_k = 0;                // achieved mean neighbours per column (after the k_max cap)

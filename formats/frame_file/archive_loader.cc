@@ -9,8 +9,10 @@ namespace {
 // Validates the commit a slot points at: committed length, footer, metadata.
 Status LoadCommit(const uint8_t* data, uint64_t size, int slot_idx, const CommitSlot& slot,
                   LoadedArchive* archive) {
-  const std::string where = "commit slot " + std::to_string(slot_idx) + " (generation " +
-                            std::to_string(slot.generation) + ")";
+  // slot_idx -1: a version named by the caller (LoadArchiveCommit), not by a slot.
+  const std::string where =
+      (slot_idx < 0 ? std::string("the version") : "commit slot " + std::to_string(slot_idx)) +
+      " (generation " + std::to_string(slot.generation) + ")";
   if (slot.committed_length > size) {
     return Status::Corruption("truncated: " + where + " says " +
                               std::to_string(slot.committed_length) +
@@ -100,6 +102,31 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
     if (newest_error.ok()) newest_error = loaded;
   }
   return newest_error.WithContext(path);
+}
+
+Result<LoadedArchive> LoadArchiveCommit(const std::string& path, const uint8_t* data,
+                                        uint64_t size, uint64_t generation,
+                                        uint64_t committed_length) {
+  if (size == 0) return Status::Corruption(path + ": empty file, not a motion archive (.mfs)");
+  LoadedArchive archive;
+  archive.file_bytes = size;
+  Status status = FileHeader::DecodeFixedFrom(data, size, &archive.header);
+  if (!status.ok()) return status.WithContext(path);
+  if (generation == 0 || committed_length < kHeaderBytes + kFooterBytes) {
+    return Status::Corruption(path + ": no version " + std::to_string(generation) + " of " +
+                              std::to_string(committed_length) + " bytes can exist");
+  }
+  CommitSlot slot;
+  slot.generation = generation;
+  slot.committed_length = committed_length;
+  slot.footer_offset = committed_length - kFooterBytes;
+  status = LoadCommit(data, size, /*slot_idx=*/-1, slot, &archive);
+  if (!status.ok()) {
+    return status.WithContext(path + ": version " + std::to_string(generation) + " (" +
+                              std::to_string(committed_length) + " bytes)");
+  }
+  archive.max_generation = generation;
+  return archive;
 }
 
 }  // namespace motif::frame_file

@@ -19,7 +19,7 @@ namespace motif::frame_file {
 
 struct LoadedArchive {
   FileHeader header;        // fixed part and both slots as found (a damaged slot reads empty)
-  int active_slot = 0;      // index of the slot in use
+  int active_slot = 0;      // index of the slot in use (-1: a version named by LoadArchiveCommit)
   CommitSlot slot;          // header.slots[active_slot]
   Footer footer;
   ArchiveMetadata metadata;
@@ -31,5 +31,14 @@ struct LoadedArchive {
 // `data` holds the file's `size` bytes; `path` is used in messages only. Corruption naming the
 // file and the offset of the first failed check (of the newest slot if none validates).
 Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, uint64_t size);
+
+// The earlier version of the archive committed as `generation` with `committed_length` bytes:
+// appends never rewrite what lies before their committed end, so every version's footer and
+// metadata stay in the file (frame_file.md section 7). Validated as a commit slot's version
+// is (checks 9 to 12), the header's fixed part first. Corruption naming the file if that
+// version is not there (another file, or a truncated one).
+Result<LoadedArchive> LoadArchiveCommit(const std::string& path, const uint8_t* data,
+                                        uint64_t size, uint64_t generation,
+                                        uint64_t committed_length);
 
 }  // namespace motif::frame_file

@@ -106,6 +106,20 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::Open(const std::string
   return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
 }
 
+Result<std::unique_ptr<FrameFileReader>> FrameFileReader::OpenCommit(const std::string& path,
+                                                                     uint64_t generation,
+                                                                     uint64_t committed_length) {
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
+  impl->data = impl->file->data();
+  impl->size = impl->file->size();
+  MOTIF_ASSIGN_OR_RETURN(impl->archive, frame_file::LoadArchiveCommit(path, impl->data, impl->size,
+                                                                      generation,
+                                                                      committed_length));
+  return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
+}
+
 FrameFileReader::FrameFileReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 FrameFileReader::~FrameFileReader() = default;
 

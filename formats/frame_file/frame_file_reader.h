@@ -44,6 +44,14 @@ class FrameFileReader {
   // checksum mismatch in the header slots, footer or metadata, an index pointing outside the
   // file. IOError: cannot open or map. Messages name the file and the offset.
   static Result<std::unique_ptr<FrameFileReader>> Open(const std::string& path);
+  // Opens an earlier version of the archive: the one committed as `generation` with
+  // `committed_length` bytes (FrameFileSummary::generation and file_bytes when it was
+  // current). Appends never rewrite those bytes, so a result that recorded them (a reindex
+  // manifest, motifs.json) reads the frames it was mined from while later takes are appended.
+  // Corruption if that version is not in the file (another archive, a truncated file).
+  static Result<std::unique_ptr<FrameFileReader>> OpenCommit(const std::string& path,
+                                                             uint64_t generation,
+                                                             uint64_t committed_length);
   ~FrameFileReader();
 
   const std::string& path() const;

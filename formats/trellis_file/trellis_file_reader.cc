@@ -185,6 +185,25 @@ Status TrellisFileReader::ReadBlock(uint64_t block_idx, TrellisBlock* block,
   return impl_->DecodeBlock(block_idx, block, decode_distances);
 }
 
+Status TrellisFileReader::ReadEncodedBlock(uint64_t block_idx, const uint8_t** bytes,
+                                           uint64_t* size) const {
+  if (block_idx >= block_count()) {
+    return Status::InvalidArgument(impl_->path + ": block " + std::to_string(block_idx) +
+                                   " of " + std::to_string(block_count()));
+  }
+  const BlockHandle& handle = impl_->blocks[block_idx];
+  const uint8_t* data = impl_->data + handle.offset;
+  const uint64_t body = handle.bytes - trellis_file::kBlockTrailerBytes;
+  if (trellis_file::LoadU64(data + body) != handle.checksum ||
+      trellis_file::Checksum64(data, body) != handle.checksum) {
+    return Status::Corruption(impl_->path + ": block " + std::to_string(block_idx) +
+                              " at offset " + Hex(handle.offset) + ": checksum mismatch");
+  }
+  *bytes = data;
+  *size = handle.bytes;
+  return Status::Ok();
+}
+
 Status TrellisFileReader::ReadColumns(uint64_t first_column, uint64_t count,
                                       std::vector<std::vector<Neighbour>>* columns) const {
   const uint64_t total = column_count();

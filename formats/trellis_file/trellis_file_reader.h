@@ -53,6 +53,11 @@ class TrellisFileReader {
   // the decoding time). InvalidArgument if block_idx >= block_count(); Corruption naming the
   // file, block and offset.
   Status ReadBlock(uint64_t block_idx, TrellisBlock* block, bool decode_distances = true) const;
+  // The bytes of block `block_idx` as stored (header, sections, trailer), valid while the
+  // reader is open, after checking its trailer against its bytes and its index entry: what
+  // TrellisFileWriter::AppendEncodedBlock copies into another trellis without decoding.
+  // InvalidArgument if block_idx >= block_count(); Corruption naming the file, block and offset.
+  Status ReadEncodedBlock(uint64_t block_idx, const uint8_t** bytes, uint64_t* size) const;
   // Columns [first, first + count) into *columns (resized to count). InvalidArgument if the
   // range is outside [0, column_count()); Corruption as ReadBlock.
   Status ReadColumns(uint64_t first_column, uint64_t count,

@@ -135,8 +135,14 @@ class TrellisFileWriter::Impl {
     MOTIF_RETURN_IF_ERROR(CheckColumns(columns));
     BlockHandle handle;
     Status status = encoder_.Encode(next_column_, columns, params_.eps, &block_bytes_, &handle);
-    if (status.ok()) status = file_->WriteAt(write_offset_, block_bytes_.data(), block_bytes_.size());
-    if (status.ok()) status = file_->Sync();
+    if (!status.ok()) return Fail(status);
+    return WriteBlock(reinterpret_cast<const uint8_t*>(block_bytes_.data()), handle);
+  }
+
+  // Writes a block of `handle.bytes` bytes at the end and syncs it; records it in the index.
+  Status WriteBlock(const uint8_t* bytes, BlockHandle handle) {
+    Status status = file_->WriteAt(write_offset_, bytes, handle.bytes);
+    if (status.ok() && options_.sync_each_block) status = file_->Sync();
     if (!status.ok()) return Fail(status);
     handle.offset = write_offset_;
     index_.push_back(handle);
@@ -144,6 +150,32 @@ class TrellisFileWriter::Impl {
     next_column_ += handle.column_count;
     neighbour_count_ += handle.neighbour_count;
     return Status::Ok();
+  }
+
+  Status AppendEncodedBlock(const uint8_t* bytes, uint64_t size) {
+    MOTIF_RETURN_IF_ERROR(CheckUsable());
+    BlockHeader header;
+    uint64_t checksum = 0;
+    Status framing = trellis_file::CheckBlockFraming(bytes, size, &header, &checksum);
+    if (!framing.ok()) return Invalid("encoded block: " + framing.message());
+    if (header.block_bytes() != size) {
+      return Invalid("encoded block of " + std::to_string(size) + " bytes holds a block of " +
+                     std::to_string(header.block_bytes()));
+    }
+    MOTIF_RETURN_IF_ERROR(CheckBlockShape(header.first_column, header.column_count));
+    if (header.neighbour_count > uint64_t{header.column_count} * params_.k_max ||
+        header.neighbour_count > trellis_file::kMaxBlockNeighbours) {
+      return Invalid("encoded block at column " + std::to_string(header.first_column) + " has " +
+                     std::to_string(header.neighbour_count) + " neighbours, more than k_max " +
+                     std::to_string(params_.k_max) + " a column");
+    }
+    BlockHandle handle;
+    handle.bytes = size;
+    handle.first_column = header.first_column;
+    handle.column_count = header.column_count;
+    handle.neighbour_count = header.neighbour_count;
+    handle.checksum = checksum;
+    return WriteBlock(bytes, handle);
   }
 
   Status Finish() {
@@ -185,19 +217,25 @@ class TrellisFileWriter::Impl {
     return Status::Ok();
   }
 
-  // Everything AppendBlock promises to reject, checked before anything is written.
-  Status CheckColumns(const std::vector<std::vector<Neighbour>>& columns) const {
+  // A block of `column_count` columns from `first_column` is the one expected next.
+  Status CheckBlockShape(uint64_t first_column, uint64_t column_count) const {
     if (next_column_ >= params_.frame_count) {
       return Invalid("all " + std::to_string(params_.frame_count) +
                      " columns are written: call Finish");
     }
     const uint64_t expected =
         std::min<uint64_t>(options_.block_columns, params_.frame_count - next_column_);
-    if (columns.size() != expected) {
-      return Invalid("block at column " + std::to_string(next_column_) + " has " +
-                     std::to_string(columns.size()) + " columns, expected " +
-                     std::to_string(expected));
+    if (first_column != next_column_ || column_count != expected) {
+      return Invalid("block at column " + std::to_string(first_column) + " has " +
+                     std::to_string(column_count) + " columns, expected " +
+                     std::to_string(expected) + " from column " + std::to_string(next_column_));
     }
+    return Status::Ok();
+  }
+
+  // Everything AppendBlock promises to reject, checked before anything is written.
+  Status CheckColumns(const std::vector<std::vector<Neighbour>>& columns) const {
+    MOTIF_RETURN_IF_ERROR(CheckBlockShape(next_column_, columns.size()));
     uint64_t neighbour_count = 0;
     for (size_t column_idx = 0; column_idx < columns.size(); ++column_idx) {
       const std::vector<Neighbour>& column = columns[column_idx];
@@ -315,6 +353,10 @@ uint32_t TrellisFileWriter::block_columns() const { return impl_->block_columns(
 
 Status TrellisFileWriter::AppendBlock(const std::vector<std::vector<Neighbour>>& columns) {
   return impl_->AppendBlock(columns);
+}
+
+Status TrellisFileWriter::AppendEncodedBlock(const uint8_t* bytes, uint64_t size) {
+  return impl_->AppendEncodedBlock(bytes, size);
 }
 
 Status TrellisFileWriter::Finish() { return impl_->Finish(); }

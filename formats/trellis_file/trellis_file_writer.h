@@ -52,6 +52,12 @@ struct TrellisFileWriterOptions {
   uint32_t block_columns = 4096;
   int zstd_level = 3;
   FileSystem* file_system = PosixFileSystem();
+  // fsync after every block, so that an interrupted build resumes after the last block written
+  // even after a power loss. false: only Finish syncs (before its rename); a build killed, not
+  // powered off, still resumes where it was (the page cache keeps what was written), and one
+  // cut by a power loss resumes after the last block that reached the disk (each block checks
+  // itself). For writers that write much faster than the disk syncs (an incremental update).
+  bool sync_each_block = true;
 };
 
 class TrellisFileWriter {
@@ -77,8 +83,19 @@ class TrellisFileWriter {
   // be block_columns except for the last block. Each column: at most k_max neighbours, frames
   // strictly increasing and below frame_count, distances in [0, eps]; a block holds at most
   // 2^28 neighbours. InvalidArgument if not (the writer is unchanged); IOError /
-  // ResourceExhausted on write failure. Durable (fsynced) when it returns OK.
+  // ResourceExhausted on write failure. Durable (fsynced) when it returns OK, with
+  // sync_each_block.
   Status AppendBlock(const std::vector<std::vector<Neighbour>>& columns);
+
+  // Appends a block already encoded (`size` bytes: header, sections, trailer), such as an
+  // unchanged block of another trellis read with TrellisFileReader::ReadEncodedBlock or one
+  // made by trellis_file::BlockEncoder, without decoding it: an incremental update copies the
+  // blocks it does not change. Checked: the framing and the trailer checksum, that the block
+  // holds columns [next_column(), next_column() + block size) and at most k_max neighbours a
+  // column on average (InvalidArgument, the writer unchanged). The caller guarantees what only a
+  // decode would show: it was encoded with this file's eps, and its frames are below
+  // frame_count and at most k_max a column. IOError / ResourceExhausted as AppendBlock.
+  Status AppendEncodedBlock(const uint8_t* bytes, uint64_t size);
 
   // After all frame_count columns: index, footer, sync, rename into place, sync the directory.
   // InvalidArgument before all columns are written. The writer is closed afterwards.

@@ -120,6 +120,64 @@ TEST_F(LshIndexTest, ShardedBuildIsTheSameForAnyThreadCountAndShardSize) {
   EXPECT_TRUE(SameTables(*serial, *small_shards));
 }
 
+// The first `frames` frames of `features`.
+PoseFeatures Prefix(const PoseFeatures& features, uint64_t frames) {
+  std::vector<uint64_t> clips;
+  for (uint64_t start : features.clip_first_frames()) {
+    if (start < frames || start == 0) clips.push_back(start);
+  }
+  auto prefix = PoseFeatures::FromParts(frames, features.weights(), features.joints(), clips,
+                                        features.values());
+  EXPECT_TRUE(prefix.ok());
+  return std::move(prefix.value());
+}
+
+TEST_F(LshIndexTest, AnIndexSavedAndExtendedWithNewFramesIsTheIndexOfAllFrames) {
+  const HashFamily family = Family();
+  auto full = LshIndex::Build(*features_, family, 3000, 2);
+  ASSERT_TRUE(full.ok());
+  for (bool codes : {false, true}) {
+    auto whole = LshIndex::Build(*features_, family, 3000, 2, codes);
+    ASSERT_TRUE(whole.ok());
+    // Prefixes inside a shard, on a shard boundary, and empty; extended once or twice.
+    for (uint64_t old_frames : {uint64_t{0}, uint64_t{4321}, uint64_t{9000}, uint64_t{19990}}) {
+      SCOPED_TRACE("old frames " + std::to_string(old_frames) + (codes ? ", codes" : ""));
+      const PoseFeatures prefix = Prefix(*features_, old_frames);
+      auto built = LshIndex::Build(prefix, family, 3000, 2, codes);
+      ASSERT_TRUE(built.ok());
+      // Saved (its tables copied out) and loaded again, as the search cache does.
+      std::vector<LshTableEntries> tables;
+      for (uint32_t table_idx = 0; table_idx < built->table_count(); ++table_idx) {
+        tables.push_back(built->table(table_idx));
+      }
+      auto loaded = LshIndex::FromTables(old_frames, std::move(tables), codes);
+      ASSERT_TRUE(loaded.ok()) << loaded.status().ToString();
+      const PoseFeatures middle = Prefix(*features_, (old_frames + 20000) / 2);
+      ASSERT_TRUE(loaded->Extend(middle, family, 3000, 1).ok());
+      ASSERT_TRUE(loaded->Extend(*features_, family, 3000, 2).ok());
+      EXPECT_EQ(loaded->frame_count(), features_->frame_count());
+      EXPECT_TRUE(SameTables(*loaded, *whole));
+      // Its directory finds the buckets the built one finds.
+      for (uint32_t probe = 0; probe < 200; ++probe) {
+        const uint32_t key = whole->table(probe % 6).keys[probe * 97 % 20000];
+        EXPECT_EQ(loaded->FindBucket(probe % 6, key), whole->FindBucket(probe % 6, key));
+      }
+    }
+  }
+}
+
+TEST_F(LshIndexTest, SavedTablesOutOfOrderOrOfTheWrongSizeAreRefused) {
+  auto built = LshIndex::Build(*features_, Family(), 3000, 2);
+  ASSERT_TRUE(built.ok());
+  std::vector<LshTableEntries> tables = {built->table(0), built->table(1)};
+  ASSERT_NE(tables[1].keys[10], tables[1].keys[11000]);
+  std::swap(tables[1].keys[10], tables[1].keys[11000]);
+  EXPECT_FALSE(LshIndex::FromTables(features_->frame_count(), tables, false).ok());
+  tables = {built->table(0)};
+  tables[0].keys.pop_back();
+  EXPECT_FALSE(LshIndex::FromTables(features_->frame_count(), tables, false).ok());
+}
+
 TEST_F(LshIndexTest, MemoryIsAboutFourteenBytesPerFramePerTable) {
   const HashFamily family = Family();
   auto index = LshIndex::Build(*features_, family, 1 << 16, 2);

@@ -1,0 +1,85 @@
+#include "engine/cluster/cluster_stage.h"
+
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "common/file_util.h"
+#include "formats/paths_file/paths_file_reader.h"
+#include "formats/trellis_file/trellis_file_reader.h"
+
+namespace motif {
+namespace {
+
+// What determines a clustering: the paths (through the trellis identity, itself tied to its
+// archive, and the grow parameters) and every option that changes the result.
+std::string ClusterKey(const ClusterStageInput& input, const ClusterOptions& options) {
+  std::ostringstream key;
+  key << "trellis=" << input.paths_params.trellis_identity
+      << " branch=" << input.paths_params.branch
+      << " min_length=" << input.paths_params.min_length
+      << " all_branches=" << input.paths_params.all_branches
+      << " candidates=" << input.candidates << " groups=" << options.cut.groups
+      << " max_ncut=" << options.cut.max_ncut
+      << " min_similarity=" << options.similarity.min_similarity
+      << " max_length_ratio=" << options.max_length_ratio << " seed=" << options.seed;
+  return key.str();
+}
+
+std::string StoredClusterKey(const std::string& state_path) {
+  Result<std::string> text = ReadFileToString(state_path);
+  if (!text.ok()) return "";
+  const nlohmann::json state = nlohmann::json::parse(*text, nullptr, /*allow_exceptions=*/false);
+  if (!state.is_object() || !state.contains("cluster_key") || !state["cluster_key"].is_string()) {
+    return "";
+  }
+  return state["cluster_key"].get<std::string>();
+}
+
+}  // namespace
+
+MotifsArchiveVersion ArchiveVersionOf(const FrameFileReader& archive) {
+  const FrameFileSummary summary = archive.summary();
+  return {summary.generation, summary.file_bytes, summary.identity};
+}
+
+Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
+                                           const ClusterOptions& options) {
+  ClusterStageResult result;
+  const std::string key = ClusterKey(input, options);
+  const FrameFileReader& archive = *input.archive;
+  if (StoredClusterKey(input.state_path) == key) {
+    Result<MotifsDocument> stored = ReadMotifsJson(input.motifs_path);
+    if (stored.ok() && stored->frames == archive.frame_count() &&
+        stored->archive_version == ArchiveVersionOf(archive) &&
+        stored->archive == input.archive_path) {
+      result.document = std::move(stored.value());
+      result.reused = true;
+      return result;
+    }
+  }
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,
+                         TrellisFileReader::Open(input.trellis_path));
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathsFileReader> paths,
+                         PathsFileReader::Open(input.paths_path));
+  MOTIF_ASSIGN_OR_RETURN(ClusterResult clustered,
+                         ClusterMotifs(paths->candidates(), *trellis, options));
+  MotifsJsonParams params;
+  params.eps = trellis->params().eps;
+  params.kmax = trellis->params().k_max;
+  params.branch = input.paths_params.branch;
+  params.min_length = input.paths_params.min_length;
+  params.groups = options.cut.groups;
+  params.seed = options.seed;
+  MOTIF_ASSIGN_OR_RETURN(result.document,
+                         MakeMotifsDocument(clustered, input.archive_path, archive.frame_count(),
+                                            archive.clips(), params));
+  result.document.archive_version = ArchiveVersionOf(archive);
+  result.report = clustered.report;
+  MOTIF_RETURN_IF_ERROR(WriteMotifsJson(input.motifs_path, result.document));
+  const nlohmann::json state = {{"version", 1}, {"cluster_key", key}};
+  MOTIF_RETURN_IF_ERROR(AtomicWriteFile(input.state_path, state.dump(2) + "\n"));
+  return result;
+}
+
+}  // namespace motif

@@ -1,0 +1,45 @@
+// RunClusterStage: the clustering stage of `motifmine mine` and `motifmine reindex`: the paths
+// file's candidates clustered against their trellis (ClusterMotifs) into a motifs.json, or the
+// motifs.json already there when a state file beside it says the same paths were clustered with
+// the same options (the grower and the clustering are deterministic). motifs.json and the state
+// file are each replaced atomically, motifs.json first: a state that names a clustering always
+// describes the motifs.json beside it.
+// Thread-safety: one stage per output folder at a time.
+#pragma once
+
+#include <string>
+
+#include "common/status.h"
+#include "engine/cluster/motif_clusterer.h"
+#include "engine/cluster/motifs_json.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/paths_file/paths_file_writer.h"
+
+namespace motif {
+
+struct ClusterStageInput {
+  std::string archive_path;          // as motifs.json records it
+  const FrameFileReader* archive = nullptr;  // the version the trellis was built over
+  std::string trellis_path;
+  std::string paths_path;
+  PathsParams paths_params;          // of the paths file (its trellis identity and grow options)
+  uint64_t candidates = 0;           // in the paths file
+  std::string motifs_path;           // written
+  std::string state_path;            // written: {"version": 1, "cluster_key": ...}
+};
+
+struct ClusterStageResult {
+  MotifsDocument document;
+  bool reused = false;
+  ClusterReport report;  // of this run (empty when reused)
+};
+
+// The archive version a reader has open, as motifs.json records it.
+MotifsArchiveVersion ArchiveVersionOf(const FrameFileReader& archive);
+
+// Errors of the trellis and paths files (NotFound, Corruption), of the clustering, and of the
+// writes (IOError, ResourceExhausted).
+Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
+                                           const ClusterOptions& options);
+
+}  // namespace motif

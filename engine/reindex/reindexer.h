@@ -1,0 +1,105 @@
+// Reindex: `motifmine reindex ARCHIVE --watch DIR --out OUTDIR`, the nightly job of issue 8.
+// One run:
+//   1. takes OUTDIR/.motifmine.lock (Busy at once if another run holds it: cron's overlapping
+//      runs never collide) and removes what killed runs left (temporary files);
+//   2. scans DIR (ScanWatchedFolder) and imports the new takes into ARCHIVE (created if
+//      missing) in one commit; changed files are reported, not imported;
+//   3. builds the next version of the output in OUTDIR/v<N+1>/:
+//        * "full" at the first run, when a parameter of the trellis changes, or when the archive
+//          is not an extension of the version the manifest records;
+//        * "incremental" when takes were appended: UpdateTrellis from version N's trellis
+//          (eps, K_max, the search and its LSH family are the recorded ones);
+//        * "regrow" when only grow or clustering parameters changed (the trellis is shared);
+//      then the paths (BuildPaths) and the motifs (RunClusterStage), and the report;
+//   4. switches: OUTDIR/manifest.json is replaced atomically (WriteManifest), then
+//      OUTDIR/motifs.json and OUTDIR/report.html (renamed into place from the version's);
+//   5. removes versions older than the previous one (a reader of the previous version keeps it
+//      for a whole run; one that still has older files open keeps reading them, as POSIX keeps
+//      an unlinked file's data while it is open).
+// With nothing new and no parameter changed, no version is made ("up to date").
+// Every stage of a killed run is resumed or reused by the next: the archive append is atomic,
+// the trellis resumes from its partial file, paths and motifs are reused when their inputs
+// match (tests/engine/cli/reindex_interrupt_test.cc, scripts/crash_harness.py).
+// Thread-safety: one run per OUTDIR (the lock); a process may run one at a time.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/status.h"
+#include "common/writable_file.h"
+#include "engine/reindex/reindex_manifest.h"
+#include "engine/trellis/trellis_builder.h"
+#include "formats/import/take_importer.h"
+
+namespace motif {
+
+// Unset fields keep the value recorded in the manifest (the defaults at the first run).
+struct ReindexOptions {
+  std::string archive_path;
+  std::string watch_dir;
+  std::string out_dir;
+  std::optional<float> eps;              // 0: estimate (mu - 2 sigma) on the current archive
+  std::optional<uint32_t> k_max;         // default 256
+  std::optional<uint32_t> exclusion;     // default 0: half the minimum length
+  std::optional<TrellisSearchMode> search;  // default auto at the first run
+  std::optional<uint32_t> lsh_tables;    // LSH family overrides
+  std::optional<uint32_t> lsh_hashes;
+  std::optional<float> lsh_width;
+  std::optional<uint64_t> seed;          // default 1
+  std::optional<std::string> weights_path;
+  std::optional<uint32_t> branch;        // default 5
+  // lambda: frames if min_length_frames > 0, else seconds (default 0.5 s).
+  std::optional<uint64_t> min_length_frames;
+  std::optional<double> min_length_seconds;
+  std::optional<uint32_t> groups;        // 0: auto
+  std::optional<double> max_ncut;
+  std::optional<double> min_similarity;
+  std::optional<double> max_length_ratio;
+  bool skip_bad = false;                 // import the good takes, report the bad ones
+  double min_age_seconds = 60;           // files modified more recently wait for the next run
+  ImportOptions import;
+  bool report = true;                    // write report.html
+  int threads = 0;
+  FileSystem* file_system = PosixFileSystem();  // manifest, trellis, archive writes
+  // Progress: (stage, done, total, unit); a new stage name begins a stage.
+  std::function<void(const std::string& stage, uint64_t done, uint64_t total,
+                     const std::string& unit)>
+      progress;
+  std::function<void(const std::string&)> note;
+};
+
+struct ReindexReport {
+  bool up_to_date = false;       // nothing new: no version made
+  ReindexManifest manifest;      // the current one after the run
+  uint64_t takes_scanned = 0;
+  uint64_t takes_known = 0;
+  uint64_t takes_imported = 0;
+  uint64_t frames_imported = 0;
+  std::vector<std::string> changed;   // files changed since their import (not imported)
+  std::vector<std::string> failed;    // takes that failed to import (skip_bad)
+  std::vector<std::string> settling;  // too recent, left for the next run
+  std::vector<std::string> notes;     // why the build was full, etc.
+  // Problems after the switch (the new version is current): a failed sync of the folder, or
+  // OUTDIR/motifs.json not replaced yet (the next run replaces it).
+  std::vector<std::string> warnings;
+  std::vector<uint64_t> removed_versions;
+  double import_seconds = 0;
+  double trellis_seconds = 0;
+  double grow_seconds = 0;
+  double cluster_seconds = 0;
+  double report_seconds = 0;
+  double total_seconds = 0;
+};
+
+// Busy if another run holds OUTDIR's lock; NotFound if DIR does not exist or there is neither
+// an archive nor a take to make one; the errors of each stage (InvalidArgument for a malformed
+// take without skip_bad, Corruption, IOError, ResourceExhausted on a full disk). On any error
+// the current version (manifest.json and every file it names) is unchanged; a failure after
+// the switch (the manifest renamed into place) is a warning of a successful run instead.
+Result<ReindexReport> Reindex(const ReindexOptions& options);
+
+}  // namespace motif
