@@ -12,7 +12,8 @@
 // time; the CPU column is the whole process's.
 //
 // The scaling series (scripts/bench.sh), 2 threads, on the archives of bench/bench_archives.h
-// ("synth", "resequenced": the real takes' neighbour density), N = 2^14 ... $MOTIF_BENCH_MAX_FRAMES:
+// ("synth", "resequenced": the real takes' neighbour density), N = 2^14, 2^15, ... up to
+// $MOTIF_BENCH_MAX_FRAMES (bench_util.h):
 //   ExactScale/<data>               every column, in blocks of 4096 columns (as the trellis
 //                                   builder asks for them), while practical: N <= 2^17.
 //   ExactScale/<data>/extrapolated  above 2^17: EXTRAPOLATED: 512 consecutive columns from the

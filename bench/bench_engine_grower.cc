@@ -104,7 +104,7 @@ std::string TrellisOf(uint64_t frame_count, uint32_t k) {
   params.k_max = 2 * k;
   params.search_params = "bench random walk";
   TrellisFileWriterOptions options;
-  options.file_system = bench::NoSyncFileSystem();
+  options.file_system = NoSyncFileSystem();  // throwaway files
   auto writer = TrellisFileWriter::OpenOrResume(path, params, options);
   if (!writer.ok()) Die(writer.status());
   const uint64_t block_columns = (*writer)->block_columns();

@@ -133,7 +133,8 @@ std::map<std::string, double> StageSeconds(const std::string& output) {
 // A score from the summary ("  recall       0.950  (...)"); -1 when absent.
 double Score(const std::string& output, const std::string& name) {
   std::smatch match;
-  if (std::regex_search(output, match, std::regex("\\n\\s*" + name + R"(\s+(?:ARI\s+)?([0-9.]+))"))) {
+  const std::regex line("\\n\\s*" + name + R"(\s+(?:ARI\s+)?([0-9.]+))");
+  if (std::regex_search(output, match, line)) {
     return std::stod(match[1].str());
   }
   return -1;

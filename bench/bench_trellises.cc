@@ -1,49 +1,8 @@
 #include "bench/bench_trellises.h"
 
 #include <algorithm>
-#include <utility>
 
 namespace motif::bench {
-namespace {
-
-class NoSyncFile final : public WritableFile {
- public:
-  explicit NoSyncFile(std::unique_ptr<WritableFile> file) : file_(std::move(file)) {}
-  Status WriteAt(uint64_t offset, const void* data, size_t size) override {
-    return file_->WriteAt(offset, data, size);
-  }
-  Status Sync() override { return Status::Ok(); }
-  Status Truncate(uint64_t size) override { return file_->Truncate(size); }
-  Result<uint64_t> Size() override { return file_->Size(); }
-  Status Close() override { return file_->Close(); }
-  const std::string& path() const override { return file_->path(); }
-
- private:
-  std::unique_ptr<WritableFile> file_;
-};
-
-class NoSyncFileSystemImpl final : public FileSystem {
- public:
-  Result<std::unique_ptr<WritableFile>> OpenWritable(const std::string& path,
-                                                     OpenMode mode) override {
-    auto file = PosixFileSystem()->OpenWritable(path, mode);
-    if (!file.ok()) return file.status();
-    return std::unique_ptr<WritableFile>(new NoSyncFile(std::move(*file)));
-  }
-  Status Rename(const std::string& from, const std::string& to) override {
-    return PosixFileSystem()->Rename(from, to);
-  }
-  Status SyncParentDir(const std::string&) override { return Status::Ok(); }
-  Status Remove(const std::string& path) override { return PosixFileSystem()->Remove(path); }
-};
-
-}  // namespace
-
-FileSystem* NoSyncFileSystem() {
-  static NoSyncFileSystemImpl file_system;
-  return &file_system;
-}
-
 RandomWalkTrellis::RandomWalkTrellis(uint64_t frame_count, uint32_t k)
     : frame_count_(frame_count), k_(k), rng_(frame_count * 1000 + k),
       walkers_(std::max<uint32_t>(1, k / 2 / kRun)) {

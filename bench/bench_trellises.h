@@ -1,9 +1,7 @@
 // Synthetic trellis files shared by the benchmarks of the grower and of the trellis spill:
 // random walks shaped like real trellises. Planted paths (runs of 8 consecutive frames around a
 // walker that advances 0 to 2 frames a column and lives 100 to 500 columns) make up half of each
-// column, uniform random noise nodes the rest; about K nodes a column, sorted by frame. Also a
-// file system without fsync, for throwaway files (the syncs would only slow the generation and
-// load the shared disk).
+// column, uniform random noise nodes the rest; about K nodes a column, sorted by frame.
 #pragma once
 
 #include <cstdint>
@@ -12,13 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "common/writable_file.h"
 #include "engine/distance/neighbour_search.h"
 
 namespace motif::bench {
-
-// The real file system without fsync (Sync and SyncParentDir do nothing).
-FileSystem* NoSyncFileSystem();
 
 // One walker: a planted path through the trellis.
 struct Walker {

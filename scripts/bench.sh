@@ -31,7 +31,10 @@ bench_packages=(python3-matplotlib libfaiss-dev libopenblas0-pthread)
 if [ "$mode" = report ]; then
   exec /usr/bin/python3 "$root/scripts/bench_report.py" "${2:?report DIR}" "$root"
 fi
-case "$mode" in quick|full) ;; *) echo "usage: scripts/bench.sh quick|full [JOBS] | report DIR" >&2; exit 2 ;; esac
+case "$mode" in
+  quick|full) ;;
+  *) echo "usage: scripts/bench.sh quick|full [JOBS] | report DIR" >&2; exit 2 ;;
+esac
 
 missing=()
 for package in "${bench_packages[@]}"; do
@@ -76,7 +79,8 @@ done
 load_now() { cut -d' ' -f1-3 /proc/loadavg; }
 json_string() { /usr/bin/python3 -c 'import json, sys; print(json.dumps(sys.argv[1]))' "$1"; }
 commit="$(git -C "$root" rev-parse --short HEAD)"
-dirty="$(git -C "$root" status --porcelain --untracked-files=no | grep -qv '^??' && echo true || echo false)"
+dirty=false
+[ -n "$(git -C "$root" status --porcelain --untracked-files=no)" ] && dirty=true
 cat > "$out/machine.json" <<EOF
 {
   "mode": "$mode",
@@ -97,7 +101,8 @@ cat "$out/machine.json"
 sampler=$!
 trap 'kill $sampler 2>/dev/null' EXIT
 
-echo "$jobs_table" | awk -F'|' 'NF==5' | while IFS='|' read -r job program filter quick_max full_max; do
+echo "$jobs_table" | awk -F'|' 'NF==5' |
+while IFS='|' read -r job program filter quick_max full_max; do
   job=$(echo $job); program=$(echo $program); filter=$(echo $filter)
   max=$(echo $quick_max); [ "$mode" = full ] && max=$(echo $full_max)
   if [ -n "${MOTIF_BENCH_SCALE_MAX:-}" ] && [ "$max" -gt "$MOTIF_BENCH_SCALE_MAX" ]; then
