@@ -7,7 +7,8 @@
 #                                  hours; run it niced in the background
 #   scripts/bench.sh report DIR    regenerates the docs section and plots from the JSON in DIR
 #                                  (a finished or a partial run)
-# JOBS: a comma-separated subset of the jobs below (default: all), e.g. "trellis,mine".
+# JOBS: a comma-separated subset of the jobs below (default: all), e.g. "trellis,mine" or
+# "trellis_real".
 # Writes bench-results/scale-<mode>-<date>/ (git-ignored): <job>.json (Google Benchmark's JSON,
 # written as each benchmark finishes, so an interrupted run keeps what it measured), <job>.log
 # (stderr), load.tsv (the load average every 30 s) and machine.json (cores, CPU, memory, load,
@@ -50,18 +51,23 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 # job | program | benchmark filter | largest N in quick mode | largest N in full mode
+# Cheap jobs first; the real-density trellis and mine before the procedural ones (a full run
+# that the machine cannot finish keeps the rows that matter most). A job named <stage>_<data>
+# is selected by JOBS naming either.
 jobs_table="
-import   | bench_format_import       | ^ImportScale/   | 131072 | 16777216
-decode   | bench_format_frame_file   | ^DecodeScale/   | 131072 | 16777216
-distance | bench_kern_distance       | ^DistanceScale/ | 131072 | 16777216
-lsh      | bench_engine_lsh          | ^LshScale/      | 131072 | 16777216
-exact    | bench_engine_exact        | ^ExactScale/    | 65536  | 16777216
-faiss    | bench_faiss_range         | ^FaissScale/    | 32768  | 4194304
-spill    | bench_format_trellis_file | ^SpillScale/    | 131072 | 16777216
-grow     | bench_engine_grower       | ^GrowScale/     | 131072 | 16777216
-cluster  | bench_engine_cluster      | ^ClusterScale/  | 131072 | 16777216
-trellis  | bench_engine_trellis      | ^TrellisBuild/  | 65536  | 16777216
-mine     | bench_engine_mine         | ^MineScale/     | 65536  | 16777216
+import        | bench_format_import       | ^ImportScale/              | 131072 | 16777216
+decode        | bench_format_frame_file   | ^DecodeScale/              | 131072 | 16777216
+distance      | bench_kern_distance       | ^DistanceScale/            | 131072 | 16777216
+spill         | bench_format_trellis_file | ^SpillScale/               | 131072 | 16777216
+cluster       | bench_engine_cluster      | ^ClusterScale/             | 131072 | 16777216
+lsh           | bench_engine_lsh          | ^LshScale/                 | 131072 | 16777216
+exact         | bench_engine_exact        | ^ExactScale/               | 65536  | 16777216
+grow          | bench_engine_grower       | ^GrowScale/                | 131072 | 16777216
+faiss         | bench_faiss_range         | ^FaissScale/               | 32768  | 4194304
+trellis_real  | bench_engine_trellis      | ^TrellisBuild/resequenced/ | 65536  | 16777216
+mine_real     | bench_engine_mine         | ^MineScale/resequenced/    | 65536  | 16777216
+trellis_synth | bench_engine_trellis      | ^TrellisBuild/synth/       | 65536  | 16777216
+mine_synth    | bench_engine_mine         | ^MineScale/synth/          | 65536  | 16777216
 "
 only=",${2:-},"
 build="${MOTIF_BUILD_DIR:-$root/build}"
@@ -108,7 +114,8 @@ while IFS='|' read -r job program filter quick_max full_max; do
   if [ -n "${MOTIF_BENCH_SCALE_MAX:-}" ] && [ "$max" -gt "$MOTIF_BENCH_SCALE_MAX" ]; then
     max=$MOTIF_BENCH_SCALE_MAX
   fi
-  [ "$only" = ",," ] || [[ "$only" == *",$job,"* ]] || continue
+  [ "$only" = ",," ] || [[ "$only" == *",$job,"* ]] || [[ "$only" == *",${job%%_*},"* ]] ||
+    continue
   if [ ! -x "$build/bench/$program" ]; then
     echo "$job: $build/bench/$program not built (FAISS missing?): skipped" | tee "$out/$job.log" >&2
     continue

@@ -99,7 +99,8 @@ STAGES = [
        "includes the features held before the build."),
     Stage("search", "Every column's eps-neighbours: LSH query against the exact baselines",
           ["lsh", "exact", "faiss"], [
-        Series("LSH query, procedural (2 threads; 4,096 columns timed, x N/4,096)",
+        Series("LSH query, procedural (2 threads; 4,096 columns timed, x N/4,096; the fit is of "
+               "the 4,096 columns)",
                r"^LshScale/query/synth/", seconds=per_column_to_archive(4096),
                cpu=per_column_to_archive(4096, "cpu_seconds"), extrapolated=True,
                counters=("recall", "evaluations_per_column", "speedup_vs_exact")),
@@ -284,7 +285,10 @@ def slope(points):
 
 
 def series_rows(series, rows, jobs):
-    return sorted((r for r in rows if r["job"] in jobs and series.pattern.search(r["name"])),
+    """The rows of `series` from the stage's jobs ("trellis" covers trellis_real and
+    trellis_synth)."""
+    return sorted((r for r in rows
+                   if r["job"].split("_")[0] in jobs and series.pattern.search(r["name"])),
                   key=lambda r: r["frames"])
 
 
