@@ -5,8 +5,9 @@
 #   scripts/bench.sh full [JOBS]   N up to 2^24 (FAISS 2^22; the exact search and the reference
 #                                  grower are measured while practical and extrapolated above):
 #                                  hours; run it niced in the background
-#   scripts/bench.sh report DIR    regenerates the docs section and plots from the JSON in DIR
-#                                  (a finished or a partial run)
+#   scripts/bench.sh report DIR... regenerates the docs section and plots from the JSON in DIR
+#                                  (a finished or a partial run; with several runs of one mode,
+#                                  each job's rows come from the last run that has it)
 # JOBS: a comma-separated subset of the jobs below (default: all), e.g. "trellis,mine" or
 # "trellis_real".
 # Writes bench-results/scale-<mode>-<date>/ (git-ignored): <job>.json (Google Benchmark's JSON,
@@ -30,11 +31,13 @@ mode="${1:-quick}"
 bench_packages=(python3-matplotlib libfaiss-dev libopenblas0-pthread)
 
 if [ "$mode" = report ]; then
-  exec /usr/bin/python3 "$root/scripts/bench_report.py" "${2:?report DIR}" "$root"
+  shift
+  [ $# -gt 0 ] || { echo "usage: scripts/bench.sh report DIR..." >&2; exit 2; }
+  exec /usr/bin/python3 "$root/scripts/bench_report.py" "$root" "$@"
 fi
 case "$mode" in
   quick|full) ;;
-  *) echo "usage: scripts/bench.sh quick|full [JOBS] | report DIR" >&2; exit 2 ;;
+  *) echo "usage: scripts/bench.sh quick|full [JOBS] | report DIR..." >&2; exit 2 ;;
 esac
 
 missing=()
@@ -138,5 +141,5 @@ machine["finished"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
 machine["load_at_end"] = sys.argv[2]
 json.dump(machine, open(path, "w"), indent=2)
 PY
-/usr/bin/python3 "$root/scripts/bench_report.py" "$out" "$root"
+/usr/bin/python3 "$root/scripts/bench_report.py" "$root" "$out"
 echo "raw JSON: $out"
