@@ -14,6 +14,10 @@
 // the trellis in the page cache. Counters: instances, edges, motifs found (should be M / 4),
 // peak resident memory of the process during the timed runs (includes the trellis's mapped
 // pages). Built once per size outside the timed loop, in $TMPDIR.
+// ClusterScale/<shape>/frames:N/threads:2 (scripts/bench.sh): the same workloads with N / 1024
+// instances spread over N frames (the gaps between motifs widened), N = 2^14, 2^15, ... up to
+// $MOTIF_BENCH_MAX_FRAMES: every trellis block holds instance columns, so the similarity pass
+// decodes the whole file (16-20 entries a column here against ~250 in a real trellis).
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +26,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -63,9 +68,11 @@ std::string TempRoot() {
   return root;
 }
 
-const Workload& WorkloadOf(uint64_t instances, bool chained) {
-  static std::map<std::pair<uint64_t, bool>, Workload> workloads;
-  auto found = workloads.find({instances, chained});
+// `frames` > 0: the gaps between motifs are widened so that the archive has about `frames`
+// frames (the scaling series); 0: 40-frame gaps.
+const Workload& WorkloadOf(uint64_t instances, bool chained, uint64_t target_frames = 0) {
+  static std::map<std::tuple<uint64_t, bool, uint64_t>, Workload> workloads;
+  auto found = workloads.find({instances, chained, target_frames});
   if (found != workloads.end()) return found->second;
   constexpr uint64_t kCopies = 4;
   constexpr uint32_t kNoise = 16;
@@ -75,11 +82,19 @@ const Workload& WorkloadOf(uint64_t instances, bool chained) {
   // Occurrence c of motif m lies in stripe c (stripes are the motifs laid end to end, with gaps).
   std::vector<uint64_t> lengths(workload.motifs);
   std::vector<uint64_t> offsets(workload.motifs);
-  uint64_t stripe = 0;
+  uint64_t lengths_sum = 0;
   for (uint64_t motif = 0; motif < workload.motifs; ++motif) {
     lengths[motif] = 60 + Mix(&seed) % 91;
+    lengths_sum += lengths[motif];
+  }
+  uint64_t gap = 40;
+  if (target_frames / kCopies > lengths_sum + gap * workload.motifs) {
+    gap = (target_frames / kCopies - lengths_sum) / workload.motifs;
+  }
+  uint64_t stripe = 0;
+  for (uint64_t motif = 0; motif < workload.motifs; ++motif) {
     offsets[motif] = stripe;
-    stripe += lengths[motif] + 40;
+    stripe += lengths[motif] + gap;
   }
   workload.frames = kCopies * stripe;
   auto start_of = [&](uint64_t motif, uint64_t copy) { return copy * stripe + offsets[motif]; };
@@ -126,7 +141,8 @@ const Workload& WorkloadOf(uint64_t instances, bool chained) {
   params.k_max = 64;
   params.search_params = "bench_engine_cluster";
   workload.trellis_path = TempRoot() + "/" + std::to_string(instances) +
-                          (chained ? "_chained" : "_separate") + ".mtr";
+                          (chained ? "_chained" : "_separate") + "_" +
+                          std::to_string(workload.frames) + ".mtr";
   auto writer = TrellisFileWriter::OpenOrResume(workload.trellis_path, params);
   if (!writer.ok()) Die(writer.status());
   std::vector<std::vector<Neighbour>> block;
@@ -147,24 +163,24 @@ const Workload& WorkloadOf(uint64_t instances, bool chained) {
     }
   }
   if (Status status = (*writer)->Finish(); !status.ok()) Die(status);
-  return workloads[{instances, chained}] = std::move(workload);
+  return workloads[{instances, chained, target_frames}] = std::move(workload);
 }
 
-void BM_ClusterMotifs(benchmark::State& state, bool chained) {
-  const uint64_t instances = static_cast<uint64_t>(state.range(0));
-  const Workload& workload = WorkloadOf(instances, chained);
+void RunCluster(benchmark::State& state, const Workload& workload, int threads) {
   auto trellis = TrellisFileReader::Open(workload.trellis_path);
   if (!trellis.ok()) Die(trellis.status());
   ClusterOptions options;
-  options.threads = static_cast<int>(state.range(1));
+  options.threads = threads;
   ClusterResult result;
-  bench::ResetPeakRss();
+  const double baseline = bench::StartMemoryMeasurement();
   for (auto _ : state) {
     Result<ClusterResult> clustered = ClusterMotifs(workload.candidates, **trellis, options);
     if (!clustered.ok()) Die(clustered.status());
     result = std::move(clustered).value();
   }
   state.counters["peak_rss_MB"] = bench::PeakRssBytes() / 1e6;
+  bench::SetMemoryCounters(state, bench::PeakRssBytes(), baseline, workload.frames);
+  state.counters["frames"] = static_cast<double>(workload.frames);
   state.counters["instances"] = static_cast<double>(result.instances.size());
   state.counters["edges"] = static_cast<double>(result.report.similarity_stats.edges);
   state.counters["motifs"] = static_cast<double>(result.motifs.size());
@@ -173,8 +189,24 @@ void BM_ClusterMotifs(benchmark::State& state, bool chained) {
   state.counters["sparse_solves"] = static_cast<double>(result.report.cut_stats.sparse_solves);
   state.counters["similarity_s"] = result.report.similarity_stats.seconds;
   state.counters["cut_s"] = result.report.cut_seconds;
+}
+
+void BM_ClusterMotifs(benchmark::State& state, bool chained) {
+  const uint64_t instances = static_cast<uint64_t>(state.range(0));
+  RunCluster(state, WorkloadOf(instances, chained), static_cast<int>(state.range(1)));
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * instances));
   state.SetComplexityN(static_cast<int64_t>(instances));
+}
+
+// The scaling series: N frames, N / 1024 instances (at least 16; a mined archive has about one
+// found instance per 1,000-1,500 frames, docs/benchmarks.md "Mining quality"). Items: frames.
+void BM_ClusterScale(benchmark::State& state, bool chained) {
+  const uint64_t frames = static_cast<uint64_t>(state.range(0));
+  const uint64_t instances = std::max<uint64_t>(16, frames / 1024 / 4 * 4);
+  const Workload& workload = WorkloadOf(instances, chained, frames);
+  RunCluster(state, workload, static_cast<int>(state.range(1)));
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * workload.frames));
+  state.SetComplexityN(static_cast<int64_t>(frames));
 }
 
 const bool registered = [] {
@@ -186,6 +218,20 @@ const bool registered = [] {
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->MeasureProcessCPUTime();
+  }
+  std::vector<std::vector<int64_t>> rows;
+  for (int64_t frames : bench::ScalingFrames()) rows.push_back({frames, 2});
+  for (bool chained : {false, true}) {
+    if (auto* family = bench::RegisterRows(
+            chained ? "ClusterScale/chained" : "ClusterScale/separate", rows, BM_ClusterScale,
+            chained)) {
+      family->ArgNames({"frames", "threads"})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->MeasureProcessCPUTime()
+          ->Iterations(1)
+          ->Complexity(benchmark::oN);
+    }
   }
   return true;
 }();

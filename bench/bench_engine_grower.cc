@@ -31,6 +31,9 @@
 // the files are removed at exit. 10^7 columns at K = 256 are 2.56 billion entries, a 4.2 GB
 // file (with 2^22, ~6 GB in $TMPDIR), read from the page cache where memory allows (the runs
 // measure decoding and growing, not the disk).
+// * GrowScale/streaming and GrowScale/reference/frames:N/k:256: the scaling series of
+//   scripts/bench.sh, N = 2^14, 2^15, ... up to $MOTIF_BENCH_MAX_FRAMES (the reference up to
+//   2^20), one iteration each, with the memory counters of bench_util.h.
 // Run: bench/bench_engine_grower --benchmark_min_time=0.2 (the commands in docs/benchmarks.md).
 #include <malloc.h>
 #include <time.h>
@@ -45,11 +48,13 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_trellises.h"
 #include "bench/bench_util.h"
 #include "common/writable_file.h"
 #include "engine/grow/path_grower.h"
@@ -84,101 +89,7 @@ TempFiles& Files() {
   return files;
 }
 
-// The real file system without fsync: the trellises are throwaway, and 2,442 synced blocks of
-// a 10^7-column file would only slow the generation and load the shared disk.
-class NoSyncFile final : public WritableFile {
- public:
-  explicit NoSyncFile(std::unique_ptr<WritableFile> file) : file_(std::move(file)) {}
-  Status WriteAt(uint64_t offset, const void* data, size_t size) override {
-    return file_->WriteAt(offset, data, size);
-  }
-  Status Sync() override { return Status::Ok(); }
-  Status Truncate(uint64_t size) override { return file_->Truncate(size); }
-  Result<uint64_t> Size() override { return file_->Size(); }
-  Status Close() override { return file_->Close(); }
-  const std::string& path() const override { return file_->path(); }
-
- private:
-  std::unique_ptr<WritableFile> file_;
-};
-
-class NoSyncFileSystem final : public FileSystem {
- public:
-  Result<std::unique_ptr<WritableFile>> OpenWritable(const std::string& path,
-                                                     OpenMode mode) override {
-    auto file = PosixFileSystem()->OpenWritable(path, mode);
-    if (!file.ok()) return file.status();
-    return std::unique_ptr<WritableFile>(new NoSyncFile(std::move(*file)));
-  }
-  Status Rename(const std::string& from, const std::string& to) override {
-    return PosixFileSystem()->Rename(from, to);
-  }
-  Status SyncParentDir(const std::string&) override { return Status::Ok(); }
-  Status Remove(const std::string& path) override { return PosixFileSystem()->Remove(path); }
-};
-
-// One walker: a planted path through the trellis.
-struct Walker {
-  uint64_t frame = 0;
-  uint64_t columns_left = 0;
-};
-
-// The columns of a synthetic trellis, block after block (sequential: the walkers carry over).
-class RandomWalkTrellis {
- public:
-  RandomWalkTrellis(uint64_t frame_count, uint32_t k)
-      : frame_count_(frame_count), k_(k), rng_(frame_count * 1000 + k),
-        walkers_(std::max<uint32_t>(1, k / 2 / kRun)) {
-    for (Walker& walker : walkers_) Respawn(&walker);
-  }
-
-  // Columns [first_column, first_column + count) into *block (its vectors are reused).
-  void NextBlock(uint64_t first_column, uint64_t count,
-                 std::vector<std::vector<Neighbour>>* block) {
-    block->resize(count);
-    for (uint64_t column_idx = first_column; column_idx < first_column + count; ++column_idx) {
-      frames_.clear();
-      for (Walker& walker : walkers_) {
-        for (uint32_t offset = 0; offset < kRun && walker.frame + offset < frame_count_;
-             ++offset) {
-          frames_.push_back(static_cast<uint32_t>(walker.frame + offset));
-        }
-        walker.frame += rng_() % 3;
-        if (--walker.columns_left == 0 || walker.frame >= frame_count_) Respawn(&walker);
-      }
-      // The walkers' runs and the noise are sorted apart and merged: the same column as one
-      // sort of both, in about half the time (the runs are nearly sorted already).
-      const size_t walker_frames = frames_.size();
-      while (frames_.size() < k_) frames_.push_back(static_cast<uint32_t>(rng_() % frame_count_));
-      std::sort(frames_.begin(), frames_.begin() + walker_frames);
-      std::sort(frames_.begin() + walker_frames, frames_.end());
-      merged_.resize(frames_.size());
-      std::merge(frames_.begin(), frames_.begin() + walker_frames,
-                 frames_.begin() + walker_frames, frames_.end(), merged_.begin());
-      merged_.erase(std::unique(merged_.begin(), merged_.end()), merged_.end());
-      std::vector<Neighbour>& column = (*block)[column_idx - first_column];
-      column.resize(merged_.size());
-      for (size_t node_idx = 0; node_idx < merged_.size(); ++node_idx) {
-        column[node_idx] = {merged_[node_idx], 0.5f};
-      }
-    }
-  }
-
- private:
-  static constexpr uint32_t kRun = 8;
-
-  void Respawn(Walker* walker) {
-    walker->frame = rng_() % frame_count_;
-    walker->columns_left = 100 + rng_() % 401;
-  }
-
-  uint64_t frame_count_;
-  uint32_t k_;
-  std::mt19937_64 rng_;
-  std::vector<Walker> walkers_;
-  std::vector<uint32_t> frames_;
-  std::vector<uint32_t> merged_;
-};
+using bench::RandomWalkTrellis;
 
 // Writes the synthetic trellis of N columns, about K nodes each (once per (N, K)).
 std::string TrellisOf(uint64_t frame_count, uint32_t k) {
@@ -192,9 +103,8 @@ std::string TrellisOf(uint64_t frame_count, uint32_t k) {
   params.eps = 1.0f;
   params.k_max = 2 * k;
   params.search_params = "bench random walk";
-  static NoSyncFileSystem no_sync;
   TrellisFileWriterOptions options;
-  options.file_system = &no_sync;
+  options.file_system = NoSyncFileSystem();  // throwaway files
   auto writer = TrellisFileWriter::OpenOrResume(path, params, options);
   if (!writer.ok()) Die(writer.status());
   const uint64_t block_columns = (*writer)->block_columns();
@@ -309,6 +219,7 @@ void RunStreaming(benchmark::State& state, Pages pages) {
   state.counters["base_rss_MB"] = base_rss_bytes / 1e6;
   state.counters["peak_rss_MB"] = peak_rss_bytes / 1e6;
   state.counters["peak_rss_B_per_frame"] = peak_rss_bytes / frames;
+  bench::SetMemoryCounters(state, peak_rss_bytes, base_rss_bytes, frame_count);
   state.counters["file_MB"] = static_cast<double>((*reader)->file_bytes()) / 1e6;
   state.counters["candidates"] = static_cast<double>(candidates);
 }
@@ -338,33 +249,28 @@ void BM_ReferenceGrower(benchmark::State& state) {
   }
   const double cpu_seconds = ThreadCpuSeconds() - cpu_start;
   const double entries = static_cast<double>((*reader)->neighbour_count());
+  const double peak_rss_bytes = bench::PeakRssBytes();
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * (*reader)->neighbour_count()));
+  state.SetComplexityN(static_cast<int64_t>(frame_count));
   state.counters["mean_k"] = entries / static_cast<double>(frame_count);
   state.counters["entries_per_cpu_s"] =
       entries * static_cast<double>(state.iterations()) / cpu_seconds;
   state.counters["base_rss_MB"] = base_rss_bytes / 1e6;
-  state.counters["peak_rss_MB"] = bench::PeakRssBytes() / 1e6;
+  state.counters["peak_rss_MB"] = peak_rss_bytes / 1e6;
+  bench::SetMemoryCounters(state, peak_rss_bytes, base_rss_bytes, frame_count);
   state.counters["candidates"] = static_cast<double>(candidates);
 }
 
-// $MOTIF_BENCH_GROWER_MAX: the largest N of the scaling series (default 2^17).
-int64_t ScalingMaxFrames() {
-  const char* from_env = std::getenv("MOTIF_BENCH_GROWER_MAX");
-  if (from_env == nullptr || *from_env == 0) return int64_t{1} << 17;
-  char* end = nullptr;
-  const double value = std::strtod(from_env, &end);
-  if (end == from_env || *end != 0 || !(value >= 1)) {
-    std::fprintf(stderr, "bench_engine_grower: MOTIF_BENCH_GROWER_MAX=%s is not a frame count\n",
-                 from_env);
-    std::exit(2);
-  }
-  return static_cast<int64_t>(value);
+// $MOTIF_BENCH_GROWER_MAX: the largest N of the StreamingGrowerScaling series (default 2^17).
+int64_t GrowerScalingMaxFrames() {
+  return bench::FramesFromEnv("MOTIF_BENCH_GROWER_MAX", 1 << 17);
 }
 
 constexpr int64_t kScalingK = 256;
+constexpr int64_t kLargestScaleReference = 1 << 20;
 
 const bool registered = [] {
-  const int64_t max_frames = ScalingMaxFrames();
+  const int64_t max_frames = GrowerScalingMaxFrames();
   using Function = void (*)(benchmark::State&);
   const std::pair<const char*, Function> kScalingSeries[] = {
       {"StreamingGrowerScaling", BM_StreamingGrower},
@@ -379,6 +285,25 @@ const bool registered = [] {
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->Complexity(benchmark::oN);
+  }
+  // The scaling series of scripts/bench.sh (N = 2^14, 2^15, ... up to $MOTIF_BENCH_MAX_FRAMES,
+  // K = 256): the streaming grower, and the reference while its input (the whole trellis, 8
+  // bytes an entry: 2 GB at 2^20) is practical; scripts/bench.sh extrapolates it above.
+  std::vector<std::vector<int64_t>> grow_rows, reference_rows;
+  for (int64_t frames : bench::ScalingFrames()) {
+    grow_rows.push_back({frames, kScalingK});
+    if (frames <= kLargestScaleReference) reference_rows.push_back({frames, kScalingK});
+  }
+  for (auto [name, rows, function] :
+       {std::tuple{"GrowScale/streaming", grow_rows, &BM_StreamingGrower},
+        std::tuple{"GrowScale/reference", reference_rows, &BM_ReferenceGrower}}) {
+    if (auto* family = bench::RegisterRows(name, rows, function)) {
+      family->ArgNames({"frames", "k"})
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Iterations(1)
+          ->Complexity(benchmark::oN);
+    }
   }
   constexpr int64_t kSweepFrames[] = {int64_t{1} << 13, int64_t{1} << 15, int64_t{1} << 17};
   constexpr int64_t kSweepK[] = {32, 128, 256, 512, 1024};

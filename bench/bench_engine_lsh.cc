@@ -17,7 +17,9 @@
 // archive and thread count, measured on 512 columns right after), index_bytes_per_frame, and
 // rss_bytes_per_frame: the growth of the resident set from before LshSearch::Create to the end
 // of the queries, i.e. index + search scratch, over N (PoseFeatures' 96 bytes a frame are held
-// before and not included: add them for the total). Build: peak_rss_bytes_per_frame likewise.
+// before and not included: add them for the total). Build: rss_growth_bytes_per_frame likewise.
+// peak_rss_bytes: the process's peak resident set, features included (bench_util.h).
+// LshScale/{build,query}/<data>: the same, 2 threads, N = 2^14, 2^15, ... (scripts/bench.sh).
 // Left out: reading the archive and writing the trellis. Archives are made once per size,
 // outside the timed loops; the memory figures come from the first run of each benchmark.
 #include <benchmark/benchmark.h>
@@ -32,6 +34,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench/bench_archives.h"
@@ -45,22 +48,7 @@ namespace {
 constexpr uint64_t kQueryBlock = 4096;
 constexpr int kRecallColumns = 256;  // sampled columns for the recall counter
 
-// Resident set size now (VmRSS), bytes, after handing freed heap memory back to the system (so
-// that what an earlier archive left in the allocator does not hide the growth we measure).
-double RssBytes() {
-  malloc_trim(0);
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmRSS:") {
-      double kilobytes = 0;
-      status >> kilobytes;
-      return kilobytes * 1024.0;
-    }
-    std::getline(status, key);
-  }
-  return 0;
-}
+using bench::CurrentRssBytes;
 
 // The archives (synth, resequenced, heavy) and their rules: bench/bench_archives.h.
 using bench::Archive;
@@ -91,23 +79,27 @@ void BM_LshBuild(benchmark::State& state, std::string data) {
     return;
   }
   double rss_growth = -1;
+  double before = 0;
+  double peak = 0;
   uint64_t index_bytes = 0;
   for (auto _ : state) {
-    const double before = RssBytes();
+    before = CurrentRssBytes();
     bench::ResetPeakRss();
     auto search = LshSearch::Create(*archive.features, archive.rules, OptionsFor(threads));
     if (!search.ok()) {
       state.SkipWithError(search.status().ToString().c_str());
       return;
     }
-    if (rss_growth < 0) rss_growth = bench::PeakRssBytes() - before;
+    peak = bench::PeakRssBytes();
+    if (rss_growth < 0) rss_growth = peak - before;
     index_bytes = (*search)->index().memory_bytes();
     benchmark::DoNotOptimize(search->get());
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * frames));
   state.SetComplexityN(static_cast<int64_t>(frames));
   state.counters["index_bytes_per_frame"] = static_cast<double>(index_bytes) / frames;
-  state.counters["peak_rss_bytes_per_frame"] = rss_growth / frames;
+  state.counters["rss_growth_bytes_per_frame"] = rss_growth / frames;
+  bench::SetMemoryCounters(state, peak, before, frames);
 }
 
 void BM_LshQuery(benchmark::State& state, std::string data) {
@@ -119,7 +111,7 @@ void BM_LshQuery(benchmark::State& state, std::string data) {
     return;
   }
   const PoseFeatures& features = *archive.features;
-  const double before = RssBytes();
+  const double before = CurrentRssBytes();
   bench::ResetPeakRss();
   auto created = LshSearch::Create(features, archive.rules, OptionsFor(threads));
   if (!created.ok()) {
@@ -144,7 +136,9 @@ void BM_LshQuery(benchmark::State& state, std::string data) {
     }
     benchmark::DoNotOptimize(columns.data());
   }
-  const double rss_growth = bench::PeakRssBytes() - before;
+  const double peak = bench::PeakRssBytes();
+  const double rss_growth = peak - before;
+  bench::SetMemoryCounters(state, peak, before, frames);
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * count));
   state.SetComplexityN(static_cast<int64_t>(frames));
   state.counters["evaluations_per_column"] =
@@ -230,6 +224,23 @@ const bool registered = [] {
         ->UseRealTime()
         ->Iterations(1)
         ->Complexity(benchmark::oAuto);
+  }
+  // The scaling series (scripts/bench.sh): 2 threads, N = 2^14, 2^15, ... up to
+  // $MOTIF_BENCH_MAX_FRAMES (bench_util.h).
+  std::vector<std::vector<int64_t>> rows;
+  for (int64_t frames : bench::ScalingFrames()) rows.push_back({frames, 2});
+  for (const std::string data : {"synth", "resequenced"}) {
+    for (auto [name, function, complexity] :
+         {std::tuple{"LshScale/build/", &BM_LshBuild, benchmark::oNLogN},
+          std::tuple{"LshScale/query/", &BM_LshQuery, benchmark::oAuto}}) {
+      if (auto* family = bench::RegisterRows(std::string(name) + data, rows, function, data)) {
+        family->ArgNames({"frames", "threads"})
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->Iterations(1)
+            ->Complexity(complexity);
+      }
+    }
   }
   benchmark::RegisterBenchmark("LshQuery/heavy", BM_LshQuery, std::string("heavy"))
       ->ArgNames({"frames", "threads"})

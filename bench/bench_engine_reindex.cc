@@ -16,7 +16,6 @@
 // rewritten_blocks, shared_entries (the share of trellis entries the incremental and the full
 // trellis have in common). Arguments: frames, threads. Files are removed afterwards.
 // docs/benchmarks.md, "Incremental reindexing", has the figures and the command.
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,6 +26,8 @@
 #include <string>
 
 #include <benchmark/benchmark.h>
+
+#include "bench/bench_util.h"
 
 #include "engine/cli/clip_range_take.h"
 #include "engine/cluster/cluster_stage.h"
@@ -60,13 +61,7 @@ void Check(const Status& status) {
   if (!status.ok()) Die(status);
 }
 
-// User + system seconds of this process, all threads.
-double ProcessCpuSeconds() {
-  struct rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
+using bench::ProcessCpuSeconds;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();

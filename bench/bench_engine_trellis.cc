@@ -1,9 +1,10 @@
 // The whole matching-trellis build (BuildTrellis, engine/trellis): reading the archive into
 // PoseFeatures, estimating eps (mu - 2 sigma of 200,000 pairs), the search index, the column
 // search and the spill of every column block to the .mtr file, over archives of N frames:
-//   TrellisBuild/<data>/lsh                 the LSH search, N = 2^14 .. 2^20 (and 10^7 with
-//                                           MOTIF_BENCH_TRELLIS_MAX >= 10000000), 2 threads;
-//                                           1 and 2 threads at 2^20 (thread scaling).
+//   TrellisBuild/<data>/lsh                 the LSH search, N = 2^14, 2^15, ... up to
+//                                           $MOTIF_BENCH_MAX_FRAMES (default 2^17; 2^24 in
+//                                           scripts/bench.sh full), 2 threads; 1 thread too at
+//                                           2^20 (thread scaling), in a family of its own.
 //   TrellisBuild/<data>/exact               the exact search (ExactSearch, O(N^2)), full builds
 //                                           while practical: N = 2^14 .. 2^17, 2 threads.
 //   TrellisBuild/<data>/exact_extrapolated  above 2^17: EXTRAPOLATED, not a full build. The
@@ -14,17 +15,16 @@
 //                                           (search seconds per column) x N.
 // <data>: "synth" (MotionSynthesizer, procedural, seed 7) or "resequenced" (the real CMU BVH
 // takes re-sequenced by MotionSynthesizer::CreateFromTakes, as in bench_engine_lsh; skipped when
-// ../shared/data/mocap or $MOTIF_MOCAP_DIR is absent). Archives are written once to
-// $MOTIF_BENCH_DIR (default /tmp/motifmine-bench/trellis) as <data>-<N>.mfs and reused; the
-// trellis file is deleted before and after each build. eps auto, k_max 256, exclusion 30 frames
+// ../shared/data/mocap or $MOTIF_MOCAP_DIR is absent). Archives: bench/bench_archives.h (written
+// once to $MOTIF_BENCH_DIR/archives and reused); the trellis file, in $MOTIF_BENCH_DIR/trellis,
+// is deleted before and after each build. eps auto, k_max 256, exclusion 30 frames
 // (half of 0.5 s at 120 fps), seed 1: BuildTrellis's defaults.
 //
 // Counters (items per second = frames per second of the whole build):
-//   peak_rss_bytes_per_frame  the process's peak resident set (VmHWM, reset just before the
-//                             build) over N. It includes the process's own baseline
-//                             (baseline_rss_mb, the resident set when the mark was reset), so it
-//                             is only honest in a fresh process per size: scripts/bench_trellis.sh
-//                             runs one process per benchmark (--benchmark_filter).
+//   peak_rss_bytes(_per_frame) the process's peak resident set (VmHWM, reset just before the
+//                             build, after malloc_trim), and over N. It includes the process's
+//                             own baseline (baseline_rss_bytes, the resident set when the mark
+//                             was reset: 5-20 MB, which dominates below 2^17 frames).
 //   evaluations_per_column    exact distance evaluations per column (N for the exact search).
 //   recall                    share of the exact k_max-nearest found in the trellis file, pooled
 //                             over kRecallColumns sampled columns (exact columns by ExactSearch,
@@ -43,8 +43,6 @@
 //   trellis_bytes_per_frame, mean_k, eps.
 // One iteration each (a build is long); Complexity() fits when several sizes run in one process.
 #include <benchmark/benchmark.h>
-#include <malloc.h>
-#include <sys/resource.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -60,17 +58,13 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_archives.h"
 #include "bench/bench_util.h"
 #include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
-#include "engine/synth/motion_synthesizer.h"
 #include "engine/trellis/trellis_builder.h"
 #include "formats/frame_file/frame_file_reader.h"
-#include "formats/frame_file/frame_file_writer.h"
-#include "formats/import/take_importer.h"
-#include "formats/motion/canonical_skeleton.h"
-#include "formats/motion/resample.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {
@@ -84,78 +78,13 @@ double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Resident set now (VmRSS), bytes, after returning freed heap memory to the system.
-double RssBytes() {
-  malloc_trim(0);
-  std::FILE* status = std::fopen("/proc/self/status", "r");
-  if (!status) return 0;
-  char line[256];
-  double kilobytes = 0;
-  while (std::fgets(line, sizeof(line), status)) {
-    if (std::sscanf(line, "VmRSS: %lf", &kilobytes) == 1) break;
-  }
-  std::fclose(status);
-  return kilobytes * 1024.0;
-}
+using bench::ProcessCpuSeconds;
 
 std::string WorkDir() {
-  const char* from_env = std::getenv("MOTIF_BENCH_DIR");
-  std::string dir = from_env && *from_env ? from_env : "/tmp/motifmine-bench/trellis";
+  const std::string dir = bench::WorkDir() + "/trellis";
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   return dir;
-}
-
-uint64_t MaxFrames() {
-  const char* from_env = std::getenv("MOTIF_BENCH_TRELLIS_MAX");
-  return from_env && *from_env ? std::strtoull(from_env, nullptr, 10) : (uint64_t{1} << 20);
-}
-
-Result<std::vector<Take>> RealTakes() {
-  const std::string mocap = bench::MocapDir();
-  if (mocap.empty()) return Status::NotFound("real CMU takes not found: set MOTIF_MOCAP_DIR");
-  MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources,
-                         DiscoverTakes({mocap + "/bvh"}, ImportOptions()));
-  std::vector<Take> takes;
-  for (const TakeSource& source : sources) {
-    MOTIF_ASSIGN_OR_RETURN(Take take, ImportTake(source, ImportOptions()));
-    if (!takes.empty() && !ConformToSkeleton(takes[0].skeleton, &take).ok()) continue;
-    takes.push_back(ResampleTake(take, 120.0));
-  }
-  return takes;
-}
-
-// <work>/<data>-<frames>.mfs, written (streaming) if it is not there yet.
-Result<std::string> ArchiveOf(const std::string& data, uint64_t frames) {
-  const std::string path = WorkDir() + "/" + data + "-" + std::to_string(frames) + ".mfs";
-  std::error_code error;
-  if (std::filesystem::exists(path, error)) {
-    Result<std::unique_ptr<FrameFileReader>> existing = FrameFileReader::Open(path);
-    if (existing.ok() && (*existing)->frame_count() == frames) return path;
-    std::filesystem::remove(path, error);
-  }
-  SynthOptions options;
-  options.frames = frames;
-  options.seed = 7;
-  options.motifs = static_cast<uint32_t>(std::clamp<uint64_t>(frames / 10000, 1, 8));
-  options.motif_seconds_max = frames < 20000 ? 2.0 : 5.0;
-  std::unique_ptr<MotionSynthesizer> synthesizer;
-  if (data == "resequenced") {
-    MOTIF_ASSIGN_OR_RETURN(std::vector<Take> takes, RealTakes());
-    MOTIF_ASSIGN_OR_RETURN(synthesizer,
-                           MotionSynthesizer::CreateFromTakes(options, std::move(takes)));
-  } else {
-    MOTIF_ASSIGN_OR_RETURN(synthesizer, MotionSynthesizer::Create(options));
-  }
-  const std::string staging = path + ".tmp";
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
-                         FrameFileWriter::Create(staging, synthesizer->skeleton(), options.fps));
-  MOTIF_RETURN_IF_ERROR(
-      synthesizer->Run([&](const ClipFrames& clip) { return writer->AppendClip(clip); }));
-  MOTIF_RETURN_IF_ERROR(writer->Commit());
-  std::filesystem::rename(staging, path, error);
-  if (error) return Status::IOError(path + ": " + error.message());
-  return path;
 }
 
 void RemoveTrellis(const std::string& path) {
@@ -201,12 +130,12 @@ Result<PerColumn> ExactSecondsPerColumn(const LoadedArchive& archive, int thread
   const ExactSearch exact(*archive.features, archive.rules, options);
   std::vector<std::vector<Neighbour>> columns;
   SearchStats stats;
-  const double cpu_start = bench::ProcessCpuSeconds();
+  const double cpu_start = ProcessCpuSeconds();
   const auto start = std::chrono::steady_clock::now();
   MOTIF_RETURN_IF_ERROR(exact.SearchColumns((frames - count) / 2, count, &columns, &stats));
   PerColumn per_column;
   per_column.wall = Seconds(start) / static_cast<double>(count);
-  per_column.cpu = (bench::ProcessCpuSeconds() - cpu_start) / static_cast<double>(count);
+  per_column.cpu = (ProcessCpuSeconds() - cpu_start) / static_cast<double>(count);
   return per_column;
 }
 
@@ -260,7 +189,7 @@ Result<double> RecallOf(const LoadedArchive& archive, const std::string& trellis
 void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMode mode) {
   const uint64_t frames = static_cast<uint64_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
-  Result<std::string> archive = ArchiveOf(data, frames);
+  Result<std::string> archive = bench::ArchiveFileOf(data, frames);
   if (!archive.ok()) {
     state.SkipWithError(archive.status().ToString().c_str());
     return;
@@ -278,11 +207,11 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
   options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
     if (stage != "trellis") return;
     if (search_cpu_start == 0) {
-      search_cpu_start = bench::ProcessCpuSeconds();
+      search_cpu_start = ProcessCpuSeconds();
       search_wall_start = std::chrono::steady_clock::now();
     }
     if (done == total) {
-      search_cpu = bench::ProcessCpuSeconds() - search_cpu_start;
+      search_cpu = ProcessCpuSeconds() - search_cpu_start;
       search_wall = Seconds(search_wall_start);
     }
   };
@@ -293,13 +222,12 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
   double cpu_seconds = 0;
   for (auto _ : state) {
     RemoveTrellis(trellis);
-    baseline = RssBytes();
-    bench::ResetPeakRss();
-    const double cpu_start = bench::ProcessCpuSeconds();
+    baseline = bench::StartMemoryMeasurement();
+    const double cpu_start = ProcessCpuSeconds();
     const auto start = std::chrono::steady_clock::now();
     report = BuildTrellis(*archive, trellis, options);
     seconds = Seconds(start);
-    cpu_seconds = bench::ProcessCpuSeconds() - cpu_start;
+    cpu_seconds = ProcessCpuSeconds() - cpu_start;
     peak = bench::PeakRssBytes();
     if (!report.ok()) {
       state.SkipWithError(report.status().ToString().c_str());
@@ -312,7 +240,7 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
   std::error_code error;
   const double trellis_bytes = static_cast<double>(std::filesystem::file_size(trellis, error));
   const double n = static_cast<double>(frames);
-  state.counters["peak_rss_bytes_per_frame"] = peak / n;
+  bench::SetMemoryCounters(state, peak, baseline, frames);
   state.counters["peak_rss_mb"] = peak / (1 << 20);
   state.counters["baseline_rss_mb"] = baseline / (1 << 20);
   state.counters["evaluations_per_column"] =
@@ -368,15 +296,16 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
 void BM_TrellisExactExtrapolated(benchmark::State& state, std::string data) {
   const uint64_t frames = static_cast<uint64_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
-  Result<std::string> archive = ArchiveOf(data, frames);
+  Result<std::string> archive = bench::ArchiveFileOf(data, frames);
   if (!archive.ok()) {
     state.SkipWithError(archive.status().ToString().c_str());
     return;
   }
   double features_seconds = 0, eps_seconds = 0, per_column = 0, cpu_per_column = 0, peak = 0;
+  double baseline = 0;
   float eps = 0;
   for (auto _ : state) {
-    bench::ResetPeakRss();
+    baseline = bench::StartMemoryMeasurement();
     Result<LoadedArchive> loaded = LoadFeatures(*archive);
     if (!loaded.ok()) {
       state.SkipWithError(loaded.status().ToString().c_str());
@@ -416,44 +345,45 @@ void BM_TrellisExactExtrapolated(benchmark::State& state, std::string data) {
   state.counters["exact_search_cpu_extrapolated_s"] = cpu_per_column * frames;
   state.counters["evaluations_per_column"] = static_cast<double>(frames);
   state.counters["recall"] = 1;
-  state.counters["peak_rss_bytes_per_frame_without_index"] = peak / frames;
+  // Features and the search's blocks: what an exact build holds (it has no index).
+  bench::SetMemoryCounters(state, peak, baseline, frames);
   state.counters["eps"] = eps;
   state.SetLabel("EXTRAPOLATED from " + std::to_string(std::min(frames, kExactSampleColumns)) +
                  " timed columns");
 }
 
 const bool registered = [] {
-  const uint64_t max_frames = MaxFrames();
-  std::vector<int64_t> lsh_sizes;
-  for (int64_t frames : {1 << 14, 1 << 15, 1 << 16, 1 << 17, 1 << 18, 1 << 20, 10000000}) {
-    if (static_cast<uint64_t>(frames) <= max_frames) lsh_sizes.push_back(frames);
-  }
   for (const std::string data : {"synth", "resequenced"}) {
-    auto* lsh = benchmark::RegisterBenchmark(("TrellisBuild/" + data + "/lsh").c_str(),
-                                             BM_TrellisBuild, data, TrellisSearchMode::kLsh);
-    auto* exact = benchmark::RegisterBenchmark(("TrellisBuild/" + data + "/exact").c_str(),
-                                               BM_TrellisBuild, data, TrellisSearchMode::kExact);
-    auto* extrapolated = benchmark::RegisterBenchmark(
-        ("TrellisBuild/" + data + "/exact_extrapolated").c_str(), BM_TrellisExactExtrapolated,
-        data);
-    for (int64_t frames : lsh_sizes) {
-      if (frames == (1 << 20)) lsh->Args({frames, 1});
-      lsh->Args({frames, 2});
-      if (static_cast<uint64_t>(frames) <= kLargestFullExact) {
-        exact->Args({frames, 2});
+    const std::string prefix = "TrellisBuild/" + data;
+    std::vector<std::vector<int64_t>> lsh_rows, one_thread_rows, exact_rows, extrapolated_rows;
+    for (int64_t frames : bench::ScalingFrames()) {
+      lsh_rows.push_back({frames, 2});
+      if (frames == (1 << 20)) one_thread_rows.push_back({frames, 1});
+      (static_cast<uint64_t>(frames) <= kLargestFullExact ? exact_rows : extrapolated_rows)
+          .push_back({frames, 2});
+    }
+    auto* lsh = bench::RegisterRows(prefix + "/lsh", lsh_rows, BM_TrellisBuild, data,
+                                    TrellisSearchMode::kLsh);
+    // The 1-thread rows in a family of their own, so that each complexity fit has one count.
+    auto* lsh_one_thread = bench::RegisterRows(prefix + "/lsh", one_thread_rows, BM_TrellisBuild,
+                                               data, TrellisSearchMode::kLsh);
+    auto* exact = bench::RegisterRows(prefix + "/exact", exact_rows, BM_TrellisBuild, data,
+                                      TrellisSearchMode::kExact);
+    auto* extrapolated = bench::RegisterRows(prefix + "/exact_extrapolated", extrapolated_rows,
+                                             BM_TrellisExactExtrapolated, data);
+    for (auto* entry : {lsh, lsh_one_thread, exact, extrapolated}) {
+      if (entry == nullptr) continue;
+      entry->ArgNames({"frames", "threads"})->Unit(benchmark::kSecond)->Iterations(1);
+      if (entry == extrapolated) {
+        entry->Complexity(benchmark::oNSquared)->UseManualTime();
+      } else if (entry == exact) {
+        entry->Complexity(benchmark::oNSquared)->UseRealTime();
       } else {
-        if (frames == (1 << 20)) extrapolated->Args({frames, 1});
-        extrapolated->Args({frames, 2});
+        // oAuto: Google Benchmark picks the best of O(1), O(lg N), O(N), O(N lg N), O(N^2),
+        // O(N^3): the claim to check is that the LSH build fits below O(N^2).
+        entry->Complexity(benchmark::oAuto)->UseRealTime();
       }
     }
-    lsh->Complexity(benchmark::oNLogN);
-    exact->Complexity(benchmark::oNSquared);
-    extrapolated->Complexity(benchmark::oNSquared)->UseManualTime();
-    for (auto* entry : {lsh, exact, extrapolated}) {
-      entry->ArgNames({"frames", "threads"})->Unit(benchmark::kSecond)->Iterations(1);
-    }
-    lsh->UseRealTime();
-    exact->UseRealTime();
   }
   return true;
 }();

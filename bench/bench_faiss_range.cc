@@ -56,13 +56,16 @@
 // add), full_archive_s (embed + index + per-column x N; EXTRAPOLATED unless full_build = 1),
 // peak_rss_mb and peak_rss_bytes_per_frame (VmHWM reset before the embedding: the index, the
 // columns, and the PoseFeatures' 96 B/frame and the process baseline already resident).
+// peak_rss_bytes and baseline_rss_bytes as in bench_util.h.
+//   FaissScale/<data>   the same as FaissRange, 2 threads, N = 2^14, 2^15, ... up to
+//                       $MOTIF_BENCH_MAX_FRAMES (bench_util.h) and 2^22: the scaling series of
+//                       scripts/bench.sh, beside ExactScale and the LSH trellis.
 // Left out: making the archive (in memory, before everything) and writing a trellis.
 #include <benchmark/benchmark.h>
 #include <dlfcn.h>
 #include <faiss/IndexFlat.h>
 #include <faiss/impl/AuxIndexStructures.h>
 #include <omp.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -95,6 +98,8 @@ constexpr float kRadiusSlack = 1e-3f;
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+using bench::ProcessCpuSeconds;
 
 // OpenMP threads for FAISS, and the BLAS's own threads if the BLAS loaded is OpenBLAS (found by
 // name at run time, so the benchmark links against any libblas.so.3).
@@ -254,18 +259,19 @@ void BM_FaissRange(benchmark::State& state, std::string data) {
   std::vector<std::vector<Neighbour>> faiss_columns;
   FaissBlockStats stats;
   double embed_seconds = 0, index_seconds = 0, column_seconds = 0, column_cpu = 0, peak = 0;
+  double baseline = 0;
   for (auto _ : state) {
-    bench::ResetPeakRss();
+    baseline = bench::StartMemoryMeasurement();
     FaissArchiveIndex built = BuildIndex(features, threads);
     embed_seconds = built.embed_seconds;
     index_seconds = built.index_seconds;
     stats = FaissBlockStats();
-    const double cpu_start = bench::ProcessCpuSeconds();
+    const double cpu_start = ProcessCpuSeconds();
     const auto start = std::chrono::steady_clock::now();
     FaissColumns(*built.index, features, archive.rules, threads, first, count, &faiss_columns,
                  &stats);
     column_seconds = Seconds(start);
-    column_cpu = bench::ProcessCpuSeconds() - cpu_start;
+    column_cpu = ProcessCpuSeconds() - cpu_start;
     peak = bench::PeakRssBytes();
     state.SetIterationTime(embed_seconds + index_seconds +
                            column_seconds / static_cast<double>(count) * frames);
@@ -277,11 +283,11 @@ void BM_FaissRange(benchmark::State& state, std::string data) {
   const ExactSearch exact(features, archive.rules, exact_options);
   std::vector<std::vector<Neighbour>> exact_columns;
   SearchStats exact_stats;
-  const double exact_cpu_start = bench::ProcessCpuSeconds();
+  const double exact_cpu_start = ProcessCpuSeconds();
   const auto exact_start = std::chrono::steady_clock::now();
   Status status = exact.SearchColumns(first, count, &exact_columns, &exact_stats);
   const double exact_seconds = Seconds(exact_start);
-  const double exact_cpu = bench::ProcessCpuSeconds() - exact_cpu_start;
+  const double exact_cpu = ProcessCpuSeconds() - exact_cpu_start;
   if (!status.ok()) {
     state.SkipWithError(status.ToString().c_str());
     return;
@@ -315,7 +321,7 @@ void BM_FaissRange(benchmark::State& state, std::string data) {
   state.counters["embed_s"] = embed_seconds;
   state.counters["index_s"] = index_seconds;
   state.counters["peak_rss_mb"] = peak / (1 << 20);
-  state.counters["peak_rss_bytes_per_frame"] = peak / n;
+  bench::SetMemoryCounters(state, peak, baseline, frames);
   state.counters["eps"] = archive.rules.eps;
   state.SetLabel(full_build ? "full build, all columns checked against ExactSearch"
                             : "EXTRAPOLATED from " + std::to_string(count) +
@@ -361,14 +367,14 @@ void BM_FaissRandom(benchmark::State& state) {
   double cpu = 0;
   for (auto _ : state) {
     results = 0;
-    const double cpu_start = bench::ProcessCpuSeconds();
+    const double cpu_start = ProcessCpuSeconds();
     for (int64_t first = 0; first < vectors; first += kBatch) {
       const int64_t batch = std::min(kBatch, vectors - first);
       faiss::RangeSearchResult result(batch);
       index.range_search(batch, &data[static_cast<size_t>(first) * kDims], radius, &result);
       results += result.lims[batch];
     }
-    cpu = bench::ProcessCpuSeconds() - cpu_start;
+    cpu = ProcessCpuSeconds() - cpu_start;
   }
   state.SetItemsProcessed(state.iterations() * vectors);
   state.counters["squared_radius"] = radius;
@@ -389,6 +395,19 @@ const bool registered = [] {
         ->Iterations(1)
         ->UseManualTime()
         ->Complexity(benchmark::oNSquared);
+  }
+  // The scaling series of scripts/bench.sh: 2 threads, N = 2^14, 2^15, ... up to
+  // $MOTIF_BENCH_MAX_FRAMES and at most 2^22 (the index holds 480 bytes a frame: 2 GB at 2^22).
+  std::vector<std::vector<int64_t>> rows;
+  for (int64_t frames : bench::ScalingFrames(int64_t{1} << 22)) rows.push_back({frames, 2});
+  for (const std::string data : {"synth", "resequenced"}) {
+    if (auto* family = bench::RegisterRows("FaissScale/" + data, rows, BM_FaissRange, data)) {
+      family->ArgNames({"frames", "threads"})
+          ->Unit(benchmark::kSecond)
+          ->Iterations(1)
+          ->UseManualTime()
+          ->Complexity(benchmark::oNSquared);
+    }
   }
   benchmark::RegisterBenchmark("FaissRange/random64", BM_FaissRandom)
       ->ArgNames({"vectors", "threads"})

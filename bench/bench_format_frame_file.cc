@@ -4,6 +4,11 @@
 // kept in the page cache, so these numbers leave out cold-disk I/O. Counters: frames per second,
 // compressed bytes per frame, and peak resident memory of the timed part (it must not grow with
 // the number of frames when streaming).
+//
+// DecodeScale/<data>/frames:N (scripts/bench.sh): the sequential decode (FrameStream, one
+// thread) of the archives of bench/bench_archives.h ("synth", "resequenced": real motion
+// compresses less), N = 2^14, 2^15, ... up to $MOTIF_BENCH_MAX_FRAMES; the memory counters of
+// bench_util.h (the stream releases the pages it has decoded: flat in N).
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -11,6 +16,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_archives.h"
 #include "bench/bench_util.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -95,6 +101,52 @@ BENCHMARK(BM_FrameFileSequentialRead)
     ->Range(1 << 14, 1 << 20)
     ->Unit(benchmark::kMillisecond)
     ->Complexity(benchmark::oN);
+
+void BM_DecodeScale(benchmark::State& state, std::string data) {
+  const uint64_t frames = static_cast<uint64_t>(state.range(0));
+  Result<std::string> path = bench::ArchiveFileOf(data, frames);
+  if (!path.ok()) {
+    state.SkipWithError(path.status().ToString().c_str());
+    return;
+  }
+  auto reader = FrameFileReader::Open(*path);
+  if (!reader.ok()) {
+    state.SkipWithError(reader.status().ToString().c_str());
+    return;
+  }
+  const double baseline = bench::StartMemoryMeasurement();
+  for (auto _ : state) {
+    auto stream = (*reader)->Stream();
+    double checksum = 0;
+    while (true) {
+      Result<bool> more = stream->Next();
+      if (!more.ok()) {
+        state.SkipWithError(more.status().ToString().c_str());
+        return;
+      }
+      if (!*more) break;
+      checksum += stream->rows()[0];
+    }
+    benchmark::DoNotOptimize(checksum);
+  }
+  bench::SetMemoryCounters(state, bench::PeakRssBytes(), baseline, frames);
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * frames));
+  state.counters["archive_bytes_per_frame"] =
+      static_cast<double>((*reader)->summary().compressed_bytes) / frames;
+  state.SetComplexityN(static_cast<int64_t>(frames));
+}
+
+const bool scale_registered = [] {
+  std::vector<std::vector<int64_t>> rows;
+  for (int64_t frames : bench::ScalingFrames()) rows.push_back({frames});
+  for (const std::string data : {"synth", "resequenced"}) {
+    if (auto* family = bench::RegisterRows("DecodeScale/" + data, rows, BM_DecodeScale, data)) {
+      family->ArgName("frames")->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity(
+          benchmark::oN);
+    }
+  }
+  return true;
+}();
 
 void BM_FrameFileRandomRead(benchmark::State& state) {
   const uint64_t frames = 1 << 20;

@@ -8,6 +8,13 @@
 // archive, and the neighbour selection that follows the kernel in a search. The block
 // benchmarks also report speedup_vs_scalar, the ratio to the scalar rate measured once on the
 // same frames (both in process CPU time, so other load on the machine does not skew it).
+//
+// DistanceScale/<data>/frames:N (scripts/bench.sh): 64 query frames against every frame of an
+// archive of N frames (bench/bench_archives.h: "synth" or "resequenced"), the candidates
+// dequantised and compared in blocks of 4096, one thread: a column search's kernel work for 64
+// columns, without the neighbour selection. N = 2^14, 2^15, ... up to $MOTIF_BENCH_MAX_FRAMES.
+// Items: pair distances; memory counters (bench_util.h) include the features (96 B a frame).
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <map>
@@ -15,6 +22,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_archives.h"
+#include "bench/bench_util.h"
 #include "engine/distance/distance_kernel.h"
 #include "engine/distance/pose_features.h"
 
@@ -133,6 +142,50 @@ BENCHMARK(BM_DistanceBlockPortable)
     ->Args({4, 256, 1024})
     ->Args({12, 256, 1024})
     ->Args({31, 256, 1024});
+
+void BM_DistanceScale(benchmark::State& state, std::string data) {
+  const uint64_t frames = static_cast<uint64_t>(state.range(0));
+  const bench::Archive& archive = bench::ArchiveOf(data, frames);
+  if (!archive.error.empty()) {
+    state.SkipWithError(archive.error.c_str());
+    return;
+  }
+  constexpr uint32_t kQueries = 64;
+  constexpr uint64_t kBlock = 4096;
+  const PoseFeatures& features = *archive.features;
+  const DistanceKernel kernel(features, DistanceKernel::BestSimd());
+  state.SetLabel(kernel.simd() == DistanceKernel::Simd::kAvx2 ? "avx2" : "portable");
+  FrameBlock queries;
+  FrameBlock candidates;
+  std::vector<float> out(kQueries * kBlock);
+  queries.LoadRange(features, frames / 2, kQueries);
+  const double baseline = bench::StartMemoryMeasurement();
+  for (auto _ : state) {
+    for (uint64_t first = 0; first < frames; first += kBlock) {
+      const uint64_t count = std::min(kBlock, frames - first);
+      candidates.LoadRange(features, first, count);
+      kernel.Compute(queries, candidates, out.data(), count);
+      benchmark::DoNotOptimize(out.data());
+    }
+    benchmark::ClobberMemory();
+  }
+  bench::SetMemoryCounters(state, bench::PeakRssBytes(), baseline, frames);
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * frames * kQueries));
+  state.SetComplexityN(static_cast<int64_t>(frames));
+}
+
+const bool scale_registered = [] {
+  std::vector<std::vector<int64_t>> rows;
+  for (int64_t frames : bench::ScalingFrames()) rows.push_back({frames});
+  for (const std::string data : {"synth", "resequenced"}) {
+    if (auto* family =
+            bench::RegisterRows("DistanceScale/" + data, rows, BM_DistanceScale, data)) {
+      family->ArgName("frames")->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity(
+          benchmark::oN);
+    }
+  }
+  return true;
+}();
 
 }  // namespace
 }  // namespace motif

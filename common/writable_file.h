@@ -52,4 +52,10 @@ class FileSystem {
 // The real file system (POSIX calls). Never null; lives for the whole program.
 FileSystem* PosixFileSystem();
 
+// The real file system with fsync (of files and directories) made a no-op: for throwaway files
+// in tests that do not test durability and in benchmarks, so that they stay fast on a busy disk
+// (and do not load a shared one). Every other step is PosixFileSystem()'s. Lives for the whole
+// program.
+FileSystem* NoSyncFileSystem();
+
 }  // namespace motif

@@ -3,15 +3,18 @@
 # search, spill to the .mtr file) with LSH and with the exact search, against N, on the
 # procedural synthetic archive and the re-sequenced real takes (bench/bench_engine_trellis.cc).
 #   scripts/bench_trellis.sh [quick|full] [REGEX]
-#     quick: N = 2^14 .. 2^20 (the default); full: also N = 10^7 (LSH, and the exact build
-#     extrapolated). REGEX (optional) keeps only the benchmarks whose name matches it.
+#     quick: N = 2^14 .. 2^20 (the default); full: N = 2^14 .. 2^24 (LSH, and the exact build
+#     extrapolated above 2^17). REGEX (optional) keeps only the benchmarks whose name matches it.
+#     (scripts/bench.sh runs the same benchmarks as its "trellis" job, one process for the
+#     whole series, and makes the docs' tables and plots; this script runs one process per
+#     benchmark and prints its own tables.)
 #   scripts/bench_trellis.sh table DIR   prints the table of the JSON files in DIR (e.g. of a run
 #     that was stopped part way).
 # Every benchmark runs in a fresh process (--benchmark_filter), so its peak resident memory is
 # its own. Order: the small sizes first (the exact/LSH crossover), then 2^18, 2^20 (2 threads,
 # then 1), then 10^7. Raw JSON: bench-results/trellis-<date>/ (one file per benchmark), then a
 # markdown table on stdout (also bench-results/trellis-<date>/table.md). Archives are written
-# once to $MOTIF_BENCH_DIR (default /tmp/motifmine-bench/trellis) and kept for later runs.
+# once to $MOTIF_BENCH_DIR/archives (default /tmp/motifmine-bench) and kept for later runs.
 # MOTIF_BUILD_DIR: the build to use (default build/; built if the benchmark is missing).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -25,8 +28,8 @@ bench="$build/bench/bench_engine_trellis"
 [ -x "$bench" ] || MOTIF_BUILD_DIR="$build" "$root/scripts/build.sh" >/dev/null
 out="$root/bench-results/trellis-$(date +%Y%m%d-%H%M%S)"
 mkdir -p "$out"
-export MOTIF_BENCH_TRELLIS_MAX=1048576
-[ "$mode" = full ] && export MOTIF_BENCH_TRELLIS_MAX=10000000
+export MOTIF_BENCH_MAX_FRAMES=1048576
+[ "$mode" = full ] && export MOTIF_BENCH_MAX_FRAMES=16777216
 
 {
   echo "- $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'),"\

@@ -125,6 +125,9 @@ Result<SimilarityGraph> BuildSimilarityGraph(const TrellisFileReader& trellis,
     }
     if (active.empty()) continue;
     MOTIF_RETURN_IF_ERROR(trellis.ReadBlock(block_idx, &block, /*decode_distances=*/false));
+    // The block is decoded: give its mapped pages back, or the whole file (about 500 bytes a
+    // frame) would stay resident when the instances cover the archive (as the grower does).
+    MOTIF_RETURN_IF_ERROR(trellis.ReleaseBlocks(block_idx, block_idx + 1));
     ++stats->blocks_decoded;
     scanned.assign(active.size(), 0);
     arena.execute([&] {

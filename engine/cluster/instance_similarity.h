@@ -11,7 +11,8 @@
 // dropped as soon as its instance has been read. Linked pairs get `link_weight` on top.
 //
 // The trellis is streamed block by block in column order (blocks no instance touches are not
-// decoded, distances are never decoded). Per block, the instances that intersect it are
+// decoded, distances are never decoded; each block's mapped pages are given back once decoded,
+// so the file does not stay in the resident set). Per block, the instances that intersect it are
 // processed in parallel; each thread counts into dense per-instance arrays (O(instances) a
 // thread, so the hot loop is an array increment) and hands the instance one (other, count)
 // entry per other instance hit. An instance's entries are reduced to its kept pairs as soon as

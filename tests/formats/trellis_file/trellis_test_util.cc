@@ -99,45 +99,6 @@ void ExpectSameWithinBound(const TrellisColumns& written, const TrellisColumns& 
   }
 }
 
-namespace {
-
-class NoSyncFile final : public WritableFile {
- public:
-  explicit NoSyncFile(std::unique_ptr<WritableFile> base) : base_(std::move(base)) {}
-  Status WriteAt(uint64_t offset, const void* data, size_t size) override {
-    return base_->WriteAt(offset, data, size);
-  }
-  Status Sync() override { return Status::Ok(); }
-  Status Truncate(uint64_t size) override { return base_->Truncate(size); }
-  Result<uint64_t> Size() override { return base_->Size(); }
-  Status Close() override { return base_->Close(); }
-  const std::string& path() const override { return base_->path(); }
-
- private:
-  std::unique_ptr<WritableFile> base_;
-};
-
-class NoSyncFileSystemImpl final : public FileSystem {
- public:
-  Result<std::unique_ptr<WritableFile>> OpenWritable(const std::string& path,
-                                                     OpenMode mode) override {
-    MOTIF_ASSIGN_OR_RETURN(auto file, PosixFileSystem()->OpenWritable(path, mode));
-    return std::unique_ptr<WritableFile>(new NoSyncFile(std::move(file)));
-  }
-  Status Rename(const std::string& from, const std::string& to) override {
-    return PosixFileSystem()->Rename(from, to);
-  }
-  Status SyncParentDir(const std::string& path) override { return Status::Ok(); }
-  Status Remove(const std::string& path) override { return PosixFileSystem()->Remove(path); }
-};
-
-}  // namespace
-
-FileSystem* NoSyncFileSystem() {
-  static NoSyncFileSystemImpl* file_system = new NoSyncFileSystemImpl();
-  return file_system;
-}
-
 int64_t MappedResidentBytes(const std::string& path) {
   std::ifstream smaps("/proc/self/smaps");
   if (!smaps) return -1;

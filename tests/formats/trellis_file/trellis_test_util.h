@@ -44,10 +44,10 @@ Result<TrellisColumns> ReadTrellis(const std::string& path);
 // assertions; stops at the first difference).
 void ExpectSameWithinBound(const TrellisColumns& written, const TrellisColumns& read, float eps);
 
-// The real file system with fsync (of files and directories) made a no-op: for tests that do not
-// test durability, so that they stay fast on a busy disk. Every step still goes through the
-// seam (a FaultInjectingFileSystem over it counts the same steps). Lives for the whole program.
-FileSystem* NoSyncFileSystem();
+// NoSyncFileSystem() (common/writable_file.h): fsync skipped, for tests that do not test
+// durability; every step still goes through the seam (a FaultInjectingFileSystem over it counts
+// the same steps).
+using ::motif::NoSyncFileSystem;
 
 // Bytes of this process's mappings of the file at `path` that are resident (the sum of their Rss
 // in /proc/self/smaps; pages of the file's page cache not mapped here do not count); -1 if
