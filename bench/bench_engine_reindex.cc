@@ -28,7 +28,6 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_util.h"
-
 #include "engine/cli/clip_range_take.h"
 #include "engine/cluster/cluster_stage.h"
 #include "engine/grow/paths_builder.h"
