@@ -329,6 +329,40 @@ TEST_F(TrellisUpdateTest, LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree)
   EXPECT_GE(share, 0.99);
 }
 
+// The update's parallel parts (the LSH index, the new columns' and reverse searches, the blocks
+// decoded, merged and encoded) give the same file for any thread count.
+TEST_F(TrellisUpdateTest, LshUpdateIsTheSameFileForOneAndTwoThreads) {
+  const size_t old_clips = full_.clip_first_frames.size() * 3 / 4;
+  const ArchiveRows old_rows = Prefix(full_, old_clips);
+  const PoseFeatures old_features = old_rows.Features();
+  const PoseFeatures new_features = full_.Features();
+  const float eps = EstimateEps(old_features);
+  LshOptions lsh;
+  lsh.hashes_per_table = 12;
+  lsh.bucket_width = 0.3f;
+  lsh.threads = 2;
+  auto old_search = LshSearch::Create(old_features, RulesFor(old_features, eps), lsh);
+  ASSERT_TRUE(old_search.ok());
+  WriteFullTrellis(**old_search, ParamsFor(old_features, eps, 1, false), dir_.File("old.mtr"));
+  auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
+  ASSERT_TRUE(previous.ok());
+  std::vector<std::string> files;
+  for (int threads : {1, 2}) {
+    lsh.threads = threads;
+    auto search = LshSearch::Create(new_features, RulesFor(new_features, eps), lsh);
+    ASSERT_TRUE(search.ok());
+    TrellisUpdateOptions options;
+    options.threads = threads;
+    const std::string path = dir_.File("updated-" + std::to_string(threads) + ".mtr");
+    auto report = UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), **search,
+                                ParamsFor(new_features, eps, 2, false), path, options);
+    ASSERT_TRUE(report.ok()) << report.status().ToString();
+    EXPECT_GT(report->changed_columns, 0u);
+    files.push_back(ReadFileToString(path).value());
+  }
+  EXPECT_EQ(files[0], files[1]);
+}
+
 }  // namespace
 }  // namespace motif
 
