@@ -168,7 +168,10 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
                 }));
   });
   if (!first_error.ok()) return first_error;  // the writer's destructor abandons the append
-  MOTIF_RETURN_IF_ERROR(writer->Commit());
+  // An append that adds nothing is not committed: the archive keeps its generation and identity,
+  // so a rerun (after a kill past the commit, or from cron) leaves it and what was built on it
+  // as they are.
+  if (result.created || result.takes_imported > 0) MOTIF_RETURN_IF_ERROR(writer->Commit());
   result.archive_clips = writer->clips().size();
   result.archive_frames = writer->frame_count();
   return result;

@@ -112,10 +112,13 @@ TEST(ImportIntoArchive, ReimportSkipsKnownTakesAndRenamesClashingStems) {
   testing::TempDir dir;
   const std::string archive = dir.File("a.mfs");
   ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/bvh/05_01.bvh"}, DefaultOptions()).ok());
+  const std::string before = ReadFileToString(archive).value();
   auto again = ImportIntoArchive(archive, {mocap + "/bvh/05_01.bvh"}, DefaultOptions());
   ASSERT_TRUE(again.ok());
   EXPECT_EQ(again->takes_imported, 0u);
   EXPECT_EQ(again->takes_already_present, 1u);
+  // Nothing added, nothing committed: the same bytes, so the same generation and identity.
+  EXPECT_EQ(ReadFileToString(archive).value(), before);
   // The AMC of the same take has the same stem and other bytes: stored under another name.
   auto amc = ImportIntoArchive(archive, {mocap + "/asfamc/05/05_01.amc"}, DefaultOptions());
   ASSERT_TRUE(amc.ok()) << amc.status().ToString();
