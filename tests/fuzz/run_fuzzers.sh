@@ -10,10 +10,11 @@
 # <target>/artifacts (crash, leak, timeout and OOM inputs) and <target>/run.log, whose last
 # lines hold the figures. RUNS defaults to 10000000. TARGETs default to all of them.
 # A target that finds a crash stops there; the script goes on with the next one and exits 1.
+# FUZZ_TIMEOUT: seconds an input may take before it counts as a hang (default 10).
 set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 if [ $# -lt 2 ]; then
-  sed -n '2,13p' "${BASH_SOURCE[0]}" >&2
+  sed -n '2,14p' "${BASH_SOURCE[0]}" >&2
   exit 2
 fi
 build_dir="$(cd "$1" && pwd)"
@@ -26,6 +27,9 @@ if [ ${#targets[@]} -eq 0 ]; then
            paths_file_reader)
 fi
 mocap="${MOTIF_MOCAP_DIR:-$root/../shared/data/mocap}"
+# Seconds one input may take (wall time) before libFuzzer reports a timeout. At nice 19 on a
+# machine busy with other work a process can be descheduled for seconds: raise it there.
+timeout="${FUZZ_TIMEOUT:-10}"
 
 # Longest input per target: a few frames of a real take (BVH), a whole CMU skeleton (ASF),
 # archives and trellises of a few blocks.
@@ -52,7 +56,7 @@ for target in "${targets[@]}"; do
   dir="$work_dir/$target"
   mkdir -p "$dir/corpus" "$dir/artifacts"
   cp -n "$seeds/$target"/* "$root/tests/data/fuzz/$target"/* "$dir/corpus/" 2>/dev/null || true
-  options=(-runs="$runs" -max_len="${max_len[$target]}" -timeout=10 -rss_limit_mb=2048
+  options=(-runs="$runs" -max_len="${max_len[$target]}" -timeout="$timeout" -rss_limit_mb=2048
            -print_final_stats=1 -artifact_prefix="$dir/artifacts/")
   if [ -f "$root/tests/fuzz/$target.dict" ]; then
     options+=(-dict="$root/tests/fuzz/$target.dict")
