@@ -4,40 +4,69 @@
 #
 #   scripts/test_sanitizers.sh [asan|tsan|all]     (default: all)
 #
-# asan: every test, built with AddressSanitizer (with LeakSanitizer) and
-#       UndefinedBehaviorSanitizer, every report fatal, in build-asan/.
+# asan: the test suite built with AddressSanitizer (with LeakSanitizer) and
+#       UndefinedBehaviorSanitizer, every report fatal, in build-asan/. The scale tests listed in
+#       asan_skip below are left out (they run the same code as the tests kept, on archives 10 to
+#       100 times larger, and take 20 s to 6 min each under ASan); MOTIF_SANITIZE_ALL=1 keeps them.
 # tsan: the tests of the parallel parts (every test that compares thread counts or reads from
 #       many threads, selected by name below), built with ThreadSanitizer in build-tsan/.
-# Both builds use -O1 (the usual level for sanitizer runs: fast to compile, stacks still
-# readable) and skip the benchmarks. MOTIF_JOBS sets the parallel jobs (default 2).
+# Both builds use -O1 -g1 (fast enough to compile and run, stacks with file and line) and skip
+# the benchmarks. MOTIF_JOBS sets the parallel jobs (default 2).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="${MOTIF_JOBS:-2}"
 which="${1:-all}"
-case "$which" in asan|tsan|all) ;; *) sed -n '2,13p' "${BASH_SOURCE[0]}" >&2; exit 2 ;; esac
+case "$which" in asan|tsan|all) ;; *) sed -n '2,15p' "${BASH_SOURCE[0]}" >&2; exit 2 ;; esac
 "$root/scripts/install_deps.sh"
 
+# Left out of the ASan run: tests over large archives (timed under ASan at 2026-11-25), each
+# with a smaller sibling that is kept (in parentheses).
+asan_skip=(
+  'MotionSynthesizerStreaming\.MemoryStaysFlatOverMillionsOfFrames'  # (MotionSynthesizer.*)
+  'MineInterrupt\.'                                 # (crash tests of the writers, MotifmineMine.*)
+  'PlantedMotifs\.'                                 # (cluster and grower tests on planted cases)
+  'LshSearchTest\.RankingByPositionCodeKeepsRecallWithHalfTheBudget'  # (LshSearchTest.*)
+  'LshSearchHeavyBucket\.'                          # (LshIndexTest.*)
+  'LshSearchRealTakes\.'                            # (LshSearchTest.* on synthetic archives)
+  'RealBvhAndAsfAmcArchivesHaveTheIndexedClipsAndFrames'  # (ImportIntoArchive.* on small takes)
+  'BuildTrellis\.SameBytesForAnyThreadCount'        # (run under TSan)
+  'SameArchiveBytesWithOneOrTwoThreads'             # (run under TSan)
+  'LshSearchTest\.SameColumnsForOneAndTwoThreads'   # (run under TSan)
+  'LshSearchTest\.RecallOnSyntheticArchive'
+  'LshSearchTest\.ChainingSeedsColumnsWithTheirPredecessorsNeighbours'
+  'AuditTrellis\.LshRecallOnAPlantedSyntheticArchive'
+  'BuildTrellis\.ResumesAnInterruptedBuildToTheSameFile'  # (TrellisFileCrashTest.*)
+  'BuildTrellis\.ReusesAFinishedTrellisAndRebuildsWhenAParameterChanges'
+  'MotionSynthesizer\.TruthIsKnownBeforeRunAndValid'
+  'RealData\.'                                      # (the parsers' tests; every real take)
+  'EpsilonEstimator\.ReproducesTheMeasuredFiguresOnTheRealTakes'
+  'crash_harness'                                   # (a Python harness around the tool)
+)
 # The tests ThreadSanitizer runs: the parallel parts, by test name, and the test executables
 # that hold them (tests/*/CMakeLists.txt).
 tsan_tests='ThreadCount|Threads|ManyThreads|Concurrent|Sharded|OneAndTwoThreads|OneOrTwoThreads'
-tsan_targets=(lsh_test distance_test ingest_test trellis_test signature_test cluster_test
-              frame_file_test trellis_file_test)
+tsan_targets=(lsh_test distance_test ingest_test trellis_test trellis_update_test signature_test
+              cluster_test frame_file_test trellis_file_test embedding_test words_test)
 
 configure() {  # configure DIR FLAG...
   local dir="$1"
   shift
-  cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g" \
+  cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" \
     -DMOTIF_BUILD_BENCHMARKS=OFF "$@" >/dev/null
 }
 
 if [ "$which" != tsan ]; then
-  echo "== AddressSanitizer + UndefinedBehaviorSanitizer: the whole test suite"
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer: the test suite"
   configure "$root/build-asan" -DMOTIF_ENABLE_SANITIZERS=ON
   cmake --build "$root/build-asan" -j "$jobs"
+  exclude=()
+  if [ "${MOTIF_SANITIZE_ALL:-0}" != 1 ]; then
+    exclude=(-E "$(IFS='|'; echo "${asan_skip[*]}")")
+  fi
   (cd "$root/build-asan" &&
      ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
      UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-     ctest --output-on-failure -j "$jobs")
+     ctest --output-on-failure -j "$jobs" --timeout 1500 "${exclude[@]}")
 fi
 
 if [ "$which" != asan ]; then
@@ -46,5 +75,5 @@ if [ "$which" != asan ]; then
   cmake --build "$root/build-tsan" -j "$jobs" --target "${tsan_targets[@]}"
   (cd "$root/build-tsan" &&
      TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
-     ctest --output-on-failure -j "$jobs" -R "$tsan_tests")
+     ctest --output-on-failure -j "$jobs" --timeout 1500 -R "$tsan_tests")
 fi

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "common/file_util.h"
@@ -110,7 +111,10 @@ Result<PoseFeatures> PoseFeatures::FromParts(uint64_t frame_count, std::vector<f
   features.weights_ = std::move(weights);
   features.joints_ = std::move(joints);
   features.clip_first_frames_ = std::move(clip_first_frames);
-  features.values_.assign(values, values + frame_count * 4 * features.weights_.size());
+  // `values` may point into a mapped file at any offset: copied bytewise, never dereferenced
+  // as int16_t (a misaligned access is undefined behaviour).
+  features.values_.resize(frame_count * 4 * features.weights_.size());
+  std::memcpy(features.values_.data(), values, features.values_.size() * sizeof(int16_t));
   return features;
 }
 

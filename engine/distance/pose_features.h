@@ -43,8 +43,8 @@ class PoseFeatures {
       PoseFeatures prefix, const FrameFileReader& reader, const std::vector<float>& joint_weights,
       const std::function<void(uint64_t, uint64_t)>& progress = nullptr);
 
-  // From saved parts (a cache of an earlier run): frame_count * 4 * weights.size() values,
-  // joints the archive joint of each weight, clip starts ascending from 0. InvalidArgument if
+  // From saved parts (a cache of an earlier run): frame_count * 4 * weights.size() values
+  // (copied; `values` need not be aligned), joints the archive joint of each weight, clip starts ascending from 0. InvalidArgument if
   // the sizes do not match.
   static Result<PoseFeatures> FromParts(uint64_t frame_count, std::vector<float> weights,
                                         std::vector<uint32_t> joints,

@@ -174,7 +174,7 @@ Result<SearchCache> ReadSearchCache(const std::string& path) {
   Result<PoseFeatures> features =
       PoseFeatures::FromParts(frames, std::move(weights), std::move(joint_ids),
                               std::move(clip_starts),
-                              reinterpret_cast<const int16_t*>(sections.Here()));
+                              reinterpret_cast<const int16_t*>(sections.Here()));  // copied bytewise
   if (!features.ok()) return corrupt(features.status().message());
   cache.features = std::move(features.value());
   sections.Skip(frames * 4 * joints * sizeof(int16_t));
