@@ -114,7 +114,9 @@ Result<PoseFeatures> PoseFeatures::FromParts(uint64_t frame_count, std::vector<f
   // `values` may point into a mapped file at any offset: copied bytewise, never dereferenced
   // as int16_t (a misaligned access is undefined behaviour).
   features.values_.resize(frame_count * 4 * features.weights_.size());
-  std::memcpy(features.values_.data(), values, features.values_.size() * sizeof(int16_t));
+  if (!features.values_.empty()) {  // an empty archive may come with no values at all
+    std::memcpy(features.values_.data(), values, features.values_.size() * sizeof(int16_t));
+  }
   return features;
 }
 
