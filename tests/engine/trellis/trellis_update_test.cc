@@ -177,6 +177,34 @@ class TrellisUpdateTest : public ::testing::Test {
                          ParamsFor(update.new_features, update.eps, 2, true), out, options);
   }
 
+  // An LSH update of the first three quarters of the clips to the whole archive: old.mtr
+  // written by a full LSH build (2 threads), and opened as `previous`.
+  struct LshCase {
+    uint64_t old_frames = 0;
+    PoseFeatures new_features;
+    float eps = 0;
+    LshOptions lsh;  // the first build's hash family: explicit sizes, as reindex records them
+    std::unique_ptr<TrellisFileReader> previous;
+  };
+  void PrepareLsh(LshCase* update) {
+    const ArchiveRows old_rows = Prefix(full_, full_.clip_first_frames.size() * 3 / 4);
+    const PoseFeatures old_features = old_rows.Features();
+    update->old_frames = old_rows.frame_count;
+    update->new_features = full_.Features();
+    update->eps = EstimateEps(old_features);
+    update->lsh.hashes_per_table = 12;
+    update->lsh.bucket_width = 0.3f;
+    update->lsh.threads = 2;
+    auto old_search =
+        LshSearch::Create(old_features, RulesFor(old_features, update->eps), update->lsh);
+    ASSERT_TRUE(old_search.ok());
+    WriteFullTrellis(**old_search, ParamsFor(old_features, update->eps, 1, false),
+                     dir_.File("old.mtr"));
+    auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
+    ASSERT_TRUE(previous.ok());
+    update->previous = std::move(previous.value());
+  }
+
   testing::TempDir dir_;
   ArchiveRows full_;
 };
@@ -290,25 +318,15 @@ TEST_F(TrellisUpdateTest, RefusesAnOldTrellisOfOtherParameters) {
 }
 
 TEST_F(TrellisUpdateTest, LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree) {
-  const size_t old_clips = full_.clip_first_frames.size() * 3 / 4;
-  const ArchiveRows old_rows = Prefix(full_, old_clips);
-  const PoseFeatures old_features = old_rows.Features();
-  const PoseFeatures new_features = full_.Features();
-  const float eps = EstimateEps(old_features);
-  // The hash family must be the first build's: explicit sizes, as reindex records them.
-  LshOptions lsh;
-  lsh.hashes_per_table = 12;
-  lsh.bucket_width = 0.3f;
-  lsh.threads = 2;
-  auto old_search = LshSearch::Create(old_features, RulesFor(old_features, eps), lsh);
-  auto new_search = LshSearch::Create(new_features, RulesFor(new_features, eps), lsh);
-  ASSERT_TRUE(old_search.ok() && new_search.ok());
-  WriteFullTrellis(**old_search, ParamsFor(old_features, eps, 1, false), dir_.File("old.mtr"));
+  LshCase update;
+  ASSERT_NO_FATAL_FAILURE(PrepareLsh(&update));
+  const PoseFeatures& new_features = update.new_features;
+  const float eps = update.eps;
+  auto new_search = LshSearch::Create(new_features, RulesFor(new_features, eps), update.lsh);
+  ASSERT_TRUE(new_search.ok());
   WriteFullTrellis(**new_search, ParamsFor(new_features, eps, 2, false), dir_.File("full.mtr"));
-  auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
-  ASSERT_TRUE(previous.ok());
   auto report =
-      UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), **new_search,
+      UpdateTrellis(*update.previous, new_features, RulesFor(new_features, eps), **new_search,
                     ParamsFor(new_features, eps, 2, false), dir_.File("updated.mtr"));
   ASSERT_TRUE(report.ok()) << report.status().ToString();
   EXPECT_GT(report->changed_columns, 0u);
@@ -316,7 +334,7 @@ TEST_F(TrellisUpdateTest, LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree)
   auto updated = TrellisFileReader::Open(dir_.File("updated.mtr"));
   auto full = TrellisFileReader::Open(dir_.File("full.mtr"));
   ASSERT_TRUE(updated.ok() && full.ok());
-  const uint64_t old_count = old_rows.frame_count;
+  const uint64_t old_count = update.old_frames;
   std::vector<std::vector<Neighbour>> updated_new, full_new;
   ASSERT_TRUE((*updated)->ReadColumns(old_count, full_.frame_count - old_count, &updated_new).ok());
   ASSERT_TRUE((*full)->ReadColumns(old_count, full_.frame_count - old_count, &full_new).ok());
@@ -332,20 +350,11 @@ TEST_F(TrellisUpdateTest, LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree)
 // The update's parallel parts (the LSH index, the new columns' and reverse searches, the blocks
 // decoded, merged and encoded) give the same file for any thread count.
 TEST_F(TrellisUpdateTest, LshUpdateIsTheSameFileForOneAndTwoThreads) {
-  const size_t old_clips = full_.clip_first_frames.size() * 3 / 4;
-  const ArchiveRows old_rows = Prefix(full_, old_clips);
-  const PoseFeatures old_features = old_rows.Features();
-  const PoseFeatures new_features = full_.Features();
-  const float eps = EstimateEps(old_features);
-  LshOptions lsh;
-  lsh.hashes_per_table = 12;
-  lsh.bucket_width = 0.3f;
-  lsh.threads = 2;
-  auto old_search = LshSearch::Create(old_features, RulesFor(old_features, eps), lsh);
-  ASSERT_TRUE(old_search.ok());
-  WriteFullTrellis(**old_search, ParamsFor(old_features, eps, 1, false), dir_.File("old.mtr"));
-  auto previous = TrellisFileReader::Open(dir_.File("old.mtr"));
-  ASSERT_TRUE(previous.ok());
+  LshCase update;
+  ASSERT_NO_FATAL_FAILURE(PrepareLsh(&update));
+  const PoseFeatures& new_features = update.new_features;
+  const float eps = update.eps;
+  LshOptions lsh = update.lsh;
   std::vector<std::string> files;
   for (int threads : {1, 2}) {
     lsh.threads = threads;
@@ -354,8 +363,8 @@ TEST_F(TrellisUpdateTest, LshUpdateIsTheSameFileForOneAndTwoThreads) {
     TrellisUpdateOptions options;
     options.threads = threads;
     const std::string path = dir_.File("updated-" + std::to_string(threads) + ".mtr");
-    auto report = UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), **search,
-                                ParamsFor(new_features, eps, 2, false), path, options);
+    auto report = UpdateTrellis(*update.previous, new_features, RulesFor(new_features, eps),
+                                **search, ParamsFor(new_features, eps, 2, false), path, options);
     ASSERT_TRUE(report.ok()) << report.status().ToString();
     EXPECT_GT(report->changed_columns, 0u);
     files.push_back(ReadFileToString(path).value());
