@@ -26,6 +26,7 @@
 
 #include "common/file_lock.h"
 #include "common/file_util.h"
+#include "common/seconds_since.h"
 #include "engine/cli/cli_common.h"
 #include "engine/cli/synthetic_archive.h"
 #include "engine/cluster/cluster_stage.h"
@@ -49,10 +50,6 @@ namespace po = boost::program_options;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The file a run holds an exclusive flock on, in its output folder.
 constexpr char kRunLockName[] = ".motifmine.lock";

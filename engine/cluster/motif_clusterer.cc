@@ -4,13 +4,11 @@
 #include <chrono>
 #include <functional>
 
+#include "common/seconds_since.h"
+
 namespace motif {
 
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The length-weighted median of the group's instance lengths: the length of the instance that
 // covers the group's middle frame when its instances are laid end to end from the longest. A

@@ -7,6 +7,7 @@
 #include <system_error>
 #include <vector>
 
+#include "common/seconds_since.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/paths_file/paths_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
@@ -14,10 +15,6 @@
 namespace motif {
 
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 

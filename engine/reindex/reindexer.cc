@@ -13,6 +13,7 @@
 #include "common/byte_coding.h"
 #include "common/file_lock.h"
 #include "common/file_util.h"
+#include "common/seconds_since.h"
 #include "engine/cluster/cluster_stage.h"
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
@@ -34,10 +35,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 constexpr char kLockName[] = ".motifmine.lock";
 const std::vector<std::string> kTopFiles = {"manifest.json", "motifs.json", "report.html"};

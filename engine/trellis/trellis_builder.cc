@@ -8,6 +8,7 @@
 
 
 #include "common/byte_coding.h"
+#include "common/seconds_since.h"
 #include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
@@ -18,10 +19,6 @@
 
 namespace motif {
 namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 

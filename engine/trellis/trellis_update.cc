@@ -13,16 +13,13 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include "common/seconds_since.h"
 #include "formats/trellis_file/trellis_block_codec.h"
 
 namespace motif {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The zstd level of every trellis this engine writes (TrellisFileWriterOptions' default): a
 // rewritten block must encode to the bytes a full build would write.

@@ -6,6 +6,7 @@
 
 #include "common/byte_coding.h"
 #include "common/file_lock.h"
+#include "common/seconds_since.h"
 #include "engine/distance/pose_features.h"
 #include "engine/embedding/embedding_file.h"
 #include "engine/signature/frame_resampler.h"
@@ -20,10 +21,6 @@ namespace motif {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The options with the shared ones (word geometry, seed, threads) put where each stage reads them.
 WordsOptions Resolve(const WordsOptions& in) {
