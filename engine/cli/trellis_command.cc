@@ -117,7 +117,11 @@ int RunTrellis(const std::vector<std::string>& args) {
        "neighbours (0: every column alone)")
       ("chained-max-candidates",
        po::value<uint32_t>()->default_value(lsh_defaults.chained_max_candidates),
-       "LSH: evaluations a chained column spends on the probed buckets after its seeds")
+       "LSH: evaluations a probing chained column spends on the probed buckets after its seeds")
+      ("chain-probe-every", po::value<uint32_t>()->default_value(lsh_defaults.chain_probe_every),
+       "LSH: only every this-many-th column of a chain probes the buckets (with "
+       "--chained-max-candidates); the columns between keep their seeds and what the chain "
+       "sweeps carry over (1: every column probes)")
       ("chain-sweeps", po::value<uint32_t>()->default_value(lsh_defaults.chain_sweeps),
        "LSH: passes over each finished chain, backward then forward, in which every column "
        "verifies its neighbour column's neighbours moved by up to 2 frames (0: none)")
@@ -147,6 +151,7 @@ int RunTrellis(const std::vector<std::string>& args) {
   lsh.max_entries = vm["max-entries"].as<uint32_t>();
   lsh.chain_columns = vm["chain"].as<uint32_t>();
   lsh.chained_max_candidates = vm["chained-max-candidates"].as<uint32_t>();
+  lsh.chain_probe_every = vm["chain-probe-every"].as<uint32_t>();
   lsh.chain_sweeps = vm["chain-sweeps"].as<uint32_t>();
   if (!ParseLshRanking(vm["ranking"].as<std::string>(), &lsh.ranking)) {
     return ReportError("trellis", Status::InvalidArgument("--ranking must be sort or code, not '" +

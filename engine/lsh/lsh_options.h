@@ -62,12 +62,22 @@ struct LshOptions {
   // Columns are searched in chains of chain_columns consecutive columns, aligned on multiples of
   // chain_columns (so a column's result does not depend on which range or thread computed it).
   // Every column after a chain's first verifies its predecessor's neighbours advanced by
-  // 0..chain_advance frames before probing, which sets a tight radius at once, and then spends
-  // at most chained_max_candidates further evaluations on the probed buckets (new paths).
+  // 0..chain_advance frames before probing, which sets a tight radius at once, and then (if it
+  // is a probing column, see chain_probe_every) spends at most chained_max_candidates further
+  // evaluations on the probed buckets (new paths).
   // chain_columns 0 or 1: every column is searched alone with max_candidates.
   uint32_t chain_columns = 256;
   uint32_t chain_advance = 2;
-  uint32_t chained_max_candidates = 2048;
+  // Only every chain_probe_every-th column of a chain (those at positions 0, S, 2S, ... from
+  // its start) probes the buckets, with chained_max_candidates after its seeds; the columns
+  // between keep their seeds and get what the chain sweeps carry over from the probing ones.
+  // Neighbouring columns probe nearly the same buckets and find nearly the same candidates, so
+  // one column going deep finds more new paths than S columns going shallow, at a fraction of
+  // the probing cost (docs/design/lsh.md section 3c). 1: every column probes.
+  uint32_t chain_probe_every = 4;
+  uint32_t chained_max_candidates = 6144;
+  uint32_t chained_probe_stride = 1;  // DEV
+  uint32_t chained_off_budget = 0;    // DEV
   // Sweeps over a finished chain, alternately backward and forward, without probing: each column
   // verifies its successor's neighbours moved back by 0..chain_advance frames (backward), or its
   // predecessor's moved on (forward), so a path found anywhere in the chain reaches all of its

@@ -12,6 +12,7 @@
 
 #include "engine/lsh/lsh_tuning.h"
 #include "engine/lsh/query_distance.h"
+#include "engine/lsh/visited_set.h"
 
 namespace motif {
 namespace {
@@ -43,47 +44,6 @@ struct Nearer {
   }
 };
 
-// Frames already verified in this column: open addressing with a generation stamp, so clearing
-// is O(1) and the size is bounded by the evaluation budget, not by N.
-class VisitedSet {
- public:
-  explicit VisitedSet(uint32_t max_entries) {
-    // At most half full (max_entries inserts at most): short probe runs, and a table small
-    // enough to stay in L2 (64 KB for the default budget).
-    const uint32_t capacity =
-        std::bit_ceil(std::max<uint32_t>(64, max_entries + max_entries / 2 + 2));
-    slots_.assign(capacity, Slot{});
-    shift_ = 32 - static_cast<uint32_t>(std::countr_zero(capacity));
-    mask_ = capacity - 1;
-  }
-  void Clear() {
-    if (++stamp_ == 0) {  // wrapped: really clear once every 2^32 columns
-      std::fill(slots_.begin(), slots_.end(), Slot{});
-      stamp_ = 1;
-    }
-  }
-  // True if `frame` was not in the set (and adds it).
-  bool Insert(uint32_t frame) {
-    uint32_t slot = (frame * 0x9e3779b1u) >> shift_;  // Fibonacci hashing: the high bits
-    while (slots_[slot].stamp == stamp_) {
-      if (slots_[slot].frame == frame) return false;
-      slot = (slot + 1) & mask_;
-    }
-    slots_[slot] = Slot{frame, stamp_};
-    return true;
-  }
-
- private:
-  struct Slot {  // frame and stamp side by side: one cache line per probe of the set
-    uint32_t frame = 0;
-    uint32_t stamp = 0;
-  };
-  std::vector<Slot> slots_;
-  uint32_t shift_ = 0;
-  uint32_t mask_ = 0;
-  uint32_t stamp_ = 1;
-};
-
 // The work of one column, added to a range's statistics only if the range asked for the column.
 struct ColumnWork {
   uint64_t evaluations = 0;
@@ -107,10 +67,12 @@ class LshSearch::Query {
  public:
   explicit Query(const LshSearch& search)
       : search_(search),
-        visited_(search.options_.max_candidates +
-                 (search.options_.chain_columns > 1
-                      ? search.rules_.k_max * (search.options_.chain_advance + 1)
-                      : 0)),
+        // A column inserts at most its budget, and a chained one its seeds before that.
+        visited_(search.options_.chain_columns > 1
+                     ? std::max(search.options_.max_candidates,
+                                search.rules_.k_max * (search.options_.chain_advance + 1) +
+                                    search.options_.chained_max_candidates)
+                     : search.options_.max_candidates),
         embedding_(search.family_.embedding_dims()),
         projections_(static_cast<size_t>(search.family_.table_count()) *
                      (search.family_.hashes_per_table() + 1)),
@@ -184,6 +146,7 @@ class LshSearch::Query {
   std::vector<Probe> probes_;
   std::vector<Neighbour> best_;  // accepted candidates: the k_max nearest of them are kept
   std::vector<uint32_t> sweep_candidates_;
+  std::vector<Neighbour> merged_;  // Sweep's merged column
   QueryDistance distance_;
 
   // Ranking by position code. Per probed bucket, eight 16-entry tables (one per code nibble) of
@@ -442,8 +405,6 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
   const float eps = rules.eps;
   const float sort_step = family.sort_value_step();
 
-  Prepare(column);
-
   visited_.Clear();
   best_.clear();
   const uint32_t clip_of_column = features.ClipOf(column);
@@ -675,7 +636,10 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
   // Seeds of a chained column: the predecessor's neighbours advanced by 0..chain_advance frames
   // (in frame order: neighbours come in runs, so consecutive seeds share cache lines). Verified
   // first, they give the radius of a nearly finished column, which prunes most probes and
-  // entries by their lower bounds; the probed buckets then get chained_max_candidates.
+  // entries by their lower bounds; the probed buckets then get chained_max_candidates, in every
+  // chain_probe_every-th column of the chain only (the others keep their seeds and get the
+  // chain sweeps, which pool what the probing columns found: docs/design/lsh.md section 3c).
+  bool probing = true;
   if (previous != nullptr) {
     const uint64_t frame_count = features.frame_count();
     for (const Neighbour& neighbour : *previous) {
@@ -694,15 +658,19 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
     prune();
     local.seed_evaluations += evaluations;
     max_evaluations = evaluations + options.chained_max_candidates;
+    probing = (column % options.chain_columns) % options.chain_probe_every == 0;
   }
 
   // Sparse columns: when the probes are used up before the budget and the column is not full,
   // or its k_max-th neighbour is much farther than the archive's typical one (the cells were
   // sized for the typical column), more distant buckets are probed: 4x the probes per table,
   // then 16x, each stage visiting only the new ones.
-  scan(0);
+  if (probing) {
+    Prepare(column);
+    scan(0);
+  }
   uint32_t per_table = options.probes_per_table;
-  for (uint32_t stage = 0; stage < options.extension_stages; ++stage) {
+  for (uint32_t stage = 0; probing && stage < options.extension_stages; ++stage) {
     if (budget_spent || bound_stopped) break;
     flush();
     flush();  // everything gathered is verified: the radius is up to date
@@ -793,9 +761,20 @@ void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from
   // The column's own frames and the new ones within eps are distinct frames within eps.
   work->capped = work->capped || out->size() + within_eps > k_max;
   if (best_.empty()) return;
-  best_.insert(best_.end(), out->begin(), out->end());
-  out->assign(best_.begin(), best_.end());
-  FinishColumn(k_max, out);
+  // best_ came in increasing frame order, like *out: merge them, then drop the farthest beyond
+  // k_max. The same column as FinishColumn over both, without its sort.
+  merged_.resize(out->size() + best_.size());
+  std::merge(out->begin(), out->end(), best_.begin(), best_.end(), merged_.begin(),
+             [](const Neighbour& a, const Neighbour& b) { return a.frame < b.frame; });
+  if (merged_.size() > k_max) {
+    best_.assign(merged_.begin(), merged_.end());
+    std::nth_element(best_.begin(), best_.begin() + (k_max - 1), best_.end(), Nearer());
+    const Neighbour cut = best_[k_max - 1];  // the k_max-th nearest: it and all nearer stay
+    merged_.erase(std::remove_if(merged_.begin(), merged_.end(),
+                                 [&](const Neighbour& n) { return Nearer()(cut, n); }),
+                  merged_.end());
+  }
+  out->swap(merged_);
 }
 
 // A new frame n enters an old column t when D(n, t) is below t's own k_max-th distance, which
@@ -976,6 +955,7 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Make(const PoseFeatures& features,
   if (options.chain_columns > 1 && options.chained_max_candidates == 0) {
     return invalid("chained_max_candidates must be > 0");
   }
+  if (options.chain_probe_every == 0) return invalid("chain_probe_every must be > 0");
   const SearchScale scale = EstimateSearchScale(features, rules, options);
   LshOptions used =
       ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(), scale);
@@ -1036,6 +1016,8 @@ Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQue
   // and counted; without sweeps, it stops at the range's end): a column is the same whichever
   // range asked for it.
   const uint64_t chain = options_.chain_columns > 1 ? options_.chain_columns : 0;
+  const uint32_t reverse_chained_budget = std::max<uint32_t>(
+      1, options_.chained_max_candidates / options_.chain_probe_every);
   const uint64_t grain = chain ? chain : 64;
   const uint32_t sweeps = chain ? options_.chain_sweeps : 0;
   const uint64_t end_column = first_column + count;
@@ -1070,11 +1052,11 @@ Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQue
                         &work[idx], reverse_query, found);
               if (found == nullptr) continue;
               // The forward query's verified older frames, and the wider reverse scan's. A
-              // column whose predecessor's reverse frames are known spends the chained budget.
+              // column whose predecessor's reverse frames are known spends a chained column's
+              // probing budget on average (every column scans in reverse).
               const bool chained = seeded && column > first_column;
               query.RunReverse(column, *reverse_query,
-                               chained ? options_.chained_max_candidates
-                                       : options_.max_candidates,
+                               chained ? reverse_chained_budget : options_.max_candidates,
                                chained ? &previous_reverse : nullptr, found);
               std::sort(found->begin(), found->end(),
                         [](const Neighbour& a, const Neighbour& b) { return a.frame < b.frame; });

@@ -22,7 +22,8 @@
 // repeated thousands of times) cost at most max_bucket_scan entries each.
 //   0. chaining: columns go in chains of chain_columns, aligned on multiples of it; a column
 //      after its chain's first verifies its predecessor's neighbours advanced by 0..chain_advance
-//      frames first (seeds), then spends at most chained_max_candidates on the probed buckets.
+//      frames first (seeds); every chain_probe_every-th one then spends at most
+//      chained_max_candidates on the probed buckets, the others do not probe (steps 1-3).
 //   4. chain sweeps: once a chain's columns are found, chain_sweeps passes over it, backward then
 //      forward, verify each column's successor's (predecessor's) neighbours moved by
 //      0..chain_advance frames, so a path found at any column of the chain reaches all of them.

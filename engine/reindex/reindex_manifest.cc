@@ -41,6 +41,7 @@ json LshJson(const LshOptions& lsh) {
           {"sparse_radius_factor", lsh.sparse_radius_factor},
           {"chain", lsh.chain_columns},
           {"chain_advance", lsh.chain_advance},
+          {"chain_probe_every", lsh.chain_probe_every},
           {"chained_max_candidates", lsh.chained_max_candidates},
           {"chain_sweeps", lsh.chain_sweeps},
           {"seed", lsh.seed},
@@ -83,6 +84,13 @@ class Fields {
       *problem_ = where_ + ": \"" + name + "\" is " + error.what();
       return T{};
     }
+  }
+
+  // Get, or `fallback` when the field is absent.
+  template <typename T>
+  T GetOr(const char* name, T fallback) {
+    if (object_.is_object() && object_.find(name) == object_.end()) return fallback;
+    return Get<T>(name);
   }
 
   uint64_t GetHex(const char* name) {
@@ -145,6 +153,8 @@ LshOptions ParseLsh(const json& object, const std::string& where, std::string* p
   lsh.sparse_radius_factor = fields.Get<float>("sparse_radius_factor");
   lsh.chain_columns = fields.Get<uint32_t>("chain");
   lsh.chain_advance = fields.Get<uint32_t>("chain_advance");
+  // Absent from manifests written before it existed, whose columns all probed.
+  lsh.chain_probe_every = fields.GetOr<uint32_t>("chain_probe_every", 1);
   lsh.chained_max_candidates = fields.Get<uint32_t>("chained_max_candidates");
   lsh.chain_sweeps = fields.Get<uint32_t>("chain_sweeps");
   lsh.seed = fields.Get<uint64_t>("seed");
@@ -163,6 +173,7 @@ bool SameLshFamily(const LshOptions& a, const LshOptions& b) {
          a.extension_stages == b.extension_stages &&
          a.sparse_radius_factor == b.sparse_radius_factor && a.chain_columns == b.chain_columns &&
          a.chain_advance == b.chain_advance &&
+         a.chain_probe_every == b.chain_probe_every &&
          a.chained_max_candidates == b.chained_max_candidates &&
          a.chain_sweeps == b.chain_sweeps && a.seed == b.seed &&
          a.shard_frames == b.shard_frames;

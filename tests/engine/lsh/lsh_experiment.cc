@@ -2,7 +2,8 @@
 // key=value arguments:
 //   data=real|synth|synthbig|reseq frames=N seed=S queries=Q k_max=K eps=E
 //   LSH options: tables= hashes= width= width_per_hash= probes= max_candidates= max_bucket_scan=
-//                first_round= stages= sparse= chain= chain_advance= chained= sweeps=
+//                first_round= stages= sparse= chain= chain_advance= chained= probe_every=
+//                sweeps=
 //                ranking=sort|code
 //                max_entries= threads=
 //                range=(columns timed in one block)
@@ -249,6 +250,7 @@ int main(int argc, char** argv) {
   options.chain_advance = static_cast<uint32_t>(get("chain_advance", options.chain_advance));
   options.chained_max_candidates =
       static_cast<uint32_t>(get("chained", options.chained_max_candidates));
+  options.chain_probe_every = static_cast<uint32_t>(get("probe_every", options.chain_probe_every));
   options.chain_sweeps = static_cast<uint32_t>(get("sweeps", options.chain_sweeps));
   auto rss = [] {
     malloc_trim(0);

@@ -339,6 +339,56 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
   EXPECT_LT(stats_cheap.entries_examined, stats_alone.entries_examined);
 }
 
+// chain_probe_every: only columns 0, S, 2S, ... of a chain probe the buckets; the others keep
+// their seeds and what the sweeps carry over. Against every column probing with a quarter of
+// the budget (the same probing evaluations per chain), far fewer buckets are opened (each is a
+// directory lookup, a binary search and a cache miss), and the columns lose no recall: adjacent
+// columns would have probed nearly the same buckets, and one deeper search finds more new
+// paths.
+TEST_F(LshSearchTest, ChainProbeEveryProbesEveryNthColumnAndTheSweepsCarryTheRest) {
+  LshOptions every;
+  every.chain_columns = 64;
+  every.chain_probe_every = 1;
+  every.max_candidates = 512;
+  every.chained_max_candidates = 128;
+  LshOptions fourth = every;
+  fourth.chain_probe_every = 4;
+  fourth.chained_max_candidates = 512;
+  const auto searches = CreateSearches(*features_, *rules_, {every, fourth});
+  for (const auto& search : searches) ASSERT_NE(search, nullptr);
+  const uint64_t first = 12800;  // a multiple of 64: whole chains
+  const uint64_t count = 256;
+  std::vector<std::vector<Neighbour>> exact;
+  for (uint64_t column = first; column < first + count; ++column) {
+    exact.push_back(ExactColumn(*features_, *rules_, column));
+  }
+  auto run = [&](const LshSearch& search, const char* what) {
+    std::vector<std::vector<Neighbour>> columns;
+    SearchStats stats;
+    LshQueryStats lsh_stats;
+    EXPECT_TRUE(search.SearchColumns(first, count, &columns, &stats, &lsh_stats).ok());
+    const double recall = Recall(exact, columns).pooled();
+    std::printf("%s: recall %.4f, buckets opened/column %.1f, evaluations/column %.0f\n", what,
+                recall, static_cast<double>(lsh_stats.probes) / count,
+                static_cast<double>(stats.distance_evaluations) / count);
+    return std::make_pair(recall, lsh_stats);
+  };
+  const auto [recall_every, stats_every] = run(*searches[0], "every column, 128");
+  const auto [recall_fourth, stats_fourth] = run(*searches[1], "every 4th column, 512");
+  EXPECT_LT(stats_fourth.probes * 3, stats_every.probes * 2);
+  EXPECT_GE(recall_fourth, recall_every - 0.005);
+  EXPECT_GE(recall_fourth, 0.95);
+
+  // A column that does not probe depends on its chain only: searching it alone (its chain is
+  // computed whole) gives the same column as the block did.
+  std::vector<std::vector<Neighbour>> block;
+  SearchStats ignored;
+  ASSERT_TRUE(searches[1]->SearchColumns(first, count, &block, &ignored).ok());
+  for (uint64_t offset : {1u, 2u, 3u, 4u, 5u, 130u}) {
+    EXPECT_EQ(Column(*searches[1], first + offset, &ignored), block[offset]) << offset;
+  }
+}
+
 // Chain sweeps: after a chain's columns are found, a backward sweep lets every column verify its
 // successor's neighbours moved back by 0..chain_advance frames, so a path found late in a chain
 // reaches its earlier columns. After one backward sweep each column is closed under that move
@@ -674,6 +724,9 @@ TEST_F(LshSearchTest, RejectsInvalidOptions) {
   options = LshOptions();
   options.bucket_width = -1;
   expect_invalid(*rules_, options, "negative width");
+  options = LshOptions();
+  options.chain_probe_every = 0;
+  expect_invalid(*rules_, options, "no probing column");
 
   auto search = CreateSearch(*features_, *rules_);
   ASSERT_NE(search, nullptr);
