@@ -44,6 +44,17 @@ std::vector<Neighbour> Column(const LshSearch& search, uint64_t column, SearchSt
   return columns.empty() ? std::vector<Neighbour>() : columns[0];
 }
 
+// The exact columns [first, first + count) (the direct double loop).
+std::vector<std::vector<Neighbour>> ExactBlock(const PoseFeatures& features,
+                                               const NeighbourRules& rules, uint64_t first,
+                                               uint64_t count) {
+  std::vector<std::vector<Neighbour>> exact;
+  for (uint64_t column = first; column < first + count; ++column) {
+    exact.push_back(ExactColumn(features, rules, column));
+  }
+  return exact;
+}
+
 // Recall over `count` sampled columns, and the work the search did for them.
 struct Measured {
   RecallStats recall;
@@ -312,10 +323,8 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
   // A block of consecutive columns: where chaining acts.
   const uint64_t first = 12800;
   const uint64_t count = 256;
-  std::vector<std::vector<Neighbour>> exact;
-  for (uint64_t column = first; column < first + count; ++column) {
-    exact.push_back(ExactColumn(*features_, *rules_, column));
-  }
+  const std::vector<std::vector<Neighbour>> exact =
+      ExactBlock(*features_, *rules_, first, count);
   auto measure = [&](const LshSearch& search, const char* what) {
     std::vector<std::vector<Neighbour>> columns;
     SearchStats stats;
@@ -358,10 +367,8 @@ TEST_F(LshSearchTest, ChainProbeEveryProbesEveryNthColumnAndTheSweepsCarryTheRes
   for (const auto& search : searches) ASSERT_NE(search, nullptr);
   const uint64_t first = 12800;  // a multiple of 64: whole chains
   const uint64_t count = 256;
-  std::vector<std::vector<Neighbour>> exact;
-  for (uint64_t column = first; column < first + count; ++column) {
-    exact.push_back(ExactColumn(*features_, *rules_, column));
-  }
+  const std::vector<std::vector<Neighbour>> exact =
+      ExactBlock(*features_, *rules_, first, count);
   auto run = [&](const LshSearch& search, const char* what) {
     std::vector<std::vector<Neighbour>> columns;
     SearchStats stats;
@@ -408,10 +415,8 @@ TEST_F(LshSearchTest, ChainSweepsCarryPathsFoundLateToTheWholeChain) {
   for (const auto& search : searches) ASSERT_NE(search, nullptr);
   const uint64_t first = 12800;  // a multiple of 64: whole chains
   const uint64_t count = 256;
-  std::vector<std::vector<Neighbour>> exact;
-  for (uint64_t column = first; column < first + count; ++column) {
-    exact.push_back(ExactColumn(*features_, *rules_, column));
-  }
+  const std::vector<std::vector<Neighbour>> exact =
+      ExactBlock(*features_, *rules_, first, count);
   auto run = [&](const LshSearch& search, std::vector<std::vector<Neighbour>>* columns) {
     SearchStats stats;
     LshQueryStats lsh_stats;
