@@ -98,5 +98,6 @@ int RunWords(const std::vector<std::string>& args);
 int RunClassify(const std::vector<std::string>& args);
 int RunSearch(const std::vector<std::string>& args);
 int RunReindex(const std::vector<std::string>& args);
+int RunScore(const std::vector<std::string>& args);
 
 }  // namespace motif::cli

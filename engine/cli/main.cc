@@ -29,6 +29,7 @@ const Command kCommands[] = {
     {"grow", motif::cli::RunGrow, "grow the trellis's continuous paths into motif candidates"},
     {"cluster", motif::cli::RunCluster, "cluster the grown paths into motifs (normalized cut): motifs.json"},
     {"report", motif::cli::RunReport, "write the HTML report of motifs.json: overview, timeline, stick figures"},
+    {"score", motif::cli::RunScore, "score motifs.json against annotated or planted occurrences (precision, recall)"},
     {"export-motif", motif::cli::RunExportMotif, "write every instance of one motif as a BVH file"},
     {"words", motif::cli::RunWords, "motion words: train their embedding, cluster motifs, write every take's signature"},
     {"search", motif::cli::RunSearch, "find the motions most like a clip range or a BVH file (signatures, EMD)"},

@@ -1,0 +1,129 @@
+// motifmine score MOTIFS.json TRUTH [--json]: how well mined motifs match ground truth, for users
+// with their own annotations (engine/cluster/truth_score.h: the hit rule and the figures).
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "engine/cli/cli_common.h"
+#include "engine/cluster/truth_score.h"
+
+namespace motif::cli {
+
+namespace po = boost::program_options;
+
+namespace {
+
+nlohmann::json MatchJson(const MotifMovementMatch& match) {
+  return {{"motif", match.motif},
+          {"movement", match.movement},
+          {"instances", match.instances},
+          {"instances_hitting", match.instances_hitting},
+          {"occurrences", match.occurrences},
+          {"occurrences_hit", match.occurrences_hit},
+          {"precision", match.precision},
+          {"recall", match.recall},
+          {"f1", match.f1}};
+}
+
+nlohmann::json ScoreJson(const TruthScore& score) {
+  nlohmann::json json = {{"hit_iou", kTruthHitIoU},
+                         {"occurrences", score.occurrences},
+                         {"occurrences_elsewhere", score.occurrences_elsewhere},
+                         {"movements", score.movements},
+                         {"motifs", score.motifs},
+                         {"instances", score.instances},
+                         {"occurrences_hit", score.occurrences_hit},
+                         {"instances_hitting", score.instances_hitting},
+                         {"recall", score.recall},
+                         {"precision", score.precision},
+                         {"top1", MatchJson(score.top1)}};
+  json["per_motif"] = nlohmann::json::array();
+  for (const MotifMovementMatch& match : score.per_motif) json["per_motif"].push_back(MatchJson(match));
+  json["per_movement"] = nlohmann::json::array();
+  for (const MotifMovementMatch& match : score.per_movement) {
+    json["per_movement"].push_back(MatchJson(match));
+  }
+  return json;
+}
+
+std::string MotifName(const MotifMovementMatch& match) {
+  return match.motif < 0 ? std::string("none") : "motif " + std::to_string(match.motif);
+}
+
+void PrintScore(const TruthScore& score, const std::string& motifs_path,
+                const std::string& truth_path, uint32_t motifs_shown) {
+  std::printf("motifmine score: %s against %s (a hit: same clip, IoU >= %.1f)\n",
+              motifs_path.c_str(), truth_path.c_str(), kTruthHitIoU);
+  std::printf("  truth        %s occurrences of %s movements", WithCommas(score.occurrences).c_str(),
+              WithCommas(score.movements).c_str());
+  if (score.occurrences_elsewhere > 0) {
+    std::printf(" (%s more in clips not mined, left out)",
+                WithCommas(score.occurrences_elsewhere).c_str());
+  }
+  std::printf("\n  found        %s motifs, %s instances\n", WithCommas(score.motifs).c_str(),
+              WithCommas(score.instances).c_str());
+  std::printf("  all motifs   recall %.3f (%s of %s occurrences hit), precision %.3f (%s of %s "
+              "instances hit one)\n",
+              score.recall, WithCommas(score.occurrences_hit).c_str(),
+              WithCommas(score.occurrences).c_str(), score.precision,
+              WithCommas(score.instances_hitting).c_str(), WithCommas(score.instances).c_str());
+  const MotifMovementMatch& top = score.top1;
+  std::printf("  top motif    %s (%s instances) ~ %s: precision %.3f recall %.3f\n",
+              MotifName(top).c_str(), WithCommas(top.instances).c_str(),
+              top.movement.empty() ? "no movement" : top.movement.c_str(), top.precision,
+              top.recall);
+  std::printf("  movements    best motif per movement:\n");
+  for (const MotifMovementMatch& match : score.per_movement) {
+    std::printf("    %-28s %4llu occurrences  %-10s precision %.3f recall %.3f f1 %.3f\n",
+                match.movement.c_str(), static_cast<unsigned long long>(match.occurrences),
+                MotifName(match).c_str(), match.precision, match.recall, match.f1);
+  }
+  const size_t shown = std::min<size_t>(motifs_shown, score.per_motif.size());
+  if (shown > 0) std::printf("  motifs       the first %zu, each against its movement:\n", shown);
+  for (size_t rank = 0; rank < shown; ++rank) {
+    const MotifMovementMatch& match = score.per_motif[rank];
+    std::printf("    %-10s %4llu instances  %-28s precision %.3f recall %.3f f1 %.3f\n",
+                MotifName(match).c_str(), static_cast<unsigned long long>(match.instances),
+                match.movement.empty() ? "-" : match.movement.c_str(), match.precision,
+                match.recall, match.f1);
+  }
+}
+
+}  // namespace
+
+int RunScore(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "score";
+  spec.usage = "motifmine score MOTIFS.json TRUTH [--json] [--motifs N]";
+  spec.summary =
+      "Scores mined motifs against ground truth. TRUTH is an annotation TSV (clip, movement,\n"
+      "start, end: docs/formats/repetitions_tsv.md) or a synthetic archive's truth.json. A found\n"
+      "instance hits an occurrence when both are in the same clip with IoU >= 0.5. Prints recall\n"
+      "and precision over all motifs, the top motif against the movement it matches best, the\n"
+      "best motif of every movement and the first motifs against theirs.";
+  spec.options.add_options()
+      ("json", "print the figures as one JSON object instead")
+      ("motifs", po::value<uint32_t>()->default_value(10), "motifs listed in the text output");
+  spec.positional = {{"motifs-json", 1}, {"truth", 1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  if (!vm.count("motifs-json") || !vm.count("truth")) {
+    std::fprintf(stderr, "motifmine score: error: MOTIFS.json and TRUTH are required\nusage: %s\n",
+                 spec.usage.c_str());
+    return kExitUsage;
+  }
+  const std::string motifs_path = vm["motifs-json"].as<std::string>();
+  const std::string truth_path = vm["truth"].as<std::string>();
+  Result<MotifsDocument> document = ReadMotifsJson(motifs_path);
+  if (!document.ok()) return ReportError("score", document.status());
+  Result<std::vector<TruthOccurrence>> truth = ReadTruthOccurrences(truth_path);
+  if (!truth.ok()) return ReportError("score", truth.status());
+  const TruthScore score = ScoreAgainstTruth(*document, *truth);
+  if (vm.count("json")) {
+    std::printf("%s\n", ScoreJson(score).dump(2).c_str());
+  } else {
+    PrintScore(score, motifs_path, truth_path, vm["motifs"].as<uint32_t>());
+  }
+  return kExitOk;
+}
+
+}  // namespace motif::cli

@@ -1,0 +1,87 @@
+#include "engine/cluster/motif_truth.h"
+
+#include <charconv>
+#include <sstream>
+
+#include "common/file_util.h"
+#include "engine/synth/truth_json_reader.h"
+
+namespace motif {
+
+namespace {
+
+std::vector<std::string> SplitTabs(const std::string& line) {
+  std::vector<std::string> fields;
+  size_t begin = 0;
+  while (true) {
+    const size_t tab = line.find('\t', begin);
+    fields.push_back(line.substr(begin, tab == std::string::npos ? std::string::npos : tab - begin));
+    if (tab == std::string::npos) return fields;
+    begin = tab + 1;
+  }
+}
+
+bool ParseFrame(const std::string& text, uint64_t* frame) {
+  const char* end = text.data() + text.size();
+  auto [ptr, error] = std::from_chars(text.data(), end, *frame);
+  return error == std::errc() && ptr == end && !text.empty();
+}
+
+}  // namespace
+
+Result<std::vector<TruthOccurrence>> ParseTruthTsv(const std::string& text,
+                                                   const std::string& name) {
+  std::istringstream lines(text);
+  std::string line;
+  uint64_t line_number = 0;
+  bool header_seen = false;
+  std::vector<TruthOccurrence> occurrences;
+  while (std::getline(lines, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    const std::string where = name + ": line " + std::to_string(line_number) + ": ";
+    const std::vector<std::string> fields = SplitTabs(line);
+    if (!header_seen) {
+      if (fields != std::vector<std::string>{"clip", "movement", "start", "end"}) {
+        return Status::InvalidArgument(where + "expected the header 'clip<TAB>movement<TAB>start<TAB>end'");
+      }
+      header_seen = true;
+      continue;
+    }
+    if (fields.size() != 4) {
+      return Status::InvalidArgument(where + "expected 4 tab-separated fields, found " +
+                                     std::to_string(fields.size()));
+    }
+    TruthOccurrence occurrence{fields[0], fields[1], 0, 0};
+    if (!ParseFrame(fields[2], &occurrence.start) || !ParseFrame(fields[3], &occurrence.end)) {
+      return Status::InvalidArgument(where + "start and end must be frame numbers");
+    }
+    if (occurrence.clip.empty() || occurrence.movement.empty()) {
+      return Status::InvalidArgument(where + "empty clip or movement");
+    }
+    if (occurrence.end <= occurrence.start) {
+      return Status::InvalidArgument(where + "end must be greater than start");
+    }
+    occurrences.push_back(std::move(occurrence));
+  }
+  if (!header_seen) return Status::InvalidArgument(name + ": no header line");
+  return occurrences;
+}
+
+Result<std::vector<TruthOccurrence>> ReadTruthOccurrences(const std::string& path) {
+  if (path.size() >= 5 && path.compare(path.size() - 5, 5, ".json") == 0) {
+    MOTIF_ASSIGN_OR_RETURN(TruthFile truth, ReadTruthJson(path));
+    std::vector<TruthOccurrence> occurrences;
+    occurrences.reserve(truth.instances.size());
+    for (const PlantedInstance& planted : truth.instances) {
+      occurrences.push_back(
+          {planted.clip, "planted-" + std::to_string(planted.motif), planted.start, planted.end});
+    }
+    return occurrences;
+  }
+  MOTIF_ASSIGN_OR_RETURN(std::string text, ReadFileToString(path));
+  return ParseTruthTsv(text, path);
+}
+
+}  // namespace motif

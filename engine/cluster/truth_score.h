@@ -1,0 +1,62 @@
+// Scores mined motifs (motifs.json) against ground truth occurrences (motif_truth.h): what
+// `motifmine score` prints and scripts/eval_repetitions.sh aggregates (docs/guide.md, score).
+//
+// The hit rule: a found instance hits a truth occurrence when both are in the same clip and their
+// intersection over union (in frames) is at least 0.5. For a motif m and a movement g:
+//  * precision(m, g) = instances of m that hit an occurrence of g / instances of m;
+//  * recall(m, g)    = occurrences of g hit by an instance of m / occurrences of g;
+//  * F1 their harmonic mean (0 when both are 0).
+// A motif is matched to the movement with the highest F1 (ties: more occurrences hit, then the
+// movement's name); a movement to the motif with the highest F1 (ties: the better-ranked motif).
+// The top-1 score is the first motif (the most important) against its movement: precision 0 and
+// recall 0 when nothing was found. Occurrences in clips the document does not have are left out
+// (and counted), so one truth file can serve archives that hold some of its clips.
+// Thread-safety: pure functions.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/cluster/motif_truth.h"
+#include "engine/cluster/motifs_json.h"
+
+namespace motif {
+
+inline constexpr double kTruthHitIoU = 0.5;
+
+// |[a_start, a_end) ∩ [b_start, b_end)| / |union|; 0 for empty intervals.
+double IntervalIoU(uint64_t a_start, uint64_t a_end, uint64_t b_start, uint64_t b_end);
+
+struct MotifMovementMatch {
+  int64_t motif = -1;      // motif id (rank); -1: none
+  std::string movement;    // empty: none
+  uint64_t instances = 0;  // of the motif
+  uint64_t instances_hitting = 0;
+  uint64_t occurrences = 0;  // of the movement
+  uint64_t occurrences_hit = 0;
+  double precision = 0;
+  double recall = 0;
+  double f1 = 0;
+};
+
+struct TruthScore {
+  uint64_t occurrences = 0;          // in the document's clips
+  uint64_t occurrences_elsewhere = 0;  // in clips the document does not have (left out)
+  uint64_t movements = 0;
+  uint64_t motifs = 0;
+  // Every motif together: occurrences hit by any instance, instances hitting any occurrence.
+  uint64_t instances = 0;
+  uint64_t occurrences_hit = 0;
+  uint64_t instances_hitting = 0;
+  double recall = 0;
+  double precision = 0;
+  MotifMovementMatch top1;                       // the first motif against its movement
+  std::vector<MotifMovementMatch> per_motif;     // by rank, each against its movement
+  std::vector<MotifMovementMatch> per_movement;  // by name, each with its best motif
+};
+
+TruthScore ScoreAgainstTruth(const MotifsDocument& document,
+                             const std::vector<TruthOccurrence>& truth);
+
+}  // namespace motif
