@@ -186,6 +186,28 @@ Result<WordsReaderOutput> WordsReaderOutputFrom(const po::variables_map& vm,
   return output;
 }
 
+void AddEpsilonRuleOptions(CommandSpec& spec) {
+  namespace po = boost::program_options;
+  spec.options.add_options()
+      ("eps-rule", po::value<std::string>()->default_value("joint-angle"),
+       "how eps is chosen when --eps is not given: joint-angle (poses match when their weighted "
+       "joints differ by about --eps-angle degrees) or paper (mu - 2 sigma of sampled pair "
+       "distances, Meng et al. 2008)")
+      ("eps-angle", po::value<double>()->default_value(kDefaultJointAngleDegrees),
+       "the joint-angle rule's tolerated rotation per weighted joint, in degrees");
+}
+
+Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisOptions* options) {
+  MOTIF_ASSIGN_OR_RETURN(options->eps_rule, ParseEpsilonRule(vm["eps-rule"].as<std::string>()));
+  const double angle = vm["eps-angle"].as<double>();
+  if (!(angle > 0 && angle <= 180)) {
+    return Status::InvalidArgument("--eps-angle must be in (0, 180] degrees, not " +
+                                   std::to_string(angle));
+  }
+  options->eps_joint_angle_degrees = angle;
+  return Status::Ok();
+}
+
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy) {
   if (text == "auto") {
     *policy = FirstFramePolicy::kAuto;

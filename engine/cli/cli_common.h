@@ -15,6 +15,7 @@
 
 #include "common/status.h"
 #include "engine/cli/progress_reporter.h"
+#include "engine/trellis/trellis_builder.h"
 #include "formats/import/take_importer.h"
 
 namespace motif::cli {
@@ -65,6 +66,12 @@ uint64_t PeakResidentBytes();
 Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds);
 // --groups: "auto" (*groups = 0) or a positive number. InvalidArgument otherwise.
 Status ParseGroups(const std::string& text, uint32_t* groups);
+// --eps-rule joint-angle|paper and --eps-angle DEG: how eps is chosen when --eps is not given
+// (engine/distance/epsilon_estimator.h). EpsilonRuleFrom reads them back into the trellis
+// options; InvalidArgument naming the flag for an unknown rule or an angle outside (0, 180].
+void AddEpsilonRuleOptions(CommandSpec& spec);
+Status EpsilonRuleFrom(const boost::program_options::variables_map& vm,
+                       TrellisOptions* options);
 // --first-frame: "auto", "keep" or "drop". InvalidArgument otherwise.
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy);
 

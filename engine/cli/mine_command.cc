@@ -106,7 +106,7 @@ int RunMine(const std::vector<std::string>& args) {
       "summary. A second run reuses every stage whose inputs and parameters did not change.";
   spec.options.add_options()
       ("out", po::value<std::string>(), "output folder (created if missing)")
-      ("eps", po::value<float>()->default_value(0), "pose distance threshold; 0: mu - 2 sigma")
+      ("eps", po::value<float>()->default_value(0), "pose distance threshold; 0: by --eps-rule")
       ("kmax", po::value<uint32_t>()->default_value(256), "neighbours kept per frame, nearest")
       ("exclusion", po::value<uint32_t>()->default_value(0),
        "same-clip exclusion radius in frames; 0: half the minimum length")
@@ -132,6 +132,7 @@ int RunMine(const std::vector<std::string>& args) {
        "no INPUT: planted motifs of the synthetic archive")
       ("skip-bad", "import: report malformed takes and import the others")
       ("no-report", "do not write report.html");
+  AddEpsilonRuleOptions(spec);
   AddProgressOptions(spec);
   spec.positional = {{"input", -1}};
   po::variables_map vm;
@@ -155,6 +156,7 @@ int RunMine(const std::vector<std::string>& args) {
   trellis_options.exclusion_frames = vm["exclusion"].as<uint32_t>();
   trellis_options.seed = seed;
   trellis_options.threads = threads;
+  if (Status status = EpsilonRuleFrom(vm, &trellis_options); !status.ok()) return fail(status);
   Result<TrellisSearchMode> search = ParseTrellisSearchMode(vm["search"].as<std::string>());
   if (!search.ok()) return fail(search.status());
   trellis_options.search = *search;
@@ -182,7 +184,7 @@ int RunMine(const std::vector<std::string>& args) {
     return fail(Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1"));
   }
   if (trellis_options.eps < 0 || !std::isfinite(trellis_options.eps)) {
-    return fail(Status::InvalidArgument("--eps must be >= 0 (0: mu - 2 sigma)"));
+    return fail(Status::InvalidArgument("--eps must be >= 0 (0: chosen by --eps-rule)"));
   }
   if (trellis_options.k_max == 0) return fail(Status::InvalidArgument("--kmax must be > 0"));
   if (paths_options.branch == 0) return fail(Status::InvalidArgument("--branch must be > 0"));
@@ -326,8 +328,7 @@ int RunMine(const std::vector<std::string>& args) {
     ReportInfo info;
     info.archive_path = archive;
     std::ostringstream parameters;
-    parameters << "eps " << trellis->params.eps << " (mu " << trellis->params.mu << ", sigma "
-               << trellis->params.sigma << "), k_max " << trellis->params.k_max << ", B "
+    parameters << "eps " << trellis->params.eps << " (" << trellis->eps_how << "), k_max " << trellis->params.k_max << ", B "
                << paths->params.branch << ", min length " << paths->params.min_length
                << " frames, groups " << groups_text << ", seed " << seed << ", search "
                << TrellisSearchModeName(trellis->search);
@@ -355,8 +356,9 @@ int RunMine(const std::vector<std::string>& args) {
   std::printf("  archive      %s frames (%.1f min at %g fps) in %s clips\n",
               WithCommas(total_frames).c_str(), static_cast<double>(total_frames) / fps / 60.0,
               fps, WithCommas((*frames)->clips().size()).c_str());
-  std::printf("  trellis      eps %.3f (mu %.3f, sigma %.3f), mean K %.1f of k_max %u, %s search\n",
-              trellis->params.eps, trellis->params.mu, trellis->params.sigma, trellis->mean_k,
+  std::printf("  radius       eps %.3f: %s (the paper's mu - 2 sigma would be %.3f)\n",
+              trellis->params.eps, trellis->eps_how.c_str(), trellis->paper_eps);
+  std::printf("  trellis      mean K %.1f of k_max %u, %s search\n", trellis->mean_k,
               trellis->params.k_max, TrellisSearchModeName(trellis->search));
   std::printf("  paths        %s candidates (B %u, min length %llu frames)\n",
               WithCommas(paths->candidates).c_str(), paths->params.branch,

@@ -85,7 +85,7 @@ int RunTrellis(const std::vector<std::string>& args) {
   LshOptions lsh_defaults;
   spec.options.add_options()
       ("eps", po::value<std::string>()->default_value("auto"),
-       "neighbour radius: a number, or auto (mu - 2 sigma of sampled pair distances)")
+       "neighbour radius: a number, or auto (chosen by --eps-rule)")
       ("kmax", po::value<uint32_t>()->default_value(256), "at most this many neighbours a column")
       ("exclusion", po::value<uint32_t>()->default_value(0),
        "frames of the same clip closer than this are never neighbours (0: half of --min-length)")
@@ -132,6 +132,7 @@ int RunTrellis(const std::vector<std::string>& args) {
        "LSH, --ranking code: bucket entries gathered and ranked per column")
       ("audit", "compare the existing trellis with exact eps-NN on sampled columns")
       ("sample", po::value<uint64_t>()->default_value(1000), "columns sampled by --audit");
+  AddEpsilonRuleOptions(spec);
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -168,6 +169,9 @@ int RunTrellis(const std::vector<std::string>& args) {
       return ReportError("trellis", Status::InvalidArgument("--eps must be a positive number or "
                                                             "auto, not '" + eps + "'"));
     }
+  }
+  if (Status status = EpsilonRuleFrom(vm, &options); !status.ok()) {
+    return ReportError("trellis", status);
   }
   options.k_max = vm["kmax"].as<uint32_t>();
   options.exclusion_frames = vm["exclusion"].as<uint32_t>();
@@ -210,12 +214,8 @@ int RunTrellis(const std::vector<std::string>& args) {
   } else {
     std::printf("wrote %s\n", trellis.c_str());
   }
-  if (params.mu > 0) {
-    std::printf("  eps          %.4f  (mu - 2 sigma: mu %.4f, sigma %.4f)\n", params.eps, params.mu,
-                params.sigma);
-  } else {
-    std::printf("  eps          %.4f  (given)\n", params.eps);
-  }
+  std::printf("  eps          %.4f  (%s; the paper's mu - 2 sigma: %.4f)\n", params.eps,
+              report->eps_how.c_str(), report->paper_eps);
   std::printf("  columns      %s, %s entries, mean K %.1f (k_max %u)\n",
               WithCommas(report->columns).c_str(), WithCommas(report->neighbours).c_str(),
               report->mean_k, params.k_max);

@@ -3,7 +3,10 @@
 #include <charconv>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "common/file_util.h"
+#include "engine/cluster/motifs_json.h"
 #include "engine/synth/truth_json_reader.h"
 
 namespace motif {
@@ -25,6 +28,20 @@ bool ParseFrame(const std::string& text, uint64_t* frame) {
   const char* end = text.data() + text.size();
   auto [ptr, error] = std::from_chars(text.data(), end, *frame);
   return error == std::errc() && ptr == end && !text.empty();
+}
+
+// Another run's motifs as the truth: motif k becomes the movement "motif-k".
+Result<std::vector<TruthOccurrence>> OccurrencesOfMotifs(const std::string& text,
+                                                         const std::string& name) {
+  MOTIF_ASSIGN_OR_RETURN(MotifsDocument document, ParseMotifsJson(text, name));
+  std::vector<TruthOccurrence> occurrences;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      occurrences.push_back(
+          {instance.clip, "motif-" + std::to_string(motif.id), instance.start, instance.end});
+    }
+  }
+  return occurrences;
 }
 
 }  // namespace
@@ -71,7 +88,12 @@ Result<std::vector<TruthOccurrence>> ParseTruthTsv(const std::string& text,
 
 Result<std::vector<TruthOccurrence>> ReadTruthOccurrences(const std::string& path) {
   if (path.size() >= 5 && path.compare(path.size() - 5, 5, ".json") == 0) {
-    MOTIF_ASSIGN_OR_RETURN(TruthFile truth, ReadTruthJson(path));
+    MOTIF_ASSIGN_OR_RETURN(std::string text, ReadFileToString(path));
+    const nlohmann::json root = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (root.is_object() && root.contains("motifs") && !root.contains("instances")) {
+      return OccurrencesOfMotifs(text, path);
+    }
+    MOTIF_ASSIGN_OR_RETURN(TruthFile truth, ParseTruthJson(text, path));
     std::vector<TruthOccurrence> occurrences;
     occurrences.reserve(truth.instances.size());
     for (const PlantedInstance& planted : truth.instances) {

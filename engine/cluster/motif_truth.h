@@ -6,7 +6,9 @@
 //    line `clip<TAB>movement<TAB>start<TAB>end`, then one occurrence a line; start and end are
 //    0-based clip frames, end exclusive; lines starting with '#' and empty lines are skipped;
 //  * a synthetic archive's truth.json (engine/synth/truth_json_reader.h): planted motif m becomes
-//    the movement "planted-m".
+//    the movement "planted-m";
+//  * another run's motifs.json: motif k becomes the movement "motif-k" (to compare two runs: does
+//    each motif of one have a motif of the other?).
 // Thread-safety: pure functions.
 #pragma once
 
@@ -31,7 +33,8 @@ struct TruthOccurrence {
 Result<std::vector<TruthOccurrence>> ParseTruthTsv(const std::string& text,
                                                    const std::string& name);
 
-// Reads PATH: a truth.json when its name ends in ".json", an annotation TSV otherwise.
+// Reads PATH: when its name ends in ".json", a motifs.json if it has "motifs" and no
+// "instances", else a truth.json; an annotation TSV otherwise.
 // NotFound / IOError from reading; the parsers' errors.
 Result<std::vector<TruthOccurrence>> ReadTruthOccurrences(const std::string& path);
 

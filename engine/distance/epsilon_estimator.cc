@@ -92,17 +92,61 @@ Result<std::vector<FramePair>> EpsilonEstimator::SamplePairs() const {
   return pairs;
 }
 
+Result<EpsilonRule> ParseEpsilonRule(const std::string& text) {
+  if (text == "joint-angle") return EpsilonRule::kJointAngle;
+  if (text == "paper") return EpsilonRule::kPaper;
+  return Status::InvalidArgument("--eps-rule must be joint-angle or paper, not '" + text + "'");
+}
+
+const char* EpsilonRuleName(EpsilonRule rule) {
+  return rule == EpsilonRule::kPaper ? "paper" : "joint-angle";
+}
+
+double JointAngleEpsilon(const std::vector<float>& weights, double theta_degrees) {
+  double weight_sum = 0;
+  for (float weight : weights) weight_sum += weight;
+  return weight_sum * 2.0 * std::sin(theta_degrees * M_PI / 180.0 / 4.0);
+}
+
 Result<EpsilonEstimate> EpsilonEstimator::Estimate() const {
   if (options_.explicit_eps &&
       !(std::isfinite(*options_.explicit_eps) && *options_.explicit_eps > 0)) {
     return Status::InvalidArgument("eps must be a positive number, not " +
                                    std::to_string(*options_.explicit_eps));
   }
-  MOTIF_ASSIGN_OR_RETURN(const std::vector<FramePair> pairs, SamplePairs());
-  if (pairs.empty() && !options_.explicit_eps) {
+  if (!(options_.joint_angle_degrees > 0 && options_.joint_angle_degrees <= 180)) {
+    return Status::InvalidArgument("the joint angle of the eps rule must be in (0, 180] degrees, not " +
+                                   std::to_string(options_.joint_angle_degrees));
+  }
+  // Only the paper's rule needs the sample; the others report its statistics when there is one
+  // (a take shorter than the exclusion radius has no pair to sample).
+  const bool needs_sample = !options_.explicit_eps && options_.rule == EpsilonRule::kPaper;
+  Result<std::vector<FramePair>> pairs = SamplePairs();
+  if (!pairs.ok() && needs_sample) return pairs.status();
+  if (pairs.ok() && pairs->empty() && needs_sample) {
     return Status::InvalidArgument("epsilon estimate: no frame pairs sampled (sample_pairs is " +
                                    std::to_string(options_.sample_pairs) + ")");
   }
+  std::vector<float> distances = pairs.ok() ? SampledDistances(*pairs) : std::vector<float>{};
+  EpsilonEstimate estimate = SampleStatistics(distances);
+  estimate.rule = options_.rule;
+  if (options_.explicit_eps) {
+    estimate.eps = *options_.explicit_eps;
+    estimate.explicit_eps = true;
+    estimate.how = "given explicitly (--eps)";
+  } else if (options_.rule == EpsilonRule::kJointAngle) {
+    estimate.eps =
+        static_cast<float>(JointAngleEpsilon(features_.weights(), options_.joint_angle_degrees));
+    estimate.how = "joint-angle rule: " + Format("%g", options_.joint_angle_degrees) +
+                   " degrees on each of " + std::to_string(features_.weighted_joint_count()) +
+                   " weighted joints";
+  } else {
+    ApplyPaperRule(std::move(distances), &estimate);
+  }
+  return estimate;
+}
+
+std::vector<float> EpsilonEstimator::SampledDistances(const std::vector<FramePair>& pairs) const {
   std::vector<float> distances(pairs.size());
   tbb::task_arena arena = MakeArena(options_.threads);
   arena.execute([&] {
@@ -114,48 +158,53 @@ Result<EpsilonEstimate> EpsilonEstimator::Estimate() const {
                         }
                       });
   });
+  return distances;
+}
+
+EpsilonEstimate EpsilonEstimator::SampleStatistics(const std::vector<float>& distances) {
   EpsilonEstimate estimate;
-  estimate.sampled_pairs = pairs.size();
-  if (!pairs.empty()) {
+  estimate.sampled_pairs = distances.size();
+  if (!distances.empty()) {
     // Serial sums in pair order: the same bits for any thread count.
     double sum = 0;
     for (float distance : distances) sum += distance;
-    estimate.mu = sum / static_cast<double>(pairs.size());
+    estimate.mu = sum / static_cast<double>(distances.size());
     double squares = 0;
     for (float distance : distances) {
       squares += (distance - estimate.mu) * (distance - estimate.mu);
     }
-    estimate.sigma =
-        pairs.size() > 1 ? std::sqrt(squares / static_cast<double>(pairs.size() - 1)) : 0.0;
+    estimate.sigma = distances.size() > 1
+                         ? std::sqrt(squares / static_cast<double>(distances.size() - 1))
+                         : 0.0;
   }
-  const double estimated = estimate.mu - 2.0 * estimate.sigma;
-  if (options_.explicit_eps) {
-    estimate.eps = *options_.explicit_eps;
-    estimate.explicit_eps = true;
-    estimate.note =
-        "eps given explicitly (mu - 2 sigma of the sample is " + Format("%.4f", estimated) + ")";
-  } else if (estimated > 0) {
-    estimate.eps = static_cast<float>(estimated);
-  } else {
-    // mu - 2 sigma <= 0: a heavy cluster of near-identical pairs; take the 1st percentile.
-    std::vector<float> sorted = distances;
-    const size_t rank = (sorted.size() - 1) / 100;
-    std::nth_element(sorted.begin(), sorted.begin() + rank, sorted.end());
-    float fallback = sorted[rank];
-    std::string rule = "the 1st percentile of the sampled distances";
-    if (fallback <= 0) {
-      fallback = 0;
-      for (float distance : distances) {
-        if (distance > 0 && (fallback == 0 || distance < fallback)) fallback = distance;
-      }
-      rule = "the smallest positive sampled distance (the 1st percentile is 0)";
-    }
-    estimate.eps = fallback;
-    estimate.note = "mu - 2 sigma = " + Format("%.4f", estimated) + " <= 0 (mu " +
-                    Format("%.4f", estimate.mu) + ", sigma " + Format("%.4f", estimate.sigma) +
-                    "): eps is " + rule + ", " + Format("%.4f", fallback);
-  }
+  estimate.paper_eps = estimate.mu - 2.0 * estimate.sigma;
   return estimate;
+}
+
+void EpsilonEstimator::ApplyPaperRule(std::vector<float> distances, EpsilonEstimate* estimate) {
+  const double estimated = estimate->paper_eps;
+  estimate->how = "paper rule: mu - 2 sigma of " + std::to_string(distances.size()) +
+                  " sampled pair distances";
+  if (estimated > 0) {
+    estimate->eps = static_cast<float>(estimated);
+    return;
+  }
+  // mu - 2 sigma <= 0: a heavy cluster of near-identical pairs; take the 1st percentile.
+  const size_t rank = (distances.size() - 1) / 100;
+  std::nth_element(distances.begin(), distances.begin() + rank, distances.end());
+  float fallback = distances[rank];
+  std::string rule = "the 1st percentile of the sampled distances";
+  if (fallback <= 0) {
+    fallback = 0;
+    for (float distance : distances) {
+      if (distance > 0 && (fallback == 0 || distance < fallback)) fallback = distance;
+    }
+    rule = "the smallest positive sampled distance (the 1st percentile is 0)";
+  }
+  estimate->eps = fallback;
+  estimate->note = "mu - 2 sigma = " + Format("%.4f", estimated) + " <= 0 (mu " +
+                   Format("%.4f", estimate->mu) + ", sigma " + Format("%.4f", estimate->sigma) +
+                   "): eps is " + rule + ", " + Format("%.4f", fallback);
 }
 
 Result<NeighbourDensity> EpsilonEstimator::MeasureDensity(float eps, uint64_t query_count) const {

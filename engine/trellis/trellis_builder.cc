@@ -119,20 +119,23 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   params.seed = options.seed;
   params.weights_hash = WeightsHash(weights);
   start = std::chrono::steady_clock::now();
-  if (options.eps > 0) {
-    params.eps = options.eps;
-  } else {
-    EpsilonOptions eps_options;
-    eps_options.sample_pairs = options.eps_sample_pairs;
-    eps_options.seed = options.seed;
-    eps_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
-    EpsilonEstimator estimator(features, rules, eps_options);
-    MOTIF_ASSIGN_OR_RETURN(EpsilonEstimate estimate, estimator.Estimate());
-    params.eps = estimate.eps;
+  EpsilonOptions eps_options;
+  eps_options.rule = options.eps_rule;
+  eps_options.joint_angle_degrees = options.eps_joint_angle_degrees;
+  eps_options.sample_pairs = options.eps_sample_pairs;
+  eps_options.seed = options.seed;
+  eps_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
+  if (options.eps > 0) eps_options.explicit_eps = options.eps;
+  EpsilonEstimator estimator(features, rules, eps_options);
+  MOTIF_ASSIGN_OR_RETURN(EpsilonEstimate estimate, estimator.Estimate());
+  params.eps = estimate.eps;
+  if (!estimate.explicit_eps) {
     params.mu = static_cast<float>(estimate.mu);
     params.sigma = static_cast<float>(estimate.sigma);
-    if (!estimate.note.empty()) note(estimate.note);
   }
+  report.eps_how = estimate.how;
+  report.paper_eps = estimate.paper_eps;
+  if (!estimate.note.empty()) note(estimate.note);
   rules.eps = params.eps;
   report.eps_seconds = SecondsSince(start);
 

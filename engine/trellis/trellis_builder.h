@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/neighbour_search.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_options.h"
@@ -44,7 +45,9 @@ Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name);
 inline constexpr uint64_t kAutoExactMaxFrames = 90000;
 
 struct TrellisOptions {
-  float eps = 0;                    // > 0: explicit; 0: mu - 2 sigma of sampled pairs
+  float eps = 0;                    // > 0: explicit; 0: from eps_rule
+  EpsilonRule eps_rule = EpsilonRule::kJointAngle;  // epsilon_estimator.h
+  double eps_joint_angle_degrees = kDefaultJointAngleDegrees;
   uint64_t eps_sample_pairs = 200000;
   uint32_t k_max = 256;
   // Trivial-match exclusion radius in frames; 0: half the minimum motif length (min_length_s).
@@ -75,6 +78,8 @@ struct TrellisReport {
   bool reused = false;              // an existing finished trellis had the same parameters
   uint64_t resumed_from_column = 0; // > 0 when an interrupted build was continued
   TrellisParams params;             // eps, mu, sigma, k_max, exclusion, ...
+  std::string eps_how;              // how eps was chosen, one line (EpsilonEstimate::how)
+  double paper_eps = 0;             // mu - 2 sigma of the sample, whatever the rule
   TrellisSearchMode search = TrellisSearchMode::kLsh;  // the search used: kLsh or kExact
   // With LSH: the options as used, hashes_per_table and bucket_width resolved from the data
   // (LshSearch::options()); also when the trellis is reused. Passing them explicitly builds the

@@ -24,8 +24,10 @@ NeighbourRules Rules(const PoseFeatures& features, uint32_t exclusion_frames = 3
   return rules;
 }
 
+// The paper's rule: most tests here are about the sample and mu - 2 sigma.
 EpsilonOptions Options(uint64_t pairs, uint64_t seed = 1, uint32_t threads = 0) {
   EpsilonOptions options;
+  options.rule = EpsilonRule::kPaper;
   options.sample_pairs = pairs;
   options.seed = seed;
   options.threads = threads;
@@ -90,6 +92,58 @@ TEST(EpsilonEstimator, EstimateIsMuMinusTwoSigmaOfTheSampledDistances) {
   EXPECT_TRUE(estimate->note.empty()) << estimate->note;
 }
 
+TEST(EpsilonEstimator, JointAngleRuleIsTheDistanceOfPosesTurnedByThetaAtEveryWeightedJoint) {
+  // Two unit quaternions theta apart are 2 sin(theta / 4) apart: 10 degrees on 12 joints of
+  // weight 1 is 24 sin(2.5 degrees) = 1.046865.
+  EXPECT_NEAR(JointAngleEpsilon(std::vector<float>(12, 1.0f), 10.0), 1.046865, 1e-6);
+  EXPECT_NEAR(JointAngleEpsilon({1.0f, 0.5f}, 180.0), 1.5 * std::sqrt(2.0), 1e-9);
+  // The rule's eps is exactly the distance of a frame and its copy with every joint turned by
+  // theta about some axis (a synthetic two-frame check through PoseDistance).
+  const uint32_t joint_count = 3;
+  const FrameLayout layout{joint_count};
+  std::vector<float> rows(2 * layout.stride(), 0.0f);
+  const double half = 10.0 * M_PI / 180.0 / 2.0;
+  for (uint32_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
+    float* first = &rows[layout.quaternion_offset(joint_idx)];
+    float* second = &rows[layout.stride() + layout.quaternion_offset(joint_idx)];
+    first[0] = 1.0f;
+    second[0] = static_cast<float>(std::cos(half));
+    second[1 + joint_idx] = static_cast<float>(std::sin(half));  // about x, y, z in turn
+  }
+  const std::vector<float> weights = {1.0f, 2.0f, 0.5f};
+  const PoseFeatures two = PoseFeatures::FromRows(rows.data(), 2, joint_count, weights, {0});
+  EXPECT_NEAR(PoseDistance(two, 0, 1), JointAngleEpsilon(weights, 10.0), 2e-3);
+}
+
+TEST(EpsilonEstimator, JointAngleRuleIsTheDefaultAndReportsThePaperRuleBeside) {
+  const PoseFeatures& features = SharedFeatures();
+  EpsilonOptions options;
+  options.sample_pairs = 20000;
+  Result<EpsilonEstimate> estimate =
+      EpsilonEstimator(features, Rules(features), options).Estimate();
+  ASSERT_TRUE(estimate.ok()) << estimate.status().ToString();
+  EXPECT_EQ(estimate->rule, EpsilonRule::kJointAngle);
+  EXPECT_FLOAT_EQ(estimate->eps, static_cast<float>(JointAngleEpsilon(
+                                     features.weights(), kDefaultJointAngleDegrees)));
+  EXPECT_NEAR(estimate->paper_eps, estimate->mu - 2 * estimate->sigma, 1e-12);
+  EXPECT_NE(estimate->how.find("joint-angle rule"), std::string::npos) << estimate->how;
+  EXPECT_TRUE(estimate->note.empty()) << estimate->note;
+  options.joint_angle_degrees = 20.0;
+  EXPECT_FLOAT_EQ(EpsilonEstimator(features, Rules(features), options).Estimate()->eps,
+                  static_cast<float>(JointAngleEpsilon(features.weights(), 20.0)));
+  for (double bad : {0.0, -5.0, 181.0, std::nan("")}) {
+    options.joint_angle_degrees = bad;
+    EXPECT_TRUE(EpsilonEstimator(features, Rules(features), options)
+                    .Estimate()
+                    .status()
+                    .IsInvalidArgument())
+        << bad;
+  }
+  EXPECT_EQ(ParseEpsilonRule("paper").value(), EpsilonRule::kPaper);
+  EXPECT_EQ(ParseEpsilonRule("joint-angle").value(), EpsilonRule::kJointAngle);
+  EXPECT_TRUE(ParseEpsilonRule("mu").status().IsInvalidArgument());
+}
+
 TEST(EpsilonEstimator, EstimateIsTheSameForAnyThreadCount) {
   const PoseFeatures& features = SharedFeatures();
   const EpsilonEstimate one =
@@ -112,7 +166,7 @@ TEST(EpsilonEstimator, ExplicitEpsilonOverridesTheEstimate) {
   EXPECT_EQ(estimate->eps, 0.75f);
   EXPECT_TRUE(estimate->explicit_eps);
   EXPECT_GT(estimate->mu, 0.0);  // the statistics are still reported
-  EXPECT_NE(estimate->note.find("explicitly"), std::string::npos) << estimate->note;
+  EXPECT_NE(estimate->how.find("given"), std::string::npos) << estimate->how;
   // No sample needed when eps is given; without one, an empty sample is an error.
   options.sample_pairs = 0;
   estimate = EpsilonEstimator(features, Rules(features), options).Estimate();
