@@ -146,6 +146,8 @@ int RunCluster(const std::vector<std::string>& args) {
     started = true;
     progress.Update(done);
   };
+  options.instances.min_length = paths->params.min_length;
+  options.archive = frames->get();
   Result<ClusterResult> result = ClusterMotifs(paths->candidates, **trellis, options);
   if (started) progress.EndStage();
   if (!result.ok()) return ReportError("cluster", result.status());

@@ -11,11 +11,15 @@
 namespace motif {
 namespace {
 
+constexpr int kClusterRulesVersion = 2;
+
 // What determines a clustering: the paths (through the trellis identity, itself tied to its
 // archive, and the grow parameters) and every option that changes the result.
 std::string ClusterKey(const ClusterStageInput& input, const ClusterOptions& options) {
   std::ostringstream key;
-  key << "trellis=" << input.paths_params.trellis_identity
+  // rules: the version of the clustering's own rules (periodic paths, merging, near-copies,
+  // ranking), so that a result of older rules is not reused.
+  key << "rules=" << kClusterRulesVersion << " trellis=" << input.paths_params.trellis_identity
       << " branch=" << input.paths_params.branch
       << " min_length=" << input.paths_params.min_length
       << " all_branches=" << input.paths_params.all_branches
@@ -62,8 +66,11 @@ Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
                          TrellisFileReader::Open(input.trellis_path));
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathsFileReader> paths,
                          PathsFileReader::Open(input.paths_path));
+  ClusterOptions with_length = options;
+  with_length.instances.min_length = input.paths_params.min_length;
+  with_length.archive = input.archive;
   MOTIF_ASSIGN_OR_RETURN(ClusterResult clustered,
-                         ClusterMotifs(paths->candidates(), *trellis, options));
+                         ClusterMotifs(paths->candidates(), *trellis, with_length));
   MotifsJsonParams params;
   params.eps = trellis->params().eps;
   params.kmax = trellis->params().k_max;

@@ -66,9 +66,25 @@ std::vector<PathCandidate> KeepLongestPathPerRoot(std::vector<PathCandidate> can
 }
 
 bool OverlapsEnough(const MotifInstance& a, const MotifInstance& b, double fraction) {
-  const uint64_t shorter = std::min(a.length(), b.length());
-  if (shorter == 0) return false;
-  return static_cast<double>(OverlapFrames(a, b)) >= fraction * static_cast<double>(shorter);
+  const uint64_t longer = std::max(a.length(), b.length());
+  if (std::min(a.length(), b.length()) == 0) return false;
+  return static_cast<double>(OverlapFrames(a, b)) >= fraction * static_cast<double>(longer);
+}
+
+std::vector<MotifInstance> PeriodicPieces(const PathCandidate& path, uint64_t min_length) {
+  const MotifInstance top{path.top_start, path.top_end};
+  const MotifInstance match{path.match_start, path.match_end};
+  if (OverlapFrames(top, match) == 0) return {};
+  const uint64_t period = path.match_start > path.top_start ? path.match_start - path.top_start
+                                                            : path.top_start - path.match_start;
+  if (period == 0) return {};
+  const uint64_t periods = std::max<uint64_t>(1, (min_length + period - 1) / period);
+  const uint64_t piece = periods * period;
+  const uint64_t start = std::min(top.start, match.start);
+  const uint64_t end = std::max(top.end, match.end);
+  std::vector<MotifInstance> pieces;
+  for (uint64_t from = start; from + piece <= end; from += piece) pieces.push_back({from, from + piece});
+  return pieces;
 }
 
 InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
@@ -85,11 +101,22 @@ InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
   paths = KeepLongestPathPerRoot(std::move(paths));
   set.stats.kept_paths = paths.size();
 
-  // Raw instance 2k is path k's top-row segment, 2k + 1 its matched segment.
-  std::vector<MotifInstance> raw(2 * paths.size());
-  for (size_t path_idx = 0; path_idx < paths.size(); ++path_idx) {
-    raw[2 * path_idx] = {paths[path_idx].top_start, paths[path_idx].top_end};
-    raw[2 * path_idx + 1] = {paths[path_idx].match_start, paths[path_idx].match_end};
+  // Each path's raw instances and the links between them (indices into raw).
+  std::vector<MotifInstance> raw;
+  std::vector<std::pair<size_t, size_t>> raw_links;
+  for (const PathCandidate& path : paths) {
+    std::vector<MotifInstance> pieces = PeriodicPieces(path, options.min_length);
+    if (pieces.empty()) {
+      raw_links.emplace_back(raw.size(), raw.size() + 1);
+      raw.push_back({path.top_start, path.top_end});
+      raw.push_back({path.match_start, path.match_end});
+      continue;
+    }
+    ++set.stats.periodic_paths;
+    for (size_t piece_idx = 0; piece_idx < pieces.size(); ++piece_idx) {
+      if (piece_idx > 0) raw_links.emplace_back(raw.size() - 1, raw.size());
+      raw.push_back(pieces[piece_idx]);
+    }
   }
   set.stats.raw_instances = raw.size();
 
@@ -145,14 +172,14 @@ InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
                                });
     return static_cast<uint32_t>(it - set.instances.begin());
   };
-  for (size_t path_idx = 0; path_idx < paths.size(); ++path_idx) {
-    const uint32_t top = id_of(2 * path_idx);
-    const uint32_t match = id_of(2 * path_idx + 1);
-    if (top == match) {
+  for (const auto& [from, to] : raw_links) {
+    const uint32_t a = id_of(from);
+    const uint32_t b = id_of(to);
+    if (a == b) {
       ++set.stats.self_links;
       continue;
     }
-    set.links.push_back({std::min(top, match), std::max(top, match)});
+    set.links.push_back({std::min(a, b), std::max(a, b)});
   }
   std::sort(set.links.begin(), set.links.end());
   set.links.erase(std::unique(set.links.begin(), set.links.end()), set.links.end());

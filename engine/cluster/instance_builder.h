@@ -4,15 +4,21 @@
 //  1. Keep the longest path per root. Candidates of one tree (same root node) are branches of
 //     one match: only the longest (top-row length, then matched length, then earliest) stays.
 //  2. Each kept path gives two instances, its top-row segment and its matched segment, linked.
-//  3. Instances that overlap by at least 3/4 of the shorter one are merged: a union-find over an
-//     interval sweep (instances by start; each is compared only with the earlier instances that
-//     still reach it), so the cost is O(n log n + n·d), d the overlap depth, never all pairs.
-//     A merged instance is the union of its members' ranges. Members overlap pairwise along a
-//     chain, so the union is one contiguous range inside one clip. The union (rather than, say,
-//     the longest member or the intersection) keeps every frame some path found, so no evidence
-//     is lost, at the price that a chain of merges can make an instance longer than any member.
+//     A path whose two segments overlap is a periodic motion matching itself one period d later
+//     (d = |match_start - top_start|): its span is cut into consecutive pieces of whole periods,
+//     each at least min_length frames (one period, or the fewest that reach min_length), and
+//     each piece is linked to the next. So a walk gives one instance per gait cycle rather than
+//     one per take, and ten jumps in a row ten instances.
+//  3. Instances that overlap by at least 3/4 of the LONGER one (so each covers 3/4 of the
+//     other) are merged: a union-find over an interval sweep (instances by start; each is
+//     compared only with the earlier instances that still reach it), so the cost is
+//     O(n log n + n·d), d the overlap depth, never all pairs. A merged instance is the union of
+//     its members' ranges; members overlap pairwise along a chain, so the union is one
+//     contiguous range inside one clip. The paper merges at 3/4 of the SHORTER: on repeated
+//     movement that joins a one-repetition instance to a several-repetition one that contains
+//     it, and the chain of such merges grows into whole takes (docs/design/motif_quality.md).
 //  4. Links are carried to the merged instances; a path whose two segments merged into one
-//     instance (a periodic motion matching itself at a shift) leaves no link and is counted.
+//     instance leaves no link and is counted.
 // Thread-safety: pure functions.
 #pragma once
 
@@ -25,7 +31,8 @@
 namespace motif {
 
 struct InstanceOptions {
-  double merge_overlap = 0.75;  // merge when the overlap is at least this fraction of the shorter
+  double merge_overlap = 0.75;  // merge when the overlap is at least this fraction of the longer
+  uint64_t min_length = 0;      // the least piece of a periodic path, frames (the grower's lambda)
 };
 
 struct InstanceSetStats {
@@ -35,6 +42,7 @@ struct InstanceSetStats {
   uint64_t instances = 0;       // after merging
   uint64_t links = 0;           // distinct links between merged instances
   uint64_t self_links = 0;      // kept paths whose two segments merged into one instance
+  uint64_t periodic_paths = 0;  // kept paths cut into periods (their segments overlapped)
 };
 
 struct InstanceSet {
@@ -46,8 +54,12 @@ struct InstanceSet {
 // The longest candidate of each root (root_column, root_frame), sorted by root.
 std::vector<PathCandidate> KeepLongestPathPerRoot(std::vector<PathCandidate> candidates);
 
-// True if a and b share at least `fraction` of the shorter one's frames.
+// True if a and b share at least `fraction` of the longer one's frames.
 bool OverlapsEnough(const MotifInstance& a, const MotifInstance& b, double fraction);
+
+// The pieces of a periodic path (its segments overlap; step 2 above), in order; empty when its
+// segments do not overlap.
+std::vector<MotifInstance> PeriodicPieces(const PathCandidate& path, uint64_t min_length);
 
 // Steps 1 to 4 above. Candidates with an empty segment are skipped (the grower never makes them).
 InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,

@@ -1,10 +1,13 @@
 #include "engine/cluster/motif_clusterer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <functional>
 
 #include "common/seconds_since.h"
+#include "engine/cluster/held_pose.h"
+#include "engine/cluster/instance_interval_index.h"
 
 namespace motif {
 
@@ -101,6 +104,64 @@ void SplitByLength(const std::vector<uint32_t>& group, const std::vector<MotifIn
   }
 }
 
+// Two instances of one motif may share at most this fraction of the shorter one's frames.
+constexpr double kNearCopyOverlap = 0.25;
+
+// The class without near-copies: instances are taken from the one closest to the class's
+// typical length (ties: the earlier), and one that overlaps an instance already taken by more
+// than kNearCopyOverlap of the shorter is left out. Ascending ids.
+std::vector<uint32_t> WithoutNearCopies(const std::vector<uint32_t>& ids,
+                                        const std::vector<MotifInstance>& instances) {
+  if (ids.size() < 2) return ids;
+  const double typical = static_cast<double>(TypicalLength(ids, instances));
+  std::vector<uint32_t> order = ids;
+  auto distance = [&](uint32_t id) {
+    return std::abs(static_cast<double>(instances[id].length()) - typical);
+  };
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    if (distance(a) != distance(b)) return distance(a) < distance(b);
+    return a < b;
+  });
+  std::vector<uint32_t> kept;
+  for (uint32_t id : order) {
+    const MotifInstance& candidate = instances[id];
+    const bool near_copy = std::any_of(kept.begin(), kept.end(), [&](uint32_t other) {
+      const uint64_t shorter = std::min(candidate.length(), instances[other].length());
+      return static_cast<double>(OverlapFrames(candidate, instances[other])) >
+             kNearCopyOverlap * static_cast<double>(shorter);
+    });
+    if (!near_copy) kept.push_back(id);
+  }
+  std::sort(kept.begin(), kept.end());
+  return kept;
+}
+
+// Motifs in rank order without those that are parts of a better-ranked motif: every instance
+// of theirs lies, for at least 3/4 of its frames, inside one instance of a motif kept before it
+// (the first steps of a routine found as a motif of their own besides the whole routine).
+std::vector<Motif> WithoutPartsOfBetterMotifs(std::vector<Motif> ranked,
+                                              const std::vector<MotifInstance>& instances) {
+  const InstanceIntervalIndex index(instances);
+  std::vector<bool> in_kept_motif(instances.size(), false);
+  std::vector<Motif> kept;
+  for (Motif& motif : ranked) {
+    const bool part = std::all_of(motif.instances.begin(), motif.instances.end(), [&](uint32_t id) {
+      const MotifInstance& instance = instances[id];
+      for (uint32_t other : index.Containing(instance.start + instance.length() / 2)) {
+        if (in_kept_motif[other] &&
+            4 * OverlapFrames(instance, instances[other]) >= 3 * instance.length()) {
+          return true;
+        }
+      }
+      return false;
+    });
+    if (part) continue;
+    for (uint32_t id : motif.instances) in_kept_motif[id] = true;
+    kept.push_back(std::move(motif));
+  }
+  return kept;
+}
+
 }  // namespace
 
 std::vector<Motif> RankMotifs(const std::vector<std::vector<uint32_t>>& groups,
@@ -122,17 +183,17 @@ std::vector<Motif> RankMotifs(const std::vector<std::vector<uint32_t>>& groups,
   if (length_outliers != nullptr) *length_outliers = dropped;
   std::vector<Motif> motifs;
   for (std::vector<uint32_t>& instance_ids : classes) {
-    if (instance_ids.size() < 2) continue;
     Motif motif;
-    motif.instances = std::move(instance_ids);
+    motif.instances = WithoutNearCopies(instance_ids, instances);
+    if (motif.instances.size() < 2) continue;
     for (uint32_t id : motif.instances) motif.total_frames += instances[id].length();
     motifs.push_back(std::move(motif));
   }
   std::sort(motifs.begin(), motifs.end(), [&](const Motif& a, const Motif& b) {
-    if (a.total_frames != b.total_frames) return a.total_frames > b.total_frames;
+    if (a.score() != b.score()) return a.score() > b.score();
     return a.instances.front() < b.instances.front();
   });
-  return motifs;
+  return WithoutPartsOfBetterMotifs(std::move(motifs), instances);
 }
 
 Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates,
@@ -169,9 +230,17 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
   NormalizedCutOptions cut = options.cut;
   cut.threads = options.threads;
   cut.spectral.seed = options.seed;
-  const std::vector<std::vector<uint32_t>> groups =
+  std::vector<std::vector<uint32_t>> groups =
       ClusterByNormalizedCut(graph, cut, &result.report.cut_stats);
   result.report.cut_seconds = SecondsSince(started);
+  if (options.archive != nullptr) {
+    MOTIF_ASSIGN_OR_RETURN(const std::vector<bool> held,
+                           FindHeldPoses(*options.archive, set.instances, trellis.params().eps));
+    for (std::vector<uint32_t>& group : groups) {
+      std::erase_if(group, [&](uint32_t id) { return held[id]; });
+    }
+    result.report.held_poses = std::count(held.begin(), held.end(), true);
+  }
 
   result.motifs = RankMotifs(groups, set.instances, set.links, options.max_length_ratio,
                              &result.report.length_outliers);

@@ -3,8 +3,9 @@
 //   candidates -> instances (instance_builder.h: longest path per root, 3/4-overlap merge, links)
 //   -> similarity graph (instance_similarity.h: shared similar frames read back from the trellis,
 //      plus the links) -> groups (normalized_cut.h) -> motifs, most important first.
-// A motif's importance is its number of instances times their mean length (= the frames it
-// covers); ties go to the motif that starts first. Its instances are listed by position.
+// A motif's importance is Motif::score(), (instances - 1) × mean length; ties go to the motif that
+// starts first. Two instances of one motif never share more than a quarter of the shorter: of
+// such near-copies the one closer to the motif's typical length stays. Its instances are listed by position.
 // Instances of one motif differ in duration by a time warp, so each normalized-cut group is split
 // by length first: the instances within max_length_ratio of the group's typical length (the
 // length-weighted median) stay; the others are split off. A split-off instance path-linked to
@@ -26,6 +27,7 @@
 #include "engine/cluster/motif_instance.h"
 #include "engine/cluster/normalized_cut.h"
 #include "engine/grow/path_candidate.h"
+#include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {
@@ -42,13 +44,25 @@ struct ClusterOptions {
   double max_length_ratio = 3.0;
   uint64_t seed = 1;
   int threads = 0;                // 0: all cores
+  // The archive the trellis was built from: when set, instances that are held poses
+  // (held_pose.h, at the trellis's eps) are kept out of the motifs.
+  const FrameFileReader* archive = nullptr;
   // (stage, done, total): stage "similarity" counts instance columns read.
   std::function<void(const std::string&, uint64_t, uint64_t)> progress;
 };
 
 struct Motif {
   std::vector<uint32_t> instances;  // ids into ClusterResult::instances, ascending (= by start)
-  uint64_t total_frames = 0;        // the score: instance count × mean length
+  uint64_t total_frames = 0;        // instance count × mean length
+  // The ranking: (instance count - 1) × mean length, the frames the motif explains beyond its
+  // first instance. A movement repeated often and at length comes first; among the scales of
+  // one repeated movement (one repetition a instance, or two, ...) the finest.
+  double score() const {
+    return instances.empty() ? 0.0
+                             : static_cast<double>(total_frames) *
+                                   static_cast<double>(instances.size() - 1) /
+                                   static_cast<double>(instances.size());
+  }
   double mean_length() const {
     return instances.empty() ? 0.0
                              : static_cast<double>(total_frames) /
@@ -62,6 +76,7 @@ struct ClusterReport {
   NormalizedCutStats cut_stats;
   uint64_t clustered_instances = 0;  // in a kept motif
   uint64_t length_outliers = 0;      // fragments dropped by the split by length
+  uint64_t held_poses = 0;           // instances kept out as held poses
   uint64_t covered_frames = 0;       // distinct frames inside some motif instance
   double instance_seconds = 0;
   double cut_seconds = 0;

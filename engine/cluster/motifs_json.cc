@@ -146,7 +146,7 @@ std::string MotifsJsonText(const MotifsDocument& document) {
     head["instance_count"] = motif.instances.size();
     head["mean_length"] = static_cast<double>(frames) / count;
     head["mean_seconds"] = seconds / count;
-    head["score"] = frames;
+    head["score"] = static_cast<double>(frames) * (count - 1) / count;  // RankMotifs' order
     std::string head_text = Dump(head);
     head_text.pop_back();  // reopen the object to append the instances array
     text += (idx == 0 ? "\n    " : ",\n    ") + head_text + ", \"instances\": [";

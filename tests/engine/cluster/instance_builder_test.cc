@@ -31,10 +31,12 @@ TEST(KeepLongestPathPerRootTest, KeepsOnlyTheLongestBranchOfEachTree) {
   EXPECT_EQ(KeepLongestPathPerRoot(candidates)[0].match_start, 500u);  // earliest wins the tie
 }
 
-TEST(OverlapsEnoughTest, ThreeQuartersOfTheShorterIsTheBoundary) {
+TEST(OverlapsEnoughTest, ThreeQuartersOfTheLongerIsTheBoundary) {
   EXPECT_TRUE(OverlapsEnough({0, 100}, {25, 125}, 0.75));   // 75 of 100
   EXPECT_FALSE(OverlapsEnough({0, 100}, {26, 126}, 0.75));  // 74 of 100
-  EXPECT_TRUE(OverlapsEnough({0, 400}, {300, 380}, 0.75));  // the shorter lies inside
+  EXPECT_FALSE(OverlapsEnough({0, 400}, {300, 380}, 0.75)); // inside, but 80 of 400
+  EXPECT_TRUE(OverlapsEnough({0, 100}, {0, 133}, 0.75));    // 100 of 133
+  EXPECT_FALSE(OverlapsEnough({0, 100}, {0, 134}, 0.75));   // 100 of 134
   EXPECT_FALSE(OverlapsEnough({0, 100}, {100, 200}, 0.75)); // touching, no shared frame
 }
 
@@ -80,13 +82,21 @@ TEST(BuildInstancesTest, ChainedMergesTakeTheUnion) {
   EXPECT_EQ(set.links, (std::vector<InstanceLink>{{0, 1}}));  // three paths, one distinct link
 }
 
-TEST(BuildInstancesTest, APathMatchingItselfLeavesNoLink) {
-  // A periodic motion: the matched segment is the top segment shifted by 10 frames.
-  InstanceSet set = BuildInstances({Path(0, 100, 10, 110, 0, 10)});
-  ASSERT_EQ(set.instances.size(), 1u);
-  EXPECT_EQ(set.instances[0], (MotifInstance{0, 110}));
-  EXPECT_TRUE(set.links.empty());
-  EXPECT_EQ(set.stats.self_links, 1u);
+TEST(BuildInstancesTest, APeriodicPathIsCutIntoLinkedPeriods) {
+  // A periodic motion: the matched segment is the top segment shifted by one period, 100 frames.
+  // The span [0, 450) holds four whole periods; the partial fifth is left out.
+  const PathCandidate path = Path(0, 350, 100, 450, 0, 100);
+  EXPECT_EQ(PeriodicPieces(path, 0),
+            (std::vector<MotifInstance>{{0, 100}, {100, 200}, {200, 300}, {300, 400}}));
+  // With a least length of 150 frames a piece is two periods.
+  EXPECT_EQ(PeriodicPieces(path, 150), (std::vector<MotifInstance>{{0, 200}, {200, 400}}));
+  EXPECT_TRUE(PeriodicPieces(Path(0, 100, 100, 200, 0, 100), 0).empty());  // touching: no overlap
+  InstanceSet set = BuildInstances({path});
+  EXPECT_EQ(set.instances,
+            (std::vector<MotifInstance>{{0, 100}, {100, 200}, {200, 300}, {300, 400}}));
+  EXPECT_EQ(set.links, (std::vector<InstanceLink>{{0, 1}, {1, 2}, {2, 3}}));
+  EXPECT_EQ(set.stats.periodic_paths, 1u);
+  EXPECT_EQ(set.stats.self_links, 0u);
 }
 
 TEST(BuildInstancesTest, DeduplicatesRootsBeforeMerging) {
@@ -114,6 +124,11 @@ TEST(BuildInstancesTest, SweepMatchesAllPairsOnRandomPaths) {
     std::vector<PathCandidate> kept = KeepLongestPathPerRoot(candidates);
     std::vector<MotifInstance> raw;
     for (const PathCandidate& path : kept) {
+      const std::vector<MotifInstance> pieces = PeriodicPieces(path, 0);
+      if (!pieces.empty()) {
+        raw.insert(raw.end(), pieces.begin(), pieces.end());
+        continue;
+      }
       raw.push_back({path.top_start, path.top_end});
       raw.push_back({path.match_start, path.match_end});
     }

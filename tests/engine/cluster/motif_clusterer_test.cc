@@ -34,6 +34,44 @@ TEST(RankMotifsTest, MostFramesFirstAndSingletonsDropped) {
   EXPECT_EQ(motifs[1].instances, (std::vector<uint32_t>{0, 1}));
 }
 
+TEST(RankMotifsTest, RanksByTheFramesExplainedBeyondTheFirstInstance) {
+  // Five 100-frame repetitions ((5 - 1) x 100 = 400) come before two 300-frame ones (300),
+  // which come before two 240-frame ones (240), though the five cover 500 frames and the two
+  // pairs 600 and 480.
+  const std::vector<MotifInstance> instances = {
+      {0, 100},     {200, 300},   {400, 500},   {600, 700},   {800, 900},
+      {1000, 1240}, {1300, 1540}, {2000, 2300}, {2500, 2800}};
+  std::vector<Motif> motifs = RankMotifs({{5, 6}, {7, 8}, {0, 1, 2, 3, 4}}, instances);
+  ASSERT_EQ(motifs.size(), 3u);
+  EXPECT_EQ(motifs[0].instances.size(), 5u);
+  EXPECT_DOUBLE_EQ(motifs[0].score(), 400.0);
+  EXPECT_EQ(motifs[1].instances, (std::vector<uint32_t>{7, 8}));
+  EXPECT_EQ(motifs[2].instances, (std::vector<uint32_t>{5, 6}));
+}
+
+TEST(RankMotifsTest, NoTwoInstancesOfAMotifOverlapByMoreThanAQuarter) {
+  // [0, 100) and [30, 130) share 70 frames: near-copies; [90, 190) shares 10 with [0, 100).
+  // Of the near-copies the one closer to the typical length (100) stays: [0, 100) (ties go to
+  // the earlier) and the 100-frame [30, 130) is left out.
+  const std::vector<MotifInstance> instances = {{0, 100}, {30, 130}, {90, 190}, {500, 600}};
+  std::vector<Motif> motifs = RankMotifs({{0, 1, 2, 3}}, instances);
+  ASSERT_EQ(motifs.size(), 1u);
+  EXPECT_EQ(motifs[0].instances, (std::vector<uint32_t>{0, 2, 3}));
+}
+
+TEST(RankMotifsTest, AMotifWhoseInstancesLieInsideABetterMotifsIsDropped) {
+  // Motif A: three 300-frame instances. Motif B: the first 80 frames of each of A's instances.
+  // Motif C: two 80-frame instances, one inside A, one elsewhere: it stays.
+  const std::vector<MotifInstance> instances = {
+      {0, 300}, {1000, 1300}, {2000, 2300},  // A
+      {0, 80},  {1000, 1080}, {2010, 2090},  // B
+      {100, 180}, {5000, 5080}};             // C
+  std::vector<Motif> motifs = RankMotifs({{0, 1, 2}, {3, 4, 5}, {6, 7}}, instances);
+  ASSERT_EQ(motifs.size(), 2u);
+  EXPECT_EQ(motifs[0].instances, (std::vector<uint32_t>{0, 1, 2}));
+  EXPECT_EQ(motifs[1].instances, (std::vector<uint32_t>{6, 7}));
+}
+
 // One group as the cut might leave it: four instances of a 400-frame motif (0-3), two 70-frame
 // fragments linked only to them (4, 5), three 120-frame instances of a short motif linked to
 // each other (6-8), and two 60-frame stretches linked only to each other (9, 10).

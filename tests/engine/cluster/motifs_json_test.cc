@@ -79,7 +79,7 @@ TEST(MotifsJsonTest, ExactFieldNamesOfTheContract) {
   EXPECT_EQ(motif["instance_count"], 2);
   EXPECT_DOUBLE_EQ(motif["mean_length"].get<double>(), 120.0);
   EXPECT_DOUBLE_EQ(motif["mean_seconds"].get<double>(), 1.0);
-  EXPECT_EQ(motif["score"], 240);
+  EXPECT_DOUBLE_EQ(motif["score"].get<double>(), 120.0);  // (instances - 1) x mean length
   const nlohmann::json& instance = motif["instances"][1];
   EXPECT_EQ(instance["clip"], "07_02");
   EXPECT_EQ(instance["start"], 50);
