@@ -37,7 +37,9 @@ nlohmann::json ScoreJson(const TruthScore& score) {
                          {"precision", score.precision},
                          {"top1", MatchJson(score.top1)}};
   json["per_motif"] = nlohmann::json::array();
-  for (const MotifMovementMatch& match : score.per_motif) json["per_motif"].push_back(MatchJson(match));
+  for (const MotifMovementMatch& match : score.per_motif) {
+    json["per_motif"].push_back(MatchJson(match));
+  }
   json["per_movement"] = nlohmann::json::array();
   for (const MotifMovementMatch& match : score.per_movement) {
     json["per_movement"].push_back(MatchJson(match));
@@ -53,8 +55,8 @@ void PrintScore(const TruthScore& score, const std::string& motifs_path,
                 const std::string& truth_path, uint32_t motifs_shown) {
   std::printf("motifmine score: %s against %s (a hit: same clip, IoU >= %.1f)\n",
               motifs_path.c_str(), truth_path.c_str(), kTruthHitIoU);
-  std::printf("  truth        %s occurrences of %s movements", WithCommas(score.occurrences).c_str(),
-              WithCommas(score.movements).c_str());
+  std::printf("  truth        %s occurrences of %s movements",
+              WithCommas(score.occurrences).c_str(), WithCommas(score.movements).c_str());
   if (score.occurrences_elsewhere > 0) {
     std::printf(" (%s more in clips not mined, left out)",
                 WithCommas(score.occurrences_elsewhere).c_str());

@@ -83,7 +83,9 @@ std::vector<MotifInstance> PeriodicPieces(const PathCandidate& path, uint64_t mi
   const uint64_t start = std::min(top.start, match.start);
   const uint64_t end = std::max(top.end, match.end);
   std::vector<MotifInstance> pieces;
-  for (uint64_t from = start; from + piece <= end; from += piece) pieces.push_back({from, from + piece});
+  for (uint64_t from = start; from + piece <= end; from += piece) {
+    pieces.push_back({from, from + piece});
+  }
   return pieces;
 }
 

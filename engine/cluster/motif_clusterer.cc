@@ -1,8 +1,8 @@
 #include "engine/cluster/motif_clusterer.h"
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <functional>
 
 #include "common/seconds_since.h"

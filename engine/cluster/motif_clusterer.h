@@ -5,7 +5,8 @@
 //      plus the links) -> groups (normalized_cut.h) -> motifs, most important first.
 // A motif's importance is Motif::score(), (instances - 1) × mean length; ties go to the motif that
 // starts first. Two instances of one motif never share more than a quarter of the shorter: of
-// such near-copies the one closer to the motif's typical length stays. Its instances are listed by position.
+// such near-copies the one closer to the motif's typical length stays. A motif lying inside a
+// better-ranked one is not listed. Its instances are listed by position.
 // Instances of one motif differ in duration by a time warp, so each normalized-cut group is split
 // by length first: the instances within max_length_ratio of the group's typical length (the
 // length-weighted median) stay; the others are split off. A split-off instance path-linked to

@@ -18,7 +18,8 @@ std::vector<std::string> SplitTabs(const std::string& line) {
   size_t begin = 0;
   while (true) {
     const size_t tab = line.find('\t', begin);
-    fields.push_back(line.substr(begin, tab == std::string::npos ? std::string::npos : tab - begin));
+    fields.push_back(
+        line.substr(begin, tab == std::string::npos ? std::string::npos : tab - begin));
     if (tab == std::string::npos) return fields;
     begin = tab + 1;
   }
@@ -61,7 +62,8 @@ Result<std::vector<TruthOccurrence>> ParseTruthTsv(const std::string& text,
     const std::vector<std::string> fields = SplitTabs(line);
     if (!header_seen) {
       if (fields != std::vector<std::string>{"clip", "movement", "start", "end"}) {
-        return Status::InvalidArgument(where + "expected the header 'clip<TAB>movement<TAB>start<TAB>end'");
+        return Status::InvalidArgument(where +
+                                       "expected the header 'clip<TAB>movement<TAB>start<TAB>end'");
       }
       header_seen = true;
       continue;

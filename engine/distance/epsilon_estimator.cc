@@ -115,8 +115,9 @@ Result<EpsilonEstimate> EpsilonEstimator::Estimate() const {
                                    std::to_string(*options_.explicit_eps));
   }
   if (!(options_.joint_angle_degrees > 0 && options_.joint_angle_degrees <= 180)) {
-    return Status::InvalidArgument("the joint angle of the eps rule must be in (0, 180] degrees, not " +
-                                   std::to_string(options_.joint_angle_degrees));
+    return Status::InvalidArgument(
+        "the joint angle of the eps rule must be in (0, 180] degrees, not " +
+        std::to_string(options_.joint_angle_degrees));
   }
   // Only the paper's rule needs the sample; the others report its statistics when there is one
   // (a take shorter than the exclusion radius has no pair to sample).

@@ -37,8 +37,8 @@ TEST(MineQuality, TheTopMotifOfASingleTakeIsItsRepeatedCycle) {
     ASSERT_EQ(mined.exit_code, 0) << mined.output;
     EXPECT_NE(mined.output.find("joint-angle rule: 16 degrees"), std::string::npos)
         << mined.output;
-    const nlohmann::json score = ScoreJson(out + "/motifs.json", std::string(MOTIF_REPETITIONS_DIR) +
-                                                                  "/" + clip + ".tsv");
+    const std::string truth = std::string(MOTIF_REPETITIONS_DIR) + "/" + clip + ".tsv";
+    const nlohmann::json score = ScoreJson(out + "/motifs.json", truth);
     ASSERT_TRUE(score.is_object()) << clip;
     EXPECT_DOUBLE_EQ(score["top1"]["precision"].get<double>(), 1.0) << clip << score.dump();
     EXPECT_DOUBLE_EQ(score["top1"]["recall"].get<double>(), 1.0) << clip << score.dump();
