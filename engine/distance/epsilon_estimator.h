@@ -47,7 +47,7 @@ enum class EpsilonRule {
 
 // The default tolerated rotation per weighted joint, theta, in degrees (chosen on the labelled
 // repetitions: docs/design/motif_quality.md).
-inline constexpr double kDefaultJointAngleDegrees = 16.0;
+inline constexpr double kDefaultJointAngleDegrees = 12.0;
 
 // "joint-angle" / "paper"; InvalidArgument naming the text otherwise.
 Result<EpsilonRule> ParseEpsilonRule(const std::string& text);

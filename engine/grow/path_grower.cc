@@ -148,6 +148,11 @@ class PathGrower::Impl {
       cells[nodes[slot].frame] |= static_cast<uint32_t>(slot + 1);
     }
     const uint64_t branch = options.branch;
+    // The oldest paths claim first (root column ascending, then frame): a long match keeps its
+    // continuation instead of losing it to a tree that started a few frames above it.
+    std::sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) {
+      return a.root_column != b.root_column ? a.root_column < b.root_column : a.frame < b.frame;
+    });
     for (const Leaf& leaf : leaves) {
       const uint64_t first = leaf.frame;
       const uint64_t end = std::min<uint64_t>(first + branch, frame_count);

@@ -5,9 +5,10 @@
 //
 // One step, column t -> t+1 (the paper's Figure 2):
 //   1. mark column t+1's nodes in the array (cell j' = the node's slot in column t+1);
-//   2. each live leaf j of column t, in increasing frame order, checks cells j .. j+B-1 and
-//      passes its message {root column, root frame} (the depth is implied) to every marked cell
-//      it finds; a claimed cell is cleared, so each node has exactly one ancestor;
+//   2. each live leaf j of column t, oldest path first (root column ascending, then frame),
+//      checks cells j .. j+B-1 and passes its message {root column, root frame} (the depth is
+//      implied) to every marked cell it finds; a claimed cell is cleared, so each node has
+//      exactly one ancestor;
 //   3. a leaf that claimed nothing dies: if its path spans at least lambda columns of the top
 //      row AND at least lambda matched frames, it becomes a PathCandidate (by default only the
 //      longest path of each tree is kept: GrowOptions::keep_all_branches);
@@ -17,10 +18,13 @@
 // j is not allowed (a matched segment never spans two clips). The clip starts are permanent
 // flags in the same array, so the check is O(1) per cell.
 //
-// Order: the paper takes column t's leaves in the trellis's row order; our columns are sorted
-// by frame, so leaves are taken in increasing frame order (a leaf's window is then claimed
-// before the windows of the leaves above it). The result is deterministic, and
-// GrowPathsReference (reference_grower.h) follows the same rule.
+// Order: the paper takes column t's leaves in the trellis's row order. Taken in frame order (as
+// this grower did first), a tree started a few frames above a long match claims the match's
+// next nodes, and the match is cut in two where that happens: an inserted copy of a movement
+// came back as two motifs, its beginning and its end (best IoU 0.25-0.46 against the copy,
+// docs/design/motif_quality.md). So the oldest path claims first: a sort of the O(K) leaves a
+// step, O(N·K log K) in all. The result is deterministic, and GrowPathsReference
+// (reference_grower.h) follows the same rule.
 // Thread-safety: one thread per grower.
 #pragma once
 

@@ -67,7 +67,11 @@ Result<std::vector<PathCandidate>> GrowPathsReference(
     if (starts_clip(column)) {
       for (const ReferenceLeaf& leaf : leaves) die(leaf, column - 1);
     } else {
-      // Every pair (leaf of column - 1, node of column): O(K²) a step.
+      // Every pair (leaf of column - 1, node of column): O(K²) a step; the oldest paths claim
+      // first (root column ascending, then frame), as in PathGrower.
+      std::sort(leaves.begin(), leaves.end(), [](const ReferenceLeaf& a, const ReferenceLeaf& b) {
+        return a.root_column != b.root_column ? a.root_column < b.root_column : a.frame < b.frame;
+      });
       for (const ReferenceLeaf& leaf : leaves) {
         bool grew = false;
         for (ReferenceLeaf& node : next) {
