@@ -1,7 +1,8 @@
-// PathGrower: the streaming tree-growing step of Meng et al. 2008 (MISSION.md part A, step 3).
+// PathGrower: the streaming tree-growing step of Meng et al. 2008 (its step 3).
 // The matching trellis is fed one column at a time, in order; the grower keeps the live leaves
 // of the current column (one per node, O(K)) and ONE auxiliary array of N cells, so memory is
-// O(N) whatever the trellis's size, and one step costs O(K·B): O(N·K·B) in all.
+// O(N) whatever the trellis's size, and one step costs O(K·B + K log K) (the sort of the leaves,
+// below): O(N·K·(B + log K)) in all.
 //
 // One step, column t -> t+1 (the paper's Figure 2):
 //   1. mark column t+1's nodes in the array (cell j' = the node's slot in column t+1);
