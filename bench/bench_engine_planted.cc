@@ -1,5 +1,6 @@
-// Mining quality on synthetic archives with planted motifs (issue 4): the whole pipeline with the
-// mission's defaults (eps = mu - 2 sigma, lambda 0.5 s, B = 5, normalized cut with automatic G)
+// Mining quality on synthetic archives with planted motifs: the whole pipeline with the
+// defaults of `motifmine mine` (the joint-angle eps at 12 degrees, lambda 0.5 s, B = 5, normalized
+// cut with automatic G; docs/design/algorithm.md)
 // on procedural archives from `motifmine synth` (10 to 20 motifs of 0.5 to 5 s, 3 to 6
 // instances each, warps 0.7 to 1.4x, noise 1 degree), scored against the truth:
 //   recall    planted instances hit by a found one (overlap >= half of the shorter),
@@ -9,7 +10,7 @@
 // (exact below 90,000 frames, LSH above). Timed: one run of trellis + grow + cluster (the
 // archive is written outside the timing). Other counters: planted and found instances, found
 // motifs, path candidates, the trellis's eps. Files go to $TMPDIR and are removed afterwards.
-// docs/benchmarks_planted.md has the figures and the commands.
+// docs/benchmarks.md, "Mining quality on planted archives", has the figures and the commands.
 #include <unistd.h>
 
 #include <cstdio>

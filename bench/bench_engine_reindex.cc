@@ -1,8 +1,9 @@
-// The cost of a nightly `motifmine reindex` (issue 8): 1 % new frames appended to an archive of
+// The cost of a nightly `motifmine reindex`: 1 % new frames appended to an archive of
 // N frames and the mined output brought up to date (Reindex, engine/reindex/reindexer.h: import,
 // incremental trellis update, paths, motifs), against a full rebuild over the same archive: the
 // trellis with the same eps, seed and LSH family, the paths and the motifs, what `motifmine
-// mine ARCHIVE --eps E --hashes H --width W` does. Target: at most a tenth.
+// mine ARCHIVE --eps E --hashes H --width W` does. Target: at most a tenth. Figures:
+// docs/benchmarks.md, "Incremental reindexing".
 //
 // Setup, untimed, in $TMPDIR: a procedural archive of N frames (MotionSynthesizer, seed 7, the
 // `motifmine synth` defaults), two batches of new takes of N/100 frames each (synthesizers of
@@ -121,8 +122,8 @@ double SharedEntries(const std::string& a_path, const std::string& b_path) {
         }
       }
     }
-    (void)a->ReleaseBlocks(block_idx, block_idx + 1);
-    (void)b->ReleaseBlocks(block_idx, block_idx + 1);
+    Check(a->ReleaseBlocks(block_idx, block_idx + 1));
+    Check(b->ReleaseBlocks(block_idx, block_idx + 1));
   }
   return static_cast<double>(shared) /
          static_cast<double>(std::max(a->neighbour_count(), b->neighbour_count()));

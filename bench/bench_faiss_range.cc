@@ -1,4 +1,5 @@
-// The external baseline of the trellis search (issue 6): FAISS's exact range search
+// The external baseline of the trellis search (docs/benchmarks.md, "External baseline: FAISS
+// exact range search"): FAISS's exact range search
 // (faiss::IndexFlatL2::range_search, Debian's libfaiss-dev 1.7.3 on the system BLAS) building the
 // same trellis columns as ExactSearch, timed against ExactSearch on the same columns in the same
 // process. Built only when FAISS is found (bench/CMakeLists.txt); the engine never needs it.
@@ -26,7 +27,7 @@
 //                       EXTRAPOLATED as (per-column time) x N (labelled so, like
 //                       bench_engine_trellis's exact_extrapolated rows).
 //                       Reported time (manual): embedding + index + column time for all N.
-//   FaissRange/random64 the issue's reference figure ("FAISS exact range search over 200,000
+//   FaissRange/random64 an outside reference figure ("FAISS exact range search over 200,000
 //                       random 64-dimensional vectors took about 90 s on 2 cores with
 //                       OpenBLAS"): 200,000 vectors uniform in [0, 1)^64 (fixed seed), every
 //                       vector queried against all of them, with the squared radius that

@@ -1,6 +1,6 @@
 // Helpers shared by the benchmarks: peak resident memory as a counter, CPU time, where the real
-// CMU takes are, and the N series of the scaling runs (issue 6, scripts/bench.sh). Header-only:
-// each benchmark is its own small program.
+// CMU takes are, and the N series of the scaling runs (scripts/bench.sh; docs/benchmarks.md,
+// "Scaling"). Header-only: each benchmark is its own small program.
 #pragma once
 
 #include <malloc.h>

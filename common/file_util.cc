@@ -55,7 +55,8 @@ Status AtomicWriteFile(const std::string& path, std::string_view content,
     MOTIF_RETURN_IF_ERROR(file_system->Rename(temp_path, path));
     return file_system->SyncParentDir(path);
   }();
-  if (!status.ok()) file_system->Remove(temp_path);  // best effort: the error that matters is `status`
+  // Best effort: the error that matters is `status`; a leftover temporary is removed later.
+  if (!status.ok()) (void)file_system->Remove(temp_path);
   return status;
 }
 

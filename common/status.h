@@ -1,8 +1,11 @@
 // Status and Result<T>: how every function that touches disk, decodes bytes or parses an import
-// reports failure (see ../shared/docs/STYLE.md section 4). A Status is a code plus a message that
+// reports failure. A Status is a code plus a message that
 // names the file and the place (line, block, byte offset). Codes are pinned: they appear in logs
 // and in the command-line tool's exit codes (docs/guide.md), so their values never change.
 // Broken invariants (our own bugs) abort through MOTIF_CHECK instead.
+// Both are [[nodiscard]]: a returned Status or Result must be checked, or ignored explicitly
+// with `(void)` and a comment saying why. Result's value(), * and -> on an error abort with the
+// status on stderr (reading a value that is not there is a bug of the caller).
 // Thread-safety: values; safe to copy between threads.
 #pragma once
 
@@ -15,7 +18,7 @@
 
 namespace motif {
 
-class Status {
+class [[nodiscard]] Status {
  public:
   enum class Code : int {
     kOk = 0,
@@ -69,9 +72,14 @@ class Status {
 
 const char* StatusCodeName(Status::Code code);
 
+namespace internal {
+// Prints "Result::value() on an error: <status>" to stderr and aborts.
+[[noreturn]] void DieOnResultError(const Status& status);
+}  // namespace internal
+
 // A value or a non-OK Status.
 template <typename T>
-class Result {
+class [[nodiscard]] Result {
  public:
   Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
   Result(Status status) : status_(std::move(status)) {  // NOLINT: implicit by design
@@ -82,15 +90,28 @@ class Result {
   }
   bool ok() const { return status_.ok(); }
   const Status& status() const { return status_; }
-  T& value() & { return *value_; }
-  const T& value() const& { return *value_; }
-  T&& value() && { return std::move(*value_); }
-  T* operator->() { return &*value_; }
-  const T* operator->() const { return &*value_; }
-  T& operator*() & { return *value_; }
-  const T& operator*() const& { return *value_; }
+  // On an error these abort with the status (internal::DieOnResultError).
+  T& value() & {
+    CheckHasValue();
+    return *value_;
+  }
+  const T& value() const& {
+    CheckHasValue();
+    return *value_;
+  }
+  T&& value() && {
+    CheckHasValue();
+    return std::move(*value_);
+  }
+  T* operator->() { return &value(); }
+  const T* operator->() const { return &value(); }
+  T& operator*() & { return value(); }
+  const T& operator*() const& { return value(); }
 
  private:
+  void CheckHasValue() const {
+    if (!value_.has_value()) [[unlikely]] internal::DieOnResultError(status_);
+  }
   Status status_;
   std::optional<T> value_;
 };

@@ -31,7 +31,7 @@ Result<uint64_t> WriteSyntheticArchive(const std::string& out, MotionSynthesizer
   progress->EndStage();
   if (status.ok()) status = PosixFileSystem()->Rename(staging, out);
   if (!status.ok()) {
-    PosixFileSystem()->Remove(staging);
+    (void)PosixFileSystem()->Remove(staging);  // best effort: the error that matters is `status`
     return status;
   }
   MOTIF_RETURN_IF_ERROR(

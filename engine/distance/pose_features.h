@@ -4,7 +4,7 @@
 // femurs, tibiae), each component quantised to int16 (value * 32767, error <= 1.6e-5), so 12
 // joints take 96 bytes a frame. Also the clip layout, for the neighbour rules.
 //
-// The pose distance (Meng et al. 2008, MISSION.md part A step 1):
+// The pose distance (Meng et al. 2008, docs/design/algorithm.md step 1):
 //   D(f_i, f_j) = sum_k w_k * min(|q_ik - q_jk|, |q_ik + q_jk|)
 // independent of each quaternion's sign; facing-independent because the root's heading is not
 // part of the stored root rotation (formats/motion/pose_frames.h).

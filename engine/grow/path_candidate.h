@@ -1,5 +1,5 @@
 // PathCandidate: one continuous path of the matching trellis that died with at least lambda
-// frames on both sides (MISSION.md part A, step 3). It links two motif instances: the top-row
+// frames on both sides (docs/design/algorithm.md step 3). It links two motif instances: the top-row
 // segment (the columns the path crossed) and the matched segment (the frames its nodes were).
 // The grower (engine/grow/) writes these to a paths file; clustering (engine/cluster/) reads them.
 // All frame numbers are global archive frame indices; ranges are half-open [start, end).

@@ -1,4 +1,4 @@
-// BuildPaths: the path-growing stage of `motifmine grow` (MISSION.md part A, step 3): opens the
+// BuildPaths: `motifmine grow`'s path-growing stage (docs/design/algorithm.md step 3): opens the
 // archive (for its clips and frame rate) and its matching trellis, checks that the trellis was
 // built over this version of the archive, streams the trellis through the PathGrower and writes
 // the candidates to a paths file (formats/paths_file/) atomically.

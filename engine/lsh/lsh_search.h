@@ -1,5 +1,5 @@
 // LshSearch: approximate eps-neighbour columns of the matching trellis from an LshIndex, every
-// candidate verified with the exact pose distance D (MISSION.md part A step 2; Meng et al. 2008).
+// candidate verified with the exact pose distance D (docs/design/algorithm.md, step 2).
 //
 // Per column t, nearest first, with a bounded amount of work (docs/design/lsh.md):
 //   1. hash f_t in every table; list, per table, its own bucket and the probes_per_table - 1

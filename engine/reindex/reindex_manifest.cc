@@ -358,7 +358,7 @@ Status WriteManifest(const std::string& out_dir, const ReindexManifest& manifest
     return file_system->Rename(temp, path);
   }();
   if (!status.ok()) {
-    file_system->Remove(temp);  // best effort: the error that matters is `status`
+    (void)file_system->Remove(temp);  // best effort: the error that matters is `status`
     return status.WithContext(path);
   }
   if (switched) *switched = true;

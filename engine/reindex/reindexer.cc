@@ -89,7 +89,8 @@ Status Publish(const std::string& out_dir, const std::string& relative, const st
   }
   Status status = file_system->Rename(temp, target);
   if (status.ok()) status = file_system->SyncParentDir(target);
-  if (!status.ok()) file_system->Remove(temp);
+  // Best effort (the temporary may already be renamed): the error that matters is `status`.
+  if (!status.ok()) (void)file_system->Remove(temp);
   return status;
 }
 

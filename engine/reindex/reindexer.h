@@ -1,4 +1,5 @@
-// Reindex: `motifmine reindex ARCHIVE --watch DIR --out OUTDIR`, the nightly job of issue 8.
+// Reindex: `motifmine reindex ARCHIVE --watch DIR --out OUTDIR`, the nightly job that keeps the
+// mined output of a growing archive up to date (docs/guide.md, `motifmine reindex`).
 // One run:
 //   1. takes OUTDIR/.motifmine.lock (Busy at once if another run holds it: cron's overlapping
 //      runs never collide) and removes what killed runs left (temporary files);

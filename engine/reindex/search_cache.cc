@@ -127,7 +127,7 @@ Status WriteSearchCache(const std::string& path, const SearchCacheKey& key,
     // No fsync: a cache lost or torn by a crash fails its checksum and is built again.
     return file_system->Rename(temp, path);
   }();
-  if (!status.ok()) file_system->Remove(temp);
+  if (!status.ok()) (void)file_system->Remove(temp);  // best effort: `status` is the error
   return status;
 }
 

@@ -1,6 +1,6 @@
-// BuildTrellis: the matching trellis of an archive (MISSION.md part A, steps 1-2). Streams the
+// BuildTrellis: an archive's matching trellis (docs/design/algorithm.md steps 1-2). Streams the
 // archive once into PoseFeatures (the weighted joints, 96 bytes a frame for CMU takes), chooses
-// eps (explicit, or mu - 2 sigma of sampled pair distances), finds every column with LSH or the
+// eps (explicit, or by EpsilonRule: the joint angle by default), finds every column with LSH or the
 // exact brute force (by default the exact search below kAutoExactMaxFrames frames, where it is
 // faster, LSH above), and spills the columns to the trellis file block by block as they are
 // found, so the whole trellis is never in memory: peak memory is the features, the LSH index and

@@ -60,6 +60,7 @@ Status ComputeThresholds(const TrellisFileReader& previous, uint64_t first_block
             ColumnThreshold(&block.neighbours[begin], block.offsets[column_idx + 1] - begin,
                             params.eps, params.k_max);
       }
+      // A memory hint; it fails only for a block out of range, and block_idx is in range.
       (void)previous.ReleaseBlocks(block_idx, block_idx + 1);
       if (progress) progress(done.fetch_add(1) + 1, block_count - first_block);
     });
@@ -468,6 +469,7 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
                     return;
                   }
                   if (out->block_idx < previous.block_count()) {
+                    // A memory hint; it fails only for a block out of range (checked above).
                     (void)previous.ReleaseBlocks(out->block_idx, out->block_idx + 1);
                   }
                   if (first_column >= old_columns || out->block_idx == mixed_block) {

@@ -1,6 +1,6 @@
 // UpdateTrellis: the matching trellis of an archive that grew by appended clips, made from the
-// trellis of its earlier version without searching the old columns again (issue 8, the
-// incremental half of `motifmine reindex`).
+// trellis of its earlier version without searching the old columns again (the incremental
+// half of the nightly `motifmine reindex`, docs/guide.md, "Incremental update").
 //
 // The archive's first N_old frames are the earlier version's (an archive only ever appends
 // clips, docs/formats/frame_file.md); frames N_old .. N-1 are new. Then:

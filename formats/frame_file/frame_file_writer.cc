@@ -90,7 +90,8 @@ class FrameFileWriter::Impl {
       : mode_(mode), path_(std::move(path)), options_(options), fs_(options.file_system) {}
   ~Impl() {
     if (!committed_) Cleanup();
-    if (file_) file_->Close();
+    // Commit closed the file and checked it; otherwise the write is abandoned: nothing to report.
+    if (file_) (void)file_->Close();
     lock_.Release();
   }
 
@@ -139,7 +140,7 @@ class FrameFileWriter::Impl {
         // The tail of an interrupted append: readers ignore it; drop it before writing after it.
         Status truncated = file_->Truncate(committed_length_);
         if (!truncated.ok()) {
-          file_->Close();
+          (void)file_->Close();  // `truncated` is the error to report
           file_.reset();
           return truncated;
         }
@@ -388,7 +389,7 @@ class FrameFileWriter::Impl {
   // reached, then lets go of the file and the lock.
   void Cleanup() {
     if (mode_ == Mode::kCreate) {
-      if (file_) file_->Close();
+      if (file_) (void)file_->Close();  // the temporary file is removed next
       if (temp_exists_ && !commit_point_reached_ && fs_->Remove(write_path_).ok()) {
         temp_exists_ = false;
       }
@@ -398,7 +399,8 @@ class FrameFileWriter::Impl {
       dirty_ = false;
     }
     if (!dirty_ || commit_point_reached_) {
-      if (file_) file_->Close();
+      // Nothing of ours is left to lose in it (truncated back, or committed and synced).
+      if (file_) (void)file_->Close();
       lock_.Release();
     }
   }

@@ -10,7 +10,8 @@
 // as many as its :root order). Angles are in degrees unless the file says :RADIANS (without
 // either keyword the ASF's angle unit applies).
 //
-// Rotations (the MISSION.md convention, verified against the cgspeed BVH conversion): for a bone
+// Rotations (docs/import.md, "Conventions"; verified against the cgspeed BVH conversion,
+// docs/design/algorithm.md section 6.1): for a bone
 // with axis rotation C and rotation dofs d0 d1 d2 in listed order, M = R(d2) R(d1) R(d0) (the
 // first-listed dof is applied first), and the joint's rest-aligned local rotation is C M C^-1.
 // The root likewise with its :root order and axis/orientation. Translation and length dofs of

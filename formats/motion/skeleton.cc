@@ -81,7 +81,8 @@ float DefaultJointWeight(const std::string& family, const std::string& joint_nam
   std::string name(joint_name);
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  // Canonical CMU names (MISSION.md: root, lower and upper back, shoulders, elbows, hips, knees).
+  // Canonical CMU names (docs/design/algorithm.md step 1: root, lower and upper back, shoulders,
+  // elbows, hips, knees).
   static const char* kCmuWeighted[] = {"lowerback", "upperback", "thorax",  "lhumerus",
                                        "rhumerus",  "lradius",   "rradius", "lfemur",
                                        "rfemur",    "ltibia",    "rtibia"};

@@ -1,7 +1,8 @@
 // Skeleton: the joint hierarchy of a take or of an archive. Joints are stored parents first
 // (joint 0 is the root, every parent index is smaller than its child's), each with its offset
 // from the parent in the rest pose, an optional end site, the BVH channel layout used when the
-// skeleton is written out, and its default weight in the pose distance D (MISSION.md part A).
+// skeleton is written out, and its default weight in the pose distance D (docs/design/algorithm.md,
+// step 1).
 // `family` names the canonical joint set: "cmu31" for CMU's 31-joint skeleton (BVH
 // MotionBuilder names and ASF bone names both map to it, see canonical_skeleton.h), "custom"
 // for any other hierarchy, whose joint names are kept as found.

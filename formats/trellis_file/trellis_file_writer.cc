@@ -292,8 +292,10 @@ class TrellisFileWriter::Impl {
     return status;
   }
 
+  // Finish closes the file itself and checks it; here it is a failure or an abandoned build, and
+  // what was synced stays for a resume: a close error has nothing to add.
   void Close() {
-    if (file_) file_->Close();
+    if (file_) (void)file_->Close();
     file_.reset();
     lock_.Release();
   }

@@ -51,5 +51,16 @@ TEST(Result, PropagatesTheFirstError) {
   EXPECT_EQ(status.message(), "3 is odd");
 }
 
+// Reading the value of an error is a bug of the caller: it must stop the program with the
+// status, not read an empty optional.
+TEST(ResultDeathTest, ValueOfAnErrorAbortsNamingTheStatus) {
+  Result<int> failed = Half(3);
+  ASSERT_FALSE(failed.ok());
+  EXPECT_DEATH((void)failed.value(), "Result::value\\(\\) on an error: InvalidArgument: 3 is odd");
+  EXPECT_DEATH((void)*failed, "3 is odd");
+  Result<std::string> missing = Status::NotFound("no such take");
+  EXPECT_DEATH((void)missing->size(), "NotFound: no such take");
+}
+
 }  // namespace
 }  // namespace motif

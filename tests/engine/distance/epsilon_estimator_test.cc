@@ -312,7 +312,7 @@ TEST(EpsilonEstimator, DensityOfSampledQueriesIsDeterministic) {
                   .IsInvalidArgument());
 }
 
-// The figures of MISSION.md ("Measured facts"): the 62 BVH takes (40,346 frames), 12 weighted
+// The figures of docs/design/algorithm.md 6.2: the 62 BVH takes (40,346 frames), 12 weighted
 // joints, sampled pairs: mu = 3.11, sigma = 1.04, eps = mu - 2 sigma = 1.02; at eps 1.02 with a
 // 30-frame exclusion radius a frame has on average 359 neighbours (0.9 % of N; median 218, 90th
 // percentile 951, max 1631). Measured here (seed 1, 200,000 pairs): mu 3.097, sigma 1.024, so
@@ -348,9 +348,9 @@ TEST(EpsilonEstimator, ReproducesTheMeasuredFiguresOnTheRealTakes) {
   const EpsilonEstimator estimator(features, Rules(features, 30), Options(200000, 1));
   Result<EpsilonEstimate> estimate = estimator.Estimate();
   ASSERT_TRUE(estimate.ok()) << estimate.status().ToString();
-  Result<NeighbourDensity> at_mission_eps = estimator.MeasureDensity(1.02f, 4000);
+  Result<NeighbourDensity> at_eps_1_02 = estimator.MeasureDensity(1.02f, 4000);
   Result<NeighbourDensity> at_estimate = estimator.MeasureDensity(estimate->eps, 4000);
-  ASSERT_TRUE(at_mission_eps.ok() && at_estimate.ok());
+  ASSERT_TRUE(at_eps_1_02.ok() && at_estimate.ok());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   auto print_density = [](const char* label, float eps, const NeighbourDensity& density) {
@@ -367,24 +367,24 @@ TEST(EpsilonEstimator, ReproducesTheMeasuredFiguresOnTheRealTakes) {
       sources->size(), static_cast<unsigned long long>(features.frame_count()),
       static_cast<unsigned long long>(estimate->sampled_pairs), estimate->mu, estimate->sigma,
       estimate->eps, seconds);
-  print_density("MISSION.md's", 1.02f, *at_mission_eps);
+  print_density("algorithm.md 6.2", 1.02f, *at_eps_1_02);
   print_density("estimated", estimate->eps, *at_estimate);
   ::testing::Test::RecordProperty("mu", std::to_string(estimate->mu));
   ::testing::Test::RecordProperty("sigma", std::to_string(estimate->sigma));
   ::testing::Test::RecordProperty("eps", std::to_string(estimate->eps));
-  ::testing::Test::RecordProperty("mean_k_at_1_02", std::to_string(at_mission_eps->mean));
+  ::testing::Test::RecordProperty("mean_k_at_1_02", std::to_string(at_eps_1_02->mean));
   ::testing::Test::RecordProperty("mean_k_at_eps", std::to_string(at_estimate->mean));
 
   EXPECT_NEAR(estimate->mu, 3.11, 0.02);
   EXPECT_NEAR(estimate->sigma, 1.04, 0.025);
   EXPECT_NEAR(estimate->eps, 1.02, 0.04);
-  EXPECT_NEAR(at_mission_eps->mean, 359, 20);
-  EXPECT_NEAR(static_cast<double>(at_mission_eps->median), 218, 20);
-  EXPECT_NEAR(static_cast<double>(at_mission_eps->p90), 951, 50);
-  EXPECT_LE(at_mission_eps->max, 1640u);
+  EXPECT_NEAR(at_eps_1_02->mean, 359, 20);
+  EXPECT_NEAR(static_cast<double>(at_eps_1_02->median), 218, 20);
+  EXPECT_NEAR(static_cast<double>(at_eps_1_02->p90), 951, 50);
+  EXPECT_LE(at_eps_1_02->max, 1640u);
   // Within the bounds of eps, the density moves as eps does.
-  EXPECT_GT(at_estimate->mean, at_mission_eps->mean);
-  EXPECT_LT(at_estimate->mean, 1.2 * at_mission_eps->mean);
+  EXPECT_GT(at_estimate->mean, at_eps_1_02->mean);
+  EXPECT_LT(at_estimate->mean, 1.2 * at_eps_1_02->mean);
 }
 
 }  // namespace

@@ -35,6 +35,26 @@
 using namespace motif;
 using namespace motif::testing;
 
+namespace {
+
+// A study tool: a failure ends the run with its status, never with figures computed after it.
+[[noreturn]] void Die(const Status& status) {
+  std::fprintf(stderr, "lsh_experiment: %s\n", status.ToString().c_str());
+  std::exit(1);
+}
+
+void CheckOk(const Status& status) {
+  if (!status.ok()) Die(status);
+}
+
+template <typename T>
+T ValueOrDie(Result<T> result) {
+  if (!result.ok()) Die(result.status());
+  return std::move(result).value();
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   motif::testing::ExperimentArgs parsed(argc, argv);
   std::map<std::string, std::string>& args = parsed.values();
@@ -56,25 +76,27 @@ int main(int argc, char** argv) {
     so.frames = frames;
     so.seed = static_cast<uint64_t>(get("seed", 7));
     auto synthesizer = MotionSynthesizer::Create(so);
+    CheckOk(synthesizer.status());
     const Skeleton& skeleton = (*synthesizer)->skeleton();
     const FrameLayout layout{static_cast<uint32_t>(skeleton.joint_count())};
     std::vector<float> rows;
     rows.reserve(frames * layout.stride());
     std::vector<uint64_t> starts;
-    (void)(*synthesizer)->Run([&](const ClipFrames& clip) {
+    CheckOk((*synthesizer)->Run([&](const ClipFrames& clip) {
       starts.push_back(rows.size() / layout.stride());
       rows.insert(rows.end(), clip.rows.begin(), clip.rows.end());
       return Status::Ok();
-    });
+    }));
     features = PoseFeatures::FromRows(rows.data(), rows.size() / layout.stride(), layout.joint_count,
                                       DefaultWeights(skeleton), starts);
     rows = std::vector<float>();
   } else if (data == "reseq") {
     auto sources = DiscoverTakes({MocapDir() + "/bvh"}, ImportOptions());
+    CheckOk(sources.status());
     std::vector<Take> takes;
     for (const TakeSource& source : *sources) {
-      Take take = *ImportTake(source, ImportOptions());
-      if (!takes.empty()) (void)ConformToSkeleton(takes[0].skeleton, &take);
+      Take take = ValueOrDie(ImportTake(source, ImportOptions()));
+      if (!takes.empty()) CheckOk(ConformToSkeleton(takes[0].skeleton, &take));
       takes.push_back(ResampleTake(take, 120.0));
     }
     SynthOptions so;
@@ -83,7 +105,7 @@ int main(int argc, char** argv) {
     auto synthesizer = MotionSynthesizer::CreateFromTakes(so, std::move(takes));
     if (!synthesizer.ok()) { std::printf("%s\n", synthesizer.status().ToString().c_str()); return 1; }
     std::vector<ClipFrames> clips;
-    (void)(*synthesizer)->Run([&](const ClipFrames& clip) { clips.push_back(clip); return Status::Ok(); });
+    CheckOk((*synthesizer)->Run([&](const ClipFrames& clip) { clips.push_back(clip); return Status::Ok(); }));
     features = FeaturesFromClips((*synthesizer)->skeleton(), clips);
   } else {
     features = SyntheticFeatures(frames, static_cast<uint64_t>(get("seed", 7)));
@@ -144,6 +166,7 @@ int main(int argc, char** argv) {
     SearchStats st;
     auto t = std::chrono::steady_clock::now();
     Status status = exact_search.SearchColumns(features.frame_count() / 2, count, &cols, &st);
+    CheckOk(status);
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
     std::printf("exact search: %s %llu columns in %.2fs = %.1f us/column wall, %.2f ns/eval wall; full archive would take %.0f s\n",
                 status.ToString().c_str(), (unsigned long long)count, sec, 1e6 * sec / count,
@@ -304,7 +327,7 @@ int main(int argc, char** argv) {
   auto tq = std::chrono::steady_clock::now();
   for (size_t idx = 0; idx < columns.size(); ++idx) {
     std::vector<std::vector<Neighbour>> one;
-    Status s = (*search)->SearchColumns(columns[idx], 1, &one, &stats, &lsh_stats);
+    CheckOk((*search)->SearchColumns(columns[idx], 1, &one, &stats, &lsh_stats));
     approx[idx] = one[0];
   }
   double tquery = std::chrono::duration<double>(std::chrono::steady_clock::now() - tq).count();
@@ -476,7 +499,7 @@ int main(int argc, char** argv) {
   auto cpu = [] { timespec t; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t); return t.tv_sec + 1e-9 * t.tv_nsec; };
   const double c0 = cpu();
   auto ts = std::chrono::steady_clock::now();
-  Status s = (*search)->SearchColumns(block_first, range, &block, &bstats2);
+  CheckOk((*search)->SearchColumns(block_first, range, &block, &bstats2));
   double tblock = std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
   const double cblock = cpu() - c0;
   std::printf("peak growth after block %.1f B/frame\n", (peak() - rss_before) / features.frame_count());

@@ -39,6 +39,16 @@ using namespace motif;
 
 namespace {
 
+// A study tool: a failure ends the run with its status, never with figures computed after it.
+[[noreturn]] void Die(const Status& status) {
+  std::fprintf(stderr, "refine_experiment: %s\n", status.ToString().c_str());
+  std::exit(1);
+}
+
+void CheckOk(const Status& status) {
+  if (!status.ok()) Die(status);
+}
+
 using Columns = std::vector<std::vector<Neighbour>>;
 
 struct Context {
@@ -186,7 +196,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   auto weights = LoadDistanceWeights((*reader)->skeleton(), "");
+  CheckOk(weights.status());
   auto features = PoseFeatures::FromArchive(**reader, *weights);
+  CheckOk(features.status());
   Context context;
   context.features = &*features;
   context.rules.eps = params.eps;
@@ -209,7 +221,7 @@ int main(int argc, char** argv) {
     for (uint64_t column = first; column < first + count; column += 16) {
       Columns one(1);
       SearchStats unused;
-      (void)exact_block.SearchColumns(column, 1, &one, &unused);
+      CheckOk(exact_block.SearchColumns(column, 1, &one, &unused));
       probe_columns.push_back(column);
       probe_truth.push_back(one[0]);
     }
@@ -227,7 +239,7 @@ int main(int argc, char** argv) {
         SearchStats stats;
         timespec t0, t1;
         clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t0);
-        (void)exact_search.SearchColumns(first, std::min<uint64_t>(256, count), &found, &stats);
+        CheckOk(exact_search.SearchColumns(first, std::min<uint64_t>(256, count), &found, &stats));
         clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t1);
         const double cpu = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
         std::printf("%-14s cpu %.1f us/column\n", "exact", 1e6 * cpu / std::min<uint64_t>(256, count));
@@ -262,7 +274,7 @@ int main(int argc, char** argv) {
       LshQueryStats lsh;
       timespec t0, t1;
       clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t0);
-      (void)(*search)->SearchColumns(first, count, &found, &stats, &lsh);
+      CheckOk((*search)->SearchColumns(first, count, &found, &stats, &lsh));
       clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t1);
       const double cpu = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
       uint64_t hits = 0, total = 0;
@@ -285,7 +297,7 @@ int main(int argc, char** argv) {
   }
 
   Columns columns;
-  (void)(*trellis)->ReadColumns(0, n, &columns);
+  CheckOk((*trellis)->ReadColumns(0, n, &columns));
   Redistance(context, &columns);
 
   const uint64_t sample_count = static_cast<uint64_t>(get("sample", 500));
@@ -299,7 +311,7 @@ int main(int argc, char** argv) {
   for (size_t idx = 0; idx < sample.size(); ++idx) {
     Columns one(1);
     SearchStats stats;
-    (void)exact.SearchColumns(sample[idx], 1, &one, &stats);
+    CheckOk(exact.SearchColumns(sample[idx], 1, &one, &stats));
     truth[idx] = one[0];
     capped[idx] = stats.capped_columns > 0;
   }

@@ -251,7 +251,10 @@ TEST_F(ReportHtmlTest, ThousandMotifsStaySmall) {
   std::printf("report of %zu motifs, %zu instances: %zu bytes (%.2f MB), %.2f s\n",
               large.motifs.size(), instance_count, html->size(), html->size() / 1e6, seconds);
   // MOTIF_REPORT_DUMP=FILE keeps the page, to look at it or measure its parts.
-  if (const char* dump = std::getenv("MOTIF_REPORT_DUMP")) (void)AtomicWriteFile(dump, *html);
+  if (const char* dump = std::getenv("MOTIF_REPORT_DUMP")) {
+    const Status dumped = AtomicWriteFile(dump, *html);
+    EXPECT_TRUE(dumped.ok()) << dumped.ToString();
+  }
   EXPECT_LT(html->size(), 5u * 1000 * 1000);
   EXPECT_EQ(CountOf(*html, "<rect"), instance_count);
   EXPECT_EQ(CheckTagBalance(*html), "");

@@ -1,6 +1,7 @@
 // Helpers for the synthesiser tests: collecting an archive in memory, the pose distance D of
-// MISSION.md (weighted joints, sign-free quaternion distance, heading already removed from the
-// root), a banded DTW over it, and checks shared by the procedural and re-sequencing tests.
+// docs/design/algorithm.md step 1 (weighted joints, sign-free quaternion distance, heading
+// already removed from the root), a banded DTW over it, and checks shared by the procedural and
+// re-sequencing tests.
 #pragma once
 
 #include <gtest/gtest.h>

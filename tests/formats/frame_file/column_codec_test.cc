@@ -1,9 +1,11 @@
 #include "formats/frame_file/column_codec.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -239,7 +241,13 @@ TEST(ColumnCodec, DecodeRejectsChunksOfTheWrongSize) {
 TEST(ColumnCodec, RandomBytesNeverDecodeSilentlyOrCrash) {
   std::mt19937 random(7);
   const ColumnEncoding encoding = Quantised(1e-4);
-  std::vector<float> out(4 * 64);
+  constexpr uint32_t kComponents = 4;
+  constexpr uint32_t kFrames = 64;
+  constexpr size_t kValues = kComponents * kFrames;
+  constexpr size_t kGuard = 64;  // floats after the chunk's values that a decode must not touch
+  const float kUnwritten = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> out(kValues + kGuard);
+  int rejected = 0;
   for (int trial = 0; trial < 500; ++trial) {
     std::string bytes(random() % 200, '\0');
     for (char& byte : bytes) byte = static_cast<char>(random());
@@ -247,11 +255,34 @@ TEST(ColumnCodec, RandomBytesNeverDecodeSilentlyOrCrash) {
       const char magic[4] = {0x28, static_cast<char>(0xb5), 0x2f, static_cast<char>(0xfd)};
       std::memcpy(bytes.data(), magic, 4);  // a zstd magic, then garbage
     }
-    // Whatever the outcome, no crash; a frame that happens to decode must have the right size.
-    Status status = DecodeColumnChunk(encoding, reinterpret_cast<const uint8_t*>(bytes.data()),
-                                      bytes.size(), 4, 64, out.data());
-    (void)status;
+    std::fill(out.begin(), out.end(), kUnwritten);
+    const auto* chunk = reinterpret_cast<const uint8_t*>(bytes.data());
+    // Whatever the outcome, no crash, and nothing written past the chunk's values.
+    const Status status = DecodeColumnChunk(encoding, chunk, bytes.size(), kComponents, kFrames,
+                                            out.data());
+    for (size_t idx = kValues; idx < out.size(); ++idx) {
+      ASSERT_TRUE(std::isnan(out[idx])) << "trial " << trial << ": wrote past the values";
+    }
+    if (!status.ok()) {
+      // Rejected: as Corruption, with a message that says what is wrong with the chunk.
+      EXPECT_TRUE(status.IsCorruption()) << "trial " << trial << ": " << status.ToString();
+      EXPECT_NE(status.message().find("column chunk"), std::string::npos)
+          << "trial " << trial << ": " << status.ToString();
+      ++rejected;
+      continue;
+    }
+    // Accepted: only a chunk of exactly this size. Every value is written (a dequantised value
+    // is never NaN), and the same bytes are refused as a chunk of one frame fewer.
+    for (size_t idx = 0; idx < kValues; ++idx) {
+      ASSERT_FALSE(std::isnan(out[idx])) << "trial " << trial << ": value " << idx << " unset";
+    }
+    EXPECT_TRUE(DecodeColumnChunk(encoding, chunk, bytes.size(), kComponents, kFrames - 1,
+                                  out.data())
+                    .IsCorruption())
+        << "trial " << trial << ": decoded as two different sizes";
   }
+  // With this seed none of the 500 is a zstd frame of 1024 bytes: all are rejected.
+  RecordProperty("rejected", rejected);
 }
 
 }  // namespace

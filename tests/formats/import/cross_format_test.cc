@@ -82,8 +82,8 @@ Imported ImportPair(const TakePair& pair, FirstFramePolicy policy = FirstFramePo
   return {std::move(bvh_take).value(), std::move(amc_take).value()};
 }
 
-// The pose distance D of MISSION.md part A over the weighted joints (weight 1: the root with its
-// heading removed, the back, shoulders, elbows, hips and knees).
+// The pose distance D (docs/design/algorithm.md step 1) over the weighted joints (weight 1: the
+// root with its heading removed, the back, shoulders, elbows, hips and knees).
 double PoseDistance(const Take& a, size_t frame_a, const Take& b, size_t frame_b) {
   double distance = 0;
   for (size_t joint_idx = 0; joint_idx < a.joint_count(); ++joint_idx) {

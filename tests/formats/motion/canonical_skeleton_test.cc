@@ -53,7 +53,7 @@ TEST(CanonicalSkeleton, MapsBvhNamesAndOrderToCanonical) {
     EXPECT_NEAR(RotationAngleBetween(take.rotation(0, joint_idx), Eigen::Quaterniond::Identity()),
                 joint_idx / 100.0, 1e-12);
   }
-  // Weights: the twelve joints of MISSION.md.
+  // Weights: the twelve joints of docs/design/algorithm.md, step 1.
   float total = 0;
   for (const Joint& joint : take.skeleton.joints()) total += joint.weight;
   EXPECT_EQ(total, 12.0f);

@@ -7,7 +7,7 @@
 //   trellis_file_measure [--columns N] [--bvh DIR [--cache FILE]] [--block-columns B]
 //                        [--level L] [--repeat R] [--variants]
 //
-// Data sets: "runs" is the brief's model (neighbours in runs of 3 to 30 consecutive frames at
+// Data sets: "runs" models a trellis (neighbours in runs of 3 to 30 consecutive frames at
 // random places, 100 to 500 a column, distances rising from a random floor towards eps across a
 // run); "real" (with --bvh, e.g. ../shared/data/mocap/bvh) is the exact eps-trellis of the CMU
 // takes: 12 weighted joints, D = sum_k w_k sqrt(2 - 2 |q_k . p_k|) (sign-aware quaternion
@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -38,6 +39,13 @@
 
 namespace motif::testing {
 namespace {
+
+// A measuring program: a failure ends the run with its status, never with figures after it.
+void CheckOk(const Status& status) {
+  if (status.ok()) return;
+  std::fprintf(stderr, "trellis_file_measure: %s\n", status.ToString().c_str());
+  std::exit(1);
+}
 
 struct DataSet {
   std::string name;
@@ -412,19 +420,16 @@ void Measure(DataSet& data, uint32_t block_columns, int level, int repeat, bool 
   const double encode_seconds = Seconds(
       [&] {
         for (size_t block_idx = 0; block_idx < blocks.size(); ++block_idx) {
-          MOTIF_CHECK(encoder
-                          .Encode(block_idx * block_columns, blocks[block_idx], data.eps,
-                                  &encoded[block_idx], &handles[block_idx])
-                          .ok());
+          CheckOk(encoder.Encode(block_idx * block_columns, blocks[block_idx], data.eps,
+                                 &encoded[block_idx], &handles[block_idx]));
         }
       },
       repeat);
   uint64_t block_bytes = 0, id_bytes = 0, id_raw_bytes = 0, distance_bytes = 0;
   for (const std::string& block : encoded) {
     trellis_file::BlockHeader header;
-    MOTIF_CHECK(trellis_file::BlockHeader::DecodeFrom(
-                    reinterpret_cast<const uint8_t*>(block.data()), &header)
-                    .ok());
+    CheckOk(trellis_file::BlockHeader::DecodeFrom(reinterpret_cast<const uint8_t*>(block.data()),
+                                                  &header));
     block_bytes += block.size();
     id_bytes += header.ids_bytes;
     id_raw_bytes += header.ids_raw_bytes;
@@ -438,10 +443,8 @@ void Measure(DataSet& data, uint32_t block_columns, int level, int repeat, bool 
   TrellisBlock block;
   const auto decode_all = [&](bool distances) {
     for (size_t block_idx = 0; block_idx < blocks.size(); ++block_idx) {
-      MOTIF_CHECK(decoder
-                      .Decode(reinterpret_cast<const uint8_t*>(encoded[block_idx].data()),
-                              handles[block_idx], limits, &block, distances)
-                      .ok());
+      CheckOk(decoder.Decode(reinterpret_cast<const uint8_t*>(encoded[block_idx].data()),
+                             handles[block_idx], limits, &block, distances));
     }
   };
   const double decode_seconds = Seconds([&] { decode_all(true); }, repeat);
@@ -458,15 +461,15 @@ void Measure(DataSet& data, uint32_t block_columns, int level, int repeat, bool 
   const double write_seconds = Seconds(
       [&] {
         std::filesystem::remove(path);
-        MOTIF_CHECK(WriteTrellis(path, params, data.columns, options).ok());
+        CheckOk(WriteTrellis(path, params, data.columns, options));
       },
       1);
   auto reader = TrellisFileReader::Open(path);
-  MOTIF_CHECK(reader.ok());
+  CheckOk(reader.status());
   const double read_seconds = Seconds(
       [&] {
         for (uint64_t block_idx = 0; block_idx < (*reader)->block_count(); ++block_idx) {
-          MOTIF_CHECK((*reader)->ReadBlock(block_idx, &block).ok());
+          CheckOk((*reader)->ReadBlock(block_idx, &block));
         }
       },
       repeat);
