@@ -10,13 +10,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Join(const std::string& dir, const std::string& name) {
+std::string InOutDir(const std::string& dir, const std::string& name) {
   return (fs::path(dir) / name).string();
 }
 
 // The file's bytes, checked against the manifest's size and checksum.
 Result<std::string> ReadChecked(const std::string& out_dir, const VersionFile& file) {
-  const std::string path = Join(out_dir, file.path);
+  const std::string path = InOutDir(out_dir, file.path);
   MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadFileToString(path));
   if (bytes.size() != file.bytes || Checksum64(bytes.data(), bytes.size()) != file.checksum) {
     return Status::Corruption(path + ": " + std::to_string(bytes.size()) +
@@ -32,7 +32,7 @@ Result<MinedVersion> OpenOnce(const std::string& out_dir) {
   MOTIF_ASSIGN_OR_RETURN(version.manifest, ReadManifest(out_dir));
   const ReindexManifest& manifest = version.manifest;
   // The files first, the archive last: a missing file is the sign of a removed version.
-  const std::string trellis_path = Join(out_dir, manifest.trellis.path);
+  const std::string trellis_path = InOutDir(out_dir, manifest.trellis.path);
   MOTIF_ASSIGN_OR_RETURN(version.trellis, TrellisFileReader::Open(trellis_path));
   if (version.trellis->identity() != manifest.trellis.checksum ||
       version.trellis->file_bytes() != manifest.trellis.bytes) {
@@ -40,10 +40,10 @@ Result<MinedVersion> OpenOnce(const std::string& out_dir) {
   }
   MOTIF_ASSIGN_OR_RETURN(std::string paths_bytes, ReadChecked(out_dir, manifest.paths));
   MOTIF_ASSIGN_OR_RETURN(version.paths,
-                         PathsFileReader::FromBytes(paths_bytes, Join(out_dir, manifest.paths.path)));
+                         PathsFileReader::FromBytes(paths_bytes, InOutDir(out_dir, manifest.paths.path)));
   MOTIF_ASSIGN_OR_RETURN(std::string motifs_text, ReadChecked(out_dir, manifest.motifs));
   MOTIF_ASSIGN_OR_RETURN(version.motifs,
-                         ParseMotifsJson(motifs_text, Join(out_dir, manifest.motifs.path)));
+                         ParseMotifsJson(motifs_text, InOutDir(out_dir, manifest.motifs.path)));
   MOTIF_ASSIGN_OR_RETURN(version.archive,
                          FrameFileReader::OpenCommit(manifest.archive.path,
                                                      manifest.archive.generation,
@@ -84,14 +84,14 @@ Status VerifyMinedVersion(const std::string& out_dir, std::vector<std::string>* 
   }
   if (version.motifs.frames != manifest.archive.frames ||
       version.motifs.archive_version.identity != manifest.archive.identity) {
-    return Status::Corruption(Join(out_dir, manifest.motifs.path) +
+    return Status::Corruption(InOutDir(out_dir, manifest.motifs.path) +
                               ": mined from another archive version");
   }
   if (!manifest.report.path.empty()) {
     MOTIF_RETURN_IF_ERROR(ReadChecked(out_dir, manifest.report).status());
   }
   // OUTDIR/motifs.json: this version's, or the previous one's until the next run publishes it.
-  const std::string top = Join(out_dir, "motifs.json");
+  const std::string top = InOutDir(out_dir, "motifs.json");
   MOTIF_ASSIGN_OR_RETURN(std::string top_text, ReadFileToString(top));
   if (top_text.size() != manifest.motifs.bytes ||
       Checksum64(top_text.data(), top_text.size()) != manifest.motifs.checksum) {

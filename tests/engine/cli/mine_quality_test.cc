@@ -86,7 +86,7 @@ TEST(MotifmineScore, RefusesMissingArgumentsAndMalformedTruthNamingTheLine) {
             0);
   // A motifs.json is needed first: the smallest synthetic mine.
   RunResult mined = RunTool("mine --out " + dir.File("m") +
-                            " --synth-frames 24000 --synth-motifs 3 --seed 4 --quiet --no-report");
+                            " --synth-frames 13000 --synth-motifs 3 --seed 4 --quiet --no-report");
   ASSERT_EQ(mined.exit_code, 0) << mined.output;
   RunResult bad = RunTool("score " + dir.File("m") + "/motifs.json " + truth);
   EXPECT_EQ(bad.exit_code, 13) << bad.output;

@@ -30,6 +30,7 @@
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 #include "tests/testing/run_tool.h"
+#include "tests/testing/shared_inputs.h"
 #include "tests/testing/temp_dir.h"
 #include "tests/testing/trellis_entries.h"
 
@@ -44,32 +45,39 @@ using testing::RunTool;
 class ReindexCliTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    takes_ = new testing::TempDir();
-    const std::string synth = takes_->File("synth.mfs");
+    takes_ = testing::SharedInputs("reindex-cli-takes-" + testing::ExecutableStamp(MOTIF_TOOL),
+                                   MakeTakes);
+  }
+
+  // The takes of both nights, as BVH files in batch1/ and batch2/, and the archive they came from.
+  static bool MakeTakes(const std::string& dir) {
+    const std::string synth = dir + "/synth.mfs";
     RunResult made = RunTool("synth " + synth +
                              " --frames 24000 --motifs 3 --seed 4 --clip-seconds-min 10 "
                              "--clip-seconds-max 25 --quiet");
-    ASSERT_EQ(made.exit_code, 0) << made.output;
+    EXPECT_EQ(made.exit_code, 0) << made.output;
     auto reader = FrameFileReader::Open(synth);
-    ASSERT_TRUE(reader.ok());
+    EXPECT_TRUE(reader.ok());
+    if (made.exit_code != 0 || !reader.ok()) return false;
     const std::vector<ClipInfo>& clips = (*reader)->clips();
-    ASSERT_GE(clips.size(), 6u);
-    fs::create_directories(takes_->File("batch1"));
-    fs::create_directories(takes_->File("batch2"));
+    EXPECT_GE(clips.size(), 6u);
+    fs::create_directories(dir + "/batch1");
+    fs::create_directories(dir + "/batch2");
     for (size_t clip = 0; clip < clips.size(); ++clip) {
       // The last quarter of the clips arrives the second night: about a quarter of the frames.
       const std::string batch = clip < clips.size() * 3 / 4 ? "batch1" : "batch2";
       RunResult exported = RunTool("export " + synth + " --clip " + clips[clip].name + " --out " +
-                                   takes_->File(batch + "/" + clips[clip].name + ".bvh"));
-      ASSERT_EQ(exported.exit_code, 0) << exported.output;
+                                   dir + "/" + batch + "/" + clips[clip].name + ".bvh");
+      EXPECT_EQ(exported.exit_code, 0) << exported.output;
+      if (exported.exit_code != 0) return false;
     }
-  }
-  static void TearDownTestSuite() {
-    delete takes_;
-    takes_ = nullptr;
+    return clips.size() >= 6;
   }
 
+  static std::string Take(const std::string& name) { return takes_ + "/" + name; }
+
   void SetUp() override {
+    ASSERT_FALSE(takes_.empty()) << "the takes could not be made";
     archive_ = dir_.File("archive.mfs");
     watch_ = dir_.File("incoming");
     out_ = dir_.File("out");
@@ -79,7 +87,7 @@ class ReindexCliTest : public ::testing::Test {
   // The takes of `batch` in name order, from the first..last one (last exclusive, -1: all).
   void Arrive(const std::string& batch, int first = 0, int last = -1) {
     std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(takes_->File(batch))) {
+    for (const auto& entry : fs::directory_iterator(Take(batch))) {
       files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());
@@ -107,19 +115,19 @@ class ReindexCliTest : public ::testing::Test {
   }
 
   PlantedMotifScore Score(const std::string& motifs_path) {
-    auto truth = ReadTruthJson(takes_->File("synth.truth.json"));
+    auto truth = ReadTruthJson(Take("synth.truth.json"));
     EXPECT_TRUE(truth.ok());
     auto document = ReadMotifsJson(motifs_path);
     EXPECT_TRUE(document.ok()) << document.status().ToString();
     return ScoreMotifsDocument(*document, truth->instances);
   }
 
-  static testing::TempDir* takes_;
+  static std::string takes_;  // the shared inputs' folder
   testing::TempDir dir_;
   std::string archive_, watch_, out_;
 };
 
-testing::TempDir* ReindexCliTest::takes_ = nullptr;
+std::string ReindexCliTest::takes_;
 
 TEST_F(ReindexCliTest, ExactIncrementalResultIsTheFromScratchMineByteForByte) {
   Arrive("batch1", 0, 4);
@@ -181,7 +189,7 @@ TEST_F(ReindexCliTest, ExactIncrementalResultIsTheFromScratchMineByteForByte) {
 TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSameMotifs) {
   std::vector<fs::path> takes;
   for (const char* batch : {"batch1", "batch2"}) {
-    for (const auto& entry : fs::directory_iterator(takes_->File(batch))) {
+    for (const auto& entry : fs::directory_iterator(Take(batch))) {
       takes.push_back(entry.path());
     }
   }
@@ -197,7 +205,7 @@ TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSame
   EXPECT_FALSE(v1.params.exact);
   EXPECT_GT(v1.params.lsh.hashes_per_table, 0u) << "the family is recorded resolved";
   EXPECT_GT(v1.params.lsh.bucket_width, 0.0f);
-  RunResult late = RunTool("export " + takes_->File("synth.mfs") + " --clip " +
+  RunResult late = RunTool("export " + Take("synth.mfs") + " --clip " +
                            takes.back().stem().string() + " --start 0 --end 240 --out " + watch_ +
                            "/late_take.bvh");
   ASSERT_EQ(late.exit_code, 0) << late.output;

@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 // Takes with two planted motifs as BVH files: batch1/ (the first two thirds) and batch2/.
 void MakeTakes(const std::string& dir) {
   SynthOptions options;
-  options.frames = 9000;
+  options.frames = 4800;
   options.motifs = 2;
   options.instances_min = 2;
   options.instances_max = 3;
@@ -136,6 +136,7 @@ TEST_F(ReindexFailureTest, AWriteFailingAtAnyStepLeavesTheCurrentVersionAndTheNe
   ASSERT_FALSE(expected_motifs.empty());
   const int64_t steps = counting.steps();
   ASSERT_GT(steps, 10);
+  std::printf("%lld steps through the file-system seam\n", static_cast<long long>(steps));
   // Every step fails in turn, and stays failing (a full disk): the archive append, the trellis
   // update's blocks, index and rename, the manifest, the publication of motifs.json.
   for (int64_t step = 0; step < steps; ++step) {

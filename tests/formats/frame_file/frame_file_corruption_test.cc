@@ -18,7 +18,7 @@ namespace {
 using frame_file::kSlotBytes;
 using frame_file::kSlotOffsets;
 
-constexpr uint32_t kJoints = 2;
+constexpr uint32_t kCorruptionJoints = 2;
 
 FrameFileWriterOptions Options() {
   FrameFileWriterOptions options;
@@ -28,8 +28,8 @@ FrameFileWriterOptions Options() {
 
 std::string MakeSmallArchive(const TempDir& dir, const std::string& name = "a.mfs") {
   const std::string path = dir.File(name);
-  WriteArchive(path, MakeSkeleton(kJoints),
-               {MakeClip("one", kJoints, 20, 1), MakeClip("two", kJoints, 21, 2)}, Options());
+  WriteArchive(path, MakeSkeleton(kCorruptionJoints),
+               {MakeClip("one", kCorruptionJoints, 20, 1), MakeClip("two", kCorruptionJoints, 21, 2)}, Options());
   return path;
 }
 
@@ -178,7 +178,7 @@ TEST(FrameFileCorruption, TruncatingAnAppendedArchiveIsAlwaysReported) {
   const std::string path = MakeSmallArchive(dir);
   auto previous = ReadContents(path);
   ASSERT_TRUE(previous.ok());
-  AppendToArchive(path, {MakeClip("three", kJoints, 30, 3)}, Options());
+  AppendToArchive(path, {MakeClip("three", kCorruptionJoints, 30, 3)}, Options());
   const std::string bytes = ReadBytes(path);
   const std::string cut = dir.File("cut.mfs");
   WriteBytes(cut, bytes);
@@ -241,7 +241,7 @@ TEST(FrameFileCorruption, DetectsFlippedBytesInAnAppendedArchive) {
   auto previous = ReadContents(path);
   ASSERT_TRUE(previous.ok());
   const uint64_t previous_length = ReadBytes(path).size();
-  AppendToArchive(path, {MakeClip("three", kJoints, 30, 3)}, Options());
+  AppendToArchive(path, {MakeClip("three", kCorruptionJoints, 30, 3)}, Options());
   const std::string bytes = ReadBytes(path);
   auto current = ReadContents(path);
   ASSERT_TRUE(current.ok());
@@ -307,7 +307,7 @@ TEST(FrameFileCorruption, FallsBackToThePreviousVersionWhenTheNewestFooterIsDama
   const std::string path = MakeSmallArchive(dir);
   auto previous = ReadContents(path);
   ASSERT_TRUE(previous.ok());
-  AppendToArchive(path, {MakeClip("three", kJoints, 30, 3)}, Options());
+  AppendToArchive(path, {MakeClip("three", kCorruptionJoints, 30, 3)}, Options());
   std::string bytes = ReadBytes(path);
   bytes[bytes.size() - 20] ^= 0x01;  // inside the newest footer
   WriteBytes(path, bytes);
@@ -333,7 +333,7 @@ TEST(FrameFileCorruption, ATornSlotWriteOpensThePreviousVersion) {
   auto previous = ReadContents(path);
   ASSERT_TRUE(previous.ok());
   const std::string before = ReadBytes(path);
-  AppendToArchive(path, {MakeClip("three", kJoints, 30, 3)}, Options());
+  AppendToArchive(path, {MakeClip("three", kCorruptionJoints, 30, 3)}, Options());
   std::string bytes = ReadBytes(path);
   // Only the first half of the new slot reached the disk.
   bytes.replace(kSlotOffsets[1] + kSlotBytes / 2, kSlotBytes / 2,

@@ -17,7 +17,7 @@
 namespace motif::testing {
 namespace {
 
-constexpr uint32_t kJoints = 3;
+constexpr uint32_t kCrashJoints = 3;
 
 FrameFileWriterOptions Options(FileSystem* file_system) {
   FrameFileWriterOptions options;
@@ -27,11 +27,11 @@ FrameFileWriterOptions Options(FileSystem* file_system) {
 }
 
 std::vector<ClipFrames> BaseClips() {
-  return {MakeClip("base0", kJoints, 30, 1), MakeClip("base1", kJoints, 25, 2)};
+  return {MakeClip("base0", kCrashJoints, 30, 1), MakeClip("base1", kCrashJoints, 25, 2)};
 }
 
 std::vector<ClipFrames> NewClips() {
-  return {MakeClip("new0", kJoints, 20, 3), MakeClip("new1", kJoints, 27, 4)};
+  return {MakeClip("new0", kCrashJoints, 20, 3), MakeClip("new1", kCrashJoints, 27, 4)};
 }
 
 enum class AfterFailure {
@@ -63,7 +63,7 @@ Status RunAppend(const std::string& path, FileSystem* file_system,
 
 Status RunCreate(const std::string& path, FileSystem* file_system,
                  const std::function<void()>& recover = nullptr) {
-  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kJoints), 120.0, Options(file_system));
+  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kCrashJoints), 120.0, Options(file_system));
   if (!writer.ok()) return writer.status();
   Status status;
   for (const ClipFrames& clip : BaseClips()) {
@@ -99,7 +99,7 @@ class FrameFileCrashTest : public ::testing::Test {
  protected:
   void SetUp() override {
     base_path_ = dir_.File("base.mfs");
-    WriteArchive(base_path_, MakeSkeleton(kJoints), BaseClips(), Options(PosixFileSystem()));
+    WriteArchive(base_path_, MakeSkeleton(kCrashJoints), BaseClips(), Options(PosixFileSystem()));
     auto previous = ReadContents(base_path_);
     ASSERT_TRUE(previous.ok());
     previous_ = *previous;
@@ -160,7 +160,7 @@ class FrameFileCrashTest : public ::testing::Test {
         // Recovery: the next writer drops any leftovers and appends.
         auto writer = FrameFileWriter::OpenForAppend(path, Options(PosixFileSystem()));
         ASSERT_TRUE(writer.ok()) << context << ": " << writer.status().ToString();
-        ASSERT_TRUE((*writer)->AppendClip(MakeClip("later", kJoints, 9, 8)).ok()) << context;
+        ASSERT_TRUE((*writer)->AppendClip(MakeClip("later", kCrashJoints, 9, 8)).ok()) << context;
         ASSERT_TRUE((*writer)->Commit().ok()) << context;
         auto reader = FrameFileReader::Open(path);
         ASSERT_TRUE(reader.ok()) << context;

@@ -13,7 +13,7 @@
 namespace motif::testing {
 namespace {
 
-constexpr uint32_t kJoints = 4;
+constexpr uint32_t kReaderJoints = 4;
 
 // An archive of several clips in blocks of 50 frames, plus one appended generation.
 std::string MakeArchive(const TempDir& dir) {
@@ -22,11 +22,11 @@ std::string MakeArchive(const TempDir& dir) {
   options.block_frames = 50;
   std::vector<ClipFrames> clips;
   for (int clip_idx = 0; clip_idx < 4; ++clip_idx) {
-    clips.push_back(MakeClip(Numbered("c", clip_idx), kJoints, 61 + 17 * clip_idx,
+    clips.push_back(MakeClip(Numbered("c", clip_idx), kReaderJoints, 61 + 17 * clip_idx,
                              clip_idx));
   }
-  WriteArchive(path, MakeSkeleton(kJoints), clips, options);
-  AppendToArchive(path, {MakeClip("appended", kJoints, 77, 99)}, options);
+  WriteArchive(path, MakeSkeleton(kReaderJoints), clips, options);
+  AppendToArchive(path, {MakeClip("appended", kReaderJoints, 77, 99)}, options);
   return path;
 }
 

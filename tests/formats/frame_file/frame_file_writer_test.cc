@@ -12,7 +12,7 @@
 namespace motif::testing {
 namespace {
 
-constexpr uint32_t kJoints = 5;
+constexpr uint32_t kWriterJoints = 5;
 
 FrameFileWriterOptions SmallBlocks(uint32_t block_frames = 64) {
   FrameFileWriterOptions options;
@@ -24,7 +24,7 @@ std::vector<ClipFrames> SomeClips(int count, uint64_t frames, uint32_t seed = 1,
                                   const std::string& prefix = "clip") {
   std::vector<ClipFrames> clips;
   for (int clip_idx = 0; clip_idx < count; ++clip_idx) {
-    clips.push_back(MakeClip(prefix + std::to_string(clip_idx), kJoints, frames + 13 * clip_idx,
+    clips.push_back(MakeClip(prefix + std::to_string(clip_idx), kWriterJoints, frames + 13 * clip_idx,
                              seed + clip_idx));
   }
   return clips;
@@ -40,10 +40,10 @@ TEST(FrameFileWriter, RoundTripIsWithinTheQuantisationBound) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
   const std::vector<ClipFrames> clips = SomeClips(3, 150);
-  WriteArchive(path, MakeSkeleton(kJoints), clips, SmallBlocks());
+  WriteArchive(path, MakeSkeleton(kWriterJoints), clips, SmallBlocks());
   auto contents = ReadContents(path);
   ASSERT_TRUE(contents.ok()) << contents.status().ToString();
-  ExpectWithinQuantisationBound(Concatenate(clips), contents->rows, kJoints);
+  ExpectWithinQuantisationBound(Concatenate(clips), contents->rows, kWriterJoints);
 }
 
 TEST(FrameFileWriter, LosslessRoundTripIsBitExact) {
@@ -52,7 +52,7 @@ TEST(FrameFileWriter, LosslessRoundTripIsBitExact) {
   FrameFileWriterOptions options = SmallBlocks();
   options.lossless = true;
   const std::vector<ClipFrames> clips = SomeClips(2, 100);
-  WriteArchive(path, MakeSkeleton(kJoints), clips, options);
+  WriteArchive(path, MakeSkeleton(kWriterJoints), clips, options);
   auto contents = ReadContents(path);
   ASSERT_TRUE(contents.ok());
   EXPECT_TRUE(SameBits(Concatenate(clips), contents->rows));
@@ -61,7 +61,7 @@ TEST(FrameFileWriter, LosslessRoundTripIsBitExact) {
 TEST(FrameFileWriter, ReReadingGivesBitIdenticalRows) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  WriteArchive(path, MakeSkeleton(kJoints), SomeClips(2, 200), SmallBlocks());
+  WriteArchive(path, MakeSkeleton(kWriterJoints), SomeClips(2, 200), SmallBlocks());
   auto first = ReadContents(path);
   auto second = ReadContents(path);
   ASSERT_TRUE(first.ok() && second.ok());
@@ -71,14 +71,14 @@ TEST(FrameFileWriter, ReReadingGivesBitIdenticalRows) {
 TEST(FrameFileWriter, KeepsEveryClipAndSkeletonField) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  const Skeleton skeleton = MakeSkeleton(kJoints);
+  const Skeleton skeleton = MakeSkeleton(kWriterJoints);
   std::vector<ClipFrames> clips = SomeClips(3, 40);
   WriteArchive(path, skeleton, clips, SmallBlocks(32));
   auto reader = FrameFileReader::Open(path);
   ASSERT_TRUE(reader.ok());
   ExpectSameSkeleton(skeleton, (*reader)->skeleton());
   EXPECT_EQ((*reader)->fps(), 120.0);
-  EXPECT_EQ((*reader)->layout().joint_count, kJoints);
+  EXPECT_EQ((*reader)->layout().joint_count, kWriterJoints);
   ASSERT_EQ((*reader)->clips().size(), clips.size());
   uint64_t first_frame = 0;
   for (size_t clip_idx = 0; clip_idx < clips.size(); ++clip_idx) {
@@ -94,9 +94,9 @@ TEST(FrameFileWriter, BlocksSpanClipBoundaries) {
   const std::string path = dir.File("a.mfs");
   std::vector<ClipFrames> clips;
   for (int clip_idx = 0; clip_idx < 7; ++clip_idx) {
-    clips.push_back(MakeClip(Numbered("c", clip_idx), kJoints, 37, clip_idx));
+    clips.push_back(MakeClip(Numbered("c", clip_idx), kWriterJoints, 37, clip_idx));
   }
-  WriteArchive(path, MakeSkeleton(kJoints), clips, SmallBlocks(100));
+  WriteArchive(path, MakeSkeleton(kWriterJoints), clips, SmallBlocks(100));
   auto reader = FrameFileReader::Open(path);
   ASSERT_TRUE(reader.ok());
   const FrameFileSummary summary = (*reader)->summary();
@@ -111,18 +111,18 @@ TEST(FrameFileWriter, BlocksSpanClipBoundaries) {
   EXPECT_EQ((*reader)->ClipOfFrame(258), 6u);
   std::vector<float> rows;
   ASSERT_TRUE((*reader)->ReadFrames(0, 259, &rows).ok());
-  ExpectWithinQuantisationBound(Concatenate(clips), rows, kJoints);
+  ExpectWithinQuantisationBound(Concatenate(clips), rows, kWriterJoints);
 }
 
 TEST(FrameFileWriter, StreamingClipCallsWriteTheSameFileAsAppendClip) {
   TempDir dir;
   const std::vector<ClipFrames> clips = SomeClips(2, 170);
-  WriteArchive(dir.File("whole.mfs"), MakeSkeleton(kJoints), clips, SmallBlocks(50));
+  WriteArchive(dir.File("whole.mfs"), MakeSkeleton(kWriterJoints), clips, SmallBlocks(50));
 
-  auto writer = FrameFileWriter::Create(dir.File("streamed.mfs"), MakeSkeleton(kJoints), 120.0,
+  auto writer = FrameFileWriter::Create(dir.File("streamed.mfs"), MakeSkeleton(kWriterJoints), 120.0,
                                         SmallBlocks(50));
   ASSERT_TRUE(writer.ok());
-  const size_t stride = FrameLayout{kJoints}.stride();
+  const size_t stride = FrameLayout{kWriterJoints}.stride();
   for (const ClipFrames& clip : clips) {
     ClipInfo info = clip.info;
     info.frame_count = 12345;  // ignored
@@ -141,8 +141,8 @@ TEST(FrameFileWriter, StreamingClipCallsWriteTheSameFileAsAppendClip) {
 TEST(FrameFileWriter, SameInputWritesIdenticalBytes) {
   TempDir dir;
   const std::vector<ClipFrames> clips = SomeClips(3, 120);
-  WriteArchive(dir.File("a.mfs"), MakeSkeleton(kJoints), clips, SmallBlocks());
-  WriteArchive(dir.File("b.mfs"), MakeSkeleton(kJoints), clips, SmallBlocks());
+  WriteArchive(dir.File("a.mfs"), MakeSkeleton(kWriterJoints), clips, SmallBlocks());
+  WriteArchive(dir.File("b.mfs"), MakeSkeleton(kWriterJoints), clips, SmallBlocks());
   AppendToArchive(dir.File("a.mfs"), SomeClips(1, 77, 50, "more"), SmallBlocks());
   AppendToArchive(dir.File("b.mfs"), SomeClips(1, 77, 50, "more"), SmallBlocks());
   const std::string a = ReadBytes(dir.File("a.mfs"));
@@ -154,7 +154,7 @@ TEST(FrameFileWriter, AppendRoundTripKeepsExistingBlocks) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
   const std::vector<ClipFrames> first = SomeClips(2, 90);
-  WriteArchive(path, MakeSkeleton(kJoints), first, SmallBlocks());
+  WriteArchive(path, MakeSkeleton(kWriterJoints), first, SmallBlocks());
   const std::string before = ReadBytes(path);
   auto before_contents = ReadContents(path);
   ASSERT_TRUE(before_contents.ok());
@@ -178,7 +178,7 @@ TEST(FrameFileWriter, AppendRoundTripKeepsExistingBlocks) {
   EXPECT_TRUE(SameBits(before_contents->rows, old_rows));
   std::vector<float> new_rows(contents->rows.begin() + before_contents->rows.size(),
                               contents->rows.end());
-  ExpectWithinQuantisationBound(Concatenate(second), new_rows, kJoints);
+  ExpectWithinQuantisationBound(Concatenate(second), new_rows, kWriterJoints);
   auto reader = FrameFileReader::Open(path);
   ASSERT_TRUE(reader.ok());
   EXPECT_EQ((*reader)->summary().generation, 2u);
@@ -189,7 +189,7 @@ TEST(FrameFileWriter, ManyAppendsAccumulate) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
   std::vector<ClipFrames> all = SomeClips(1, 60, 1, "c0_");
-  WriteArchive(path, MakeSkeleton(kJoints), all, SmallBlocks(40));
+  WriteArchive(path, MakeSkeleton(kWriterJoints), all, SmallBlocks(40));
   for (int append_idx = 1; append_idx <= 6; ++append_idx) {
     std::vector<ClipFrames> more =
         SomeClips(append_idx % 3 + 1, 20 + append_idx, 10 * append_idx,
@@ -207,7 +207,7 @@ TEST(FrameFileWriter, ManyAppendsAccumulate) {
   for (size_t clip_idx = 0; clip_idx < all.size(); ++clip_idx) {
     EXPECT_EQ(contents->clips[clip_idx].name, all[clip_idx].info.name);
   }
-  ExpectWithinQuantisationBound(Concatenate(all), contents->rows, kJoints);
+  ExpectWithinQuantisationBound(Concatenate(all), contents->rows, kWriterJoints);
 }
 
 TEST(FrameFileWriter, AppendKeepsTheArchiveColumnEncodings) {
@@ -216,7 +216,7 @@ TEST(FrameFileWriter, AppendKeepsTheArchiveColumnEncodings) {
   FrameFileWriterOptions lossless = SmallBlocks();
   lossless.lossless = true;
   const std::vector<ClipFrames> first = SomeClips(1, 50);
-  WriteArchive(path, MakeSkeleton(kJoints), first, lossless);
+  WriteArchive(path, MakeSkeleton(kWriterJoints), first, lossless);
   const std::vector<ClipFrames> second = SomeClips(1, 50, 9, "more");
   AppendToArchive(path, second, SmallBlocks());  // default options: lossy, but ignored
   auto contents = ReadContents(path);
@@ -230,9 +230,9 @@ TEST(FrameFileWriter, AppendKeepsTheArchiveColumnEncodings) {
 TEST(FrameFileWriter, RejectsClipNamesAlreadyInTheArchive) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kJoints), 120.0);
+  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kWriterJoints), 120.0);
   ASSERT_TRUE(writer.ok());
-  const ClipFrames clip = MakeClip("walk", kJoints, 30, 1);
+  const ClipFrames clip = MakeClip("walk", kWriterJoints, 30, 1);
   ASSERT_TRUE((*writer)->AppendClip(clip).ok());
   Status duplicate = (*writer)->AppendClip(clip);
   EXPECT_TRUE(duplicate.IsInvalidArgument());
@@ -242,8 +242,8 @@ TEST(FrameFileWriter, RejectsClipNamesAlreadyInTheArchive) {
 
   auto appender = FrameFileWriter::OpenForAppend(path);
   ASSERT_TRUE(appender.ok());
-  EXPECT_TRUE((*appender)->AppendClip(MakeClip("walk", kJoints, 10, 2)).IsInvalidArgument());
-  EXPECT_TRUE((*appender)->AppendClip(MakeClip("run", kJoints, 10, 2)).ok());
+  EXPECT_TRUE((*appender)->AppendClip(MakeClip("walk", kWriterJoints, 10, 2)).IsInvalidArgument());
+  EXPECT_TRUE((*appender)->AppendClip(MakeClip("run", kWriterJoints, 10, 2)).ok());
   ASSERT_TRUE((*appender)->Commit().ok());
   auto contents = ReadContents(path);
   ASSERT_TRUE(contents.ok());
@@ -253,37 +253,37 @@ TEST(FrameFileWriter, RejectsClipNamesAlreadyInTheArchive) {
 TEST(FrameFileWriter, RejectsNonFiniteValuesAndLeavesTheWriterUsable) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kJoints), 120.0, SmallBlocks(16));
+  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kWriterJoints), 120.0, SmallBlocks(16));
   ASSERT_TRUE(writer.ok());
-  ClipFrames bad = MakeClip("bad", kJoints, 40, 1);
-  bad.rows[33 * FrameLayout{kJoints}.stride() + 6] = std::numeric_limits<float>::quiet_NaN();
+  ClipFrames bad = MakeClip("bad", kWriterJoints, 40, 1);
+  bad.rows[33 * FrameLayout{kWriterJoints}.stride() + 6] = std::numeric_limits<float>::quiet_NaN();
   Status status = (*writer)->AppendClip(bad);
   EXPECT_TRUE(status.IsInvalidArgument());
   EXPECT_NE(status.message().find("frame 33"), std::string::npos) << status.message();
   EXPECT_NE(status.message().find("not finite"), std::string::npos) << status.message();
-  bad.rows[33 * FrameLayout{kJoints}.stride() + 6] = std::numeric_limits<float>::infinity();
+  bad.rows[33 * FrameLayout{kWriterJoints}.stride() + 6] = std::numeric_limits<float>::infinity();
   EXPECT_TRUE((*writer)->AppendClip(bad).IsInvalidArgument());
-  ClipFrames bad_info = MakeClip("bad_info", kJoints, 10, 1);
+  ClipFrames bad_info = MakeClip("bad_info", kWriterJoints, 10, 1);
   bad_info.info.start_position[1] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE((*writer)->AppendClip(bad_info).IsInvalidArgument());
 
-  const ClipFrames good = MakeClip("good", kJoints, 40, 2);
+  const ClipFrames good = MakeClip("good", kWriterJoints, 40, 2);
   ASSERT_TRUE((*writer)->AppendClip(good).ok());
   EXPECT_EQ((*writer)->clips().size(), 1u);
   ASSERT_TRUE((*writer)->Commit().ok());
   auto contents = ReadContents(path);
   ASSERT_TRUE(contents.ok());
   ASSERT_EQ(contents->clips.size(), 1u);
-  ExpectWithinQuantisationBound(good.rows, contents->rows, kJoints);
+  ExpectWithinQuantisationBound(good.rows, contents->rows, kWriterJoints);
 }
 
 TEST(FrameFileWriter, RejectsValuesThatOverflowTheQuantisedRange) {
   TempDir dir;
-  auto writer = FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kJoints), 120.0);
+  auto writer = FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kWriterJoints), 120.0);
   ASSERT_TRUE(writer.ok());
-  ClipFrames clip = MakeClip("spin", kJoints, 10, 1);
+  ClipFrames clip = MakeClip("spin", kWriterJoints, 10, 1);
   // Heading step 1e-5 rad: int32 holds +-21474 rad.
-  clip.rows[5 * FrameLayout{kJoints}.stride() + FrameLayout{kJoints}.heading_offset()] = 30000.0f;
+  clip.rows[5 * FrameLayout{kWriterJoints}.stride() + FrameLayout{kWriterJoints}.heading_offset()] = 30000.0f;
   Status status = (*writer)->AppendClip(clip);
   EXPECT_TRUE(status.IsInvalidArgument());
   EXPECT_NE(status.message().find("overflows int32"), std::string::npos) << status.message();
@@ -291,24 +291,24 @@ TEST(FrameFileWriter, RejectsValuesThatOverflowTheQuantisedRange) {
 
 TEST(FrameFileWriter, RejectsMalformedClips) {
   TempDir dir;
-  auto writer = FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kJoints), 120.0);
+  auto writer = FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kWriterJoints), 120.0);
   ASSERT_TRUE(writer.ok());
-  ClipFrames clip = MakeClip("c", kJoints, 10, 1);
+  ClipFrames clip = MakeClip("c", kWriterJoints, 10, 1);
   clip.rows.pop_back();
   EXPECT_TRUE((*writer)->AppendClip(clip).IsInvalidArgument());
-  clip = MakeClip("c", kJoints, 10, 1);
+  clip = MakeClip("c", kWriterJoints, 10, 1);
   clip.info.joint_offsets.pop_back();
   EXPECT_TRUE((*writer)->AppendClip(clip).IsInvalidArgument());
-  clip = MakeClip("c", kJoints, 10, 1, 60.0);  // archive at 120 fps
+  clip = MakeClip("c", kWriterJoints, 10, 1, 60.0);  // archive at 120 fps
   EXPECT_TRUE((*writer)->AppendClip(clip).IsInvalidArgument());
-  clip = MakeClip("", kJoints, 10, 1);
+  clip = MakeClip("", kWriterJoints, 10, 1);
   EXPECT_TRUE((*writer)->AppendClip(clip).IsInvalidArgument());
-  clip = MakeClip("empty", kJoints, 0, 1);
+  clip = MakeClip("empty", kWriterJoints, 0, 1);
   EXPECT_TRUE((*writer)->AppendClip(clip).IsInvalidArgument());
   ASSERT_TRUE((*writer)->BeginClip(clip.info).ok());
   EXPECT_TRUE((*writer)->EndClip().IsInvalidArgument());
   EXPECT_TRUE((*writer)->AppendFrames(nullptr, 0).IsInvalidArgument());  // no clip open
-  ASSERT_TRUE((*writer)->BeginClip(MakeClip("open", kJoints, 1, 1).info).ok());
+  ASSERT_TRUE((*writer)->BeginClip(MakeClip("open", kWriterJoints, 1, 1).info).ok());
   EXPECT_TRUE((*writer)->Commit().IsInvalidArgument());  // clip still open
 }
 
@@ -341,24 +341,24 @@ TEST(FrameFileWriter, CreateRejectsBadArguments) {
 TEST(FrameFileWriter, CreateWritesATemporaryFileUntilCommit) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kJoints), 120.0, SmallBlocks(16));
+  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kWriterJoints), 120.0, SmallBlocks(16));
   ASSERT_TRUE(writer.ok());
-  ASSERT_TRUE((*writer)->AppendClip(MakeClip("c", kJoints, 100, 1)).ok());
+  ASSERT_TRUE((*writer)->AppendClip(MakeClip("c", kWriterJoints, 100, 1)).ok());
   EXPECT_FALSE(std::filesystem::exists(path));
   ASSERT_EQ(ListDir(dir.path()).size(), 1u);
   EXPECT_NE(ListDir(dir.path())[0].find("a.mfs.tmp-"), std::string::npos);
   ASSERT_TRUE((*writer)->Commit().ok());
   EXPECT_EQ(ListDir(dir.path()), std::vector<std::string>{"a.mfs"});
-  EXPECT_TRUE((*writer)->AppendClip(MakeClip("late", kJoints, 1, 1)).IsInvalidArgument());
+  EXPECT_TRUE((*writer)->AppendClip(MakeClip("late", kWriterJoints, 1, 1)).IsInvalidArgument());
 }
 
 TEST(FrameFileWriter, AbandonedCreateLeavesNoFile) {
   TempDir dir;
   {
     auto writer =
-        FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kJoints), 120.0, SmallBlocks(16));
+        FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kWriterJoints), 120.0, SmallBlocks(16));
     ASSERT_TRUE(writer.ok());
-    ASSERT_TRUE((*writer)->AppendClip(MakeClip("c", kJoints, 100, 1)).ok());
+    ASSERT_TRUE((*writer)->AppendClip(MakeClip("c", kWriterJoints, 100, 1)).ok());
   }
   EXPECT_TRUE(ListDir(dir.path()).empty());
 }
@@ -366,12 +366,12 @@ TEST(FrameFileWriter, AbandonedCreateLeavesNoFile) {
 TEST(FrameFileWriter, AbandonedAppendLeavesTheArchiveUnchanged) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  WriteArchive(path, MakeSkeleton(kJoints), SomeClips(2, 50), SmallBlocks(16));
+  WriteArchive(path, MakeSkeleton(kWriterJoints), SomeClips(2, 50), SmallBlocks(16));
   const std::string before = ReadBytes(path);
   {
     auto writer = FrameFileWriter::OpenForAppend(path, SmallBlocks(16));
     ASSERT_TRUE(writer.ok());
-    ASSERT_TRUE((*writer)->AppendClip(MakeClip("more", kJoints, 100, 5)).ok());
+    ASSERT_TRUE((*writer)->AppendClip(MakeClip("more", kWriterJoints, 100, 5)).ok());
     EXPECT_GT(std::filesystem::file_size(path), before.size());  // blocks already written
   }
   EXPECT_EQ(ReadBytes(path), before);
@@ -380,7 +380,7 @@ TEST(FrameFileWriter, AbandonedAppendLeavesTheArchiveUnchanged) {
 TEST(FrameFileWriter, OpenForAppendDiscardsAnUncommittedTail) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  WriteArchive(path, MakeSkeleton(kJoints), SomeClips(2, 50), SmallBlocks(16));
+  WriteArchive(path, MakeSkeleton(kWriterJoints), SomeClips(2, 50), SmallBlocks(16));
   const std::string committed = ReadBytes(path);
   WriteBytes(path, committed + std::string(3000, '\xab'));  // an interrupted append's leftovers
   {
@@ -403,7 +403,7 @@ TEST(FrameFileWriter, OpenForAppendDiscardsAnUncommittedTail) {
 TEST(FrameFileWriter, SecondWriterFailsFastBecauseTheArchiveIsLocked) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
-  WriteArchive(path, MakeSkeleton(kJoints), SomeClips(1, 20), SmallBlocks(16));
+  WriteArchive(path, MakeSkeleton(kWriterJoints), SomeClips(1, 20), SmallBlocks(16));
   auto first = FrameFileWriter::OpenForAppend(path);
   ASSERT_TRUE(first.ok());
   {
@@ -416,7 +416,7 @@ TEST(FrameFileWriter, SecondWriterFailsFastBecauseTheArchiveIsLocked) {
   EXPECT_TRUE(second.status().IsBusy());
   EXPECT_NE(second.status().message().find("locked"), std::string::npos)
       << second.status().message();
-  ASSERT_TRUE((*first)->AppendClip(MakeClip("x", kJoints, 5, 3)).ok());
+  ASSERT_TRUE((*first)->AppendClip(MakeClip("x", kWriterJoints, 5, 3)).ok());
   ASSERT_TRUE((*first)->Commit().ok());
   // Released at commit.
   auto third = FrameFileWriter::OpenForAppend(path);

@@ -18,12 +18,12 @@
 namespace motif::testing {
 namespace {
 
-constexpr uint32_t kBlockColumns = 8;
-constexpr uint64_t kFrames = 5 * kBlockColumns - 3;
+constexpr uint32_t kCrashBlockColumns = 8;
+constexpr uint64_t kCrashFrames = 5 * kCrashBlockColumns - 3;
 
-TrellisFileWriterOptions Options(FileSystem* file_system) {
+TrellisFileWriterOptions CrashOptions(FileSystem* file_system) {
   TrellisFileWriterOptions options;
-  options.block_columns = kBlockColumns;
+  options.block_columns = kCrashBlockColumns;
   options.file_system = file_system;
   return options;
 }
@@ -34,10 +34,10 @@ Status Build(const std::string& path, const TrellisParams& params, const Trellis
              FileSystem* file_system, uint64_t* blocks_appended) {
   *blocks_appended = 0;
   MOTIF_ASSIGN_OR_RETURN(auto writer,
-                         TrellisFileWriter::OpenOrResume(path, params, Options(file_system)));
+                         TrellisFileWriter::OpenOrResume(path, params, CrashOptions(file_system)));
   while (writer->next_column() < params.frame_count) {
     const uint64_t first = writer->next_column();
-    const uint64_t count = std::min<uint64_t>(kBlockColumns, params.frame_count - first);
+    const uint64_t count = std::min<uint64_t>(kCrashBlockColumns, params.frame_count - first);
     MOTIF_RETURN_IF_ERROR(writer->AppendBlock(Slice(columns, first, count)));
     ++*blocks_appended;
   }
@@ -47,8 +47,8 @@ Status Build(const std::string& path, const TrellisParams& params, const Trellis
 class TrellisFileCrashTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    params_ = MakeParams(kFrames, 50);
-    columns_ = MakeRunColumns(kFrames, params_.eps, 5, 40, 77);
+    params_ = MakeParams(kCrashFrames, 50);
+    columns_ = MakeRunColumns(kCrashFrames, params_.eps, 5, 40, 77);
     const std::string reference = dir_.File("reference.mtr");
     FaultInjectingFileSystem counting(PosixFileSystem());
     uint64_t blocks = 0;
@@ -88,12 +88,12 @@ TEST_F(TrellisFileCrashTest, AFailureAtEveryStepLeavesNoWrongFileAndResumesToThe
         EXPECT_FALSE(FileExists(TrellisFileWriter::PartialPath(path)));
       }
       // Resume on a working disk: at least the blocks acknowledged before the failure are kept.
-      auto writer = TrellisFileWriter::OpenOrResume(path, params_, Options(NoSyncFileSystem()));
+      auto writer = TrellisFileWriter::OpenOrResume(path, params_, CrashOptions(NoSyncFileSystem()));
       ASSERT_TRUE(writer.ok()) << writer.status().ToString();
       const uint64_t resumed = (*writer)->next_column();
-      EXPECT_EQ(resumed % kBlockColumns == 0 || resumed == kFrames, true);
+      EXPECT_EQ(resumed % kCrashBlockColumns == 0 || resumed == kCrashFrames, true);
       if (!FileExists(path)) {
-        EXPECT_GE(resumed, std::min<uint64_t>(kFrames, blocks_appended * kBlockColumns));
+        EXPECT_GE(resumed, std::min<uint64_t>(kCrashFrames, blocks_appended * kCrashBlockColumns));
       }
       writer->reset();
       uint64_t blocks = 0;
@@ -111,11 +111,11 @@ TEST_F(TrellisFileCrashTest, AFailureWhileResumingATornBuildIsResumableToo) {
   const std::string path = dir_.File("torn.mtr");
   const std::string partial = TrellisFileWriter::PartialPath(path);
   {
-    auto writer = TrellisFileWriter::OpenOrResume(path, params_, Options(NoSyncFileSystem()));
+    auto writer = TrellisFileWriter::OpenOrResume(path, params_, CrashOptions(NoSyncFileSystem()));
     ASSERT_TRUE(writer.ok());
     for (uint64_t block_idx = 0; block_idx < 3; ++block_idx) {
-      ASSERT_TRUE((*writer)->AppendBlock(Slice(columns_, block_idx * kBlockColumns,
-                                               kBlockColumns)).ok());
+      ASSERT_TRUE((*writer)->AppendBlock(Slice(columns_, block_idx * kCrashBlockColumns,
+                                               kCrashBlockColumns)).ok());
     }
   }
   const std::string torn = ReadBytes(partial);

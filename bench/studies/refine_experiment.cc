@@ -33,7 +33,7 @@
 #include "engine/lsh/query_distance.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
-#include "tests/engine/lsh/experiment_args.h"
+#include "bench/studies/experiment_args.h"
 
 using namespace motif;
 

@@ -1,4 +1,5 @@
-// lsh_experiment: the study tool behind docs/design/lsh.md (not a test; built beside lsh_test).
+// lsh_experiment: the study tool behind docs/design/lsh.md (not a test; built with the tests, as
+// it uses their helpers: bench/studies/CMakeLists.txt).
 // key=value arguments:
 //   data=real|synth|synthbig|reseq frames=N seed=S queries=Q k_max=K eps=E
 //   LSH options: tables= hashes= width= width_per_hash= probes= max_candidates= max_bucket_scan=
@@ -29,7 +30,7 @@
 #include "engine/distance/exact_search.h"
 #include "engine/lsh/lsh_search.h"
 #include "tests/engine/lsh/lsh_test_util.h"
-#include "tests/engine/lsh/experiment_args.h"
+#include "bench/studies/experiment_args.h"
 #include "tests/testing/mocap_data.h"
 
 using namespace motif;

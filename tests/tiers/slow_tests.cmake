@@ -1,0 +1,57 @@
+# The slow tier: tests that take 1.4 s or more each in a Release build on 2 cores (measured with
+# ctest; docs/reliability.md, "Build and test time"). They carry the label `slow`: the README's
+# test command (scripts/test.sh) runs every other test, and CI runs these too (`scripts/test.sh
+# --slow`). Included by ctest after every discovered test is defined (tests/tiers/CMakeLists.txt);
+# a name that no longer exists is ignored, so rename a test here when renaming it there.
+set_tests_properties(
+  AuditTrellis.LshRecallOnAPlantedSyntheticArchive
+  BuildTrellis.LshColumnsDoNotDependOnTheBlockSplit
+  BuildTrellis.SameBytesForAnyThreadCount
+  DtwNeighbours.DefaultSearchFindsMostTrueNeighbours
+  EmbeddingTrainer.TrainingLowersTheLossAndBeatsTheUntrainedNetOnHeldOutWords
+  EpsilonEstimator.ReproducesTheMeasuredFiguresOnTheRealTakes
+  ImportIntoArchive.RealBvhAndAsfAmcArchivesHaveTheIndexedClipsAndFrames
+  LshSearchHeavyBucket.StaticPoseRepeatedThousandsOfTimes
+  LshSearchHeavyBucket.StaticPoseRepeatedThousandsOfTimesRankedByCode
+  LshSearchRealTakes.RecallOnRealCmuTakes
+  LshSearchTest.KeepsAtMostKMaxNearest
+  LshSearchTest.QuaternionSignFlipGivesTheSameColumns
+  LshSearchTest.RankingByPositionCodeKeepsRecallWithHalfTheBudget
+  LshSearchTest.RecallOnSyntheticArchive
+  MineInterrupt.KilledAtEachStageThenRerunGivesTheSameMotifs
+  MineInterrupt.LshTrellisKilledMidwayResumesToTheSameMotifs
+  MineQuality.AddingATakeKeepsEveryMotif
+  MotifmineMine.SyntheticArchiveEndToEndThenReuse
+  MotifmineScore.RefusesMissingArgumentsAndMalformedTruthNamingTheLine
+  MotionSynthesizerStreaming.MemoryStaysFlatOverMillionsOfFrames
+  PlantedMotifs.ProceduralArchiveWithTenMotifsIsMinedWithHighRecallPrecisionAndAri
+  PlantedMotifs.RealSegmentInsertedThreeTimesAtDifferentSpeedsIsFoundAsOneMotif
+  ReindexCliTest.AChangedParameterRegrowsOrRebuildsAsAFromScratchMineWould
+  ReindexCliTest.AReaderOfTheOldVersionKeepsReadingItWhileNewVersionsAreSwitchedIn
+  ReindexCliTest.ARerunImportsNothingAndAChangedFileIsReportedNotImported
+  ReindexCliTest.ExactIncrementalResultIsTheFromScratchMineByteForByte
+  ReindexCliTest.LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSameMotifs
+  ReindexCliTest.ProgressJsonGivesLogLinesAndASummaryLine
+  ReindexCliTest.ReadersOpeningWhileARunSwitchesAlwaysSeeOneWholeVersion
+  ReindexCliTest.TheCronWrapperIsSilentWhenAllIsWellAndSaysWhatWasNotImported
+  ReindexFailureTest.AFullFileSystemGivesAClearErrorAndLeavesTheVersionIntact
+  ReindexFailureTest.AWriteFailingAtAnyStepLeavesTheCurrentVersionAndTheNextRunFinishes
+  ReportBrowser.RendersEveryFigureWithoutScriptErrors
+  TrellisUpdateTest.AnInterruptedUpdateResumesAndEndsTheSame
+  TrellisUpdateTest.AnUpdateInterruptedWhileFinishingResumesWithNothingLeftToWrite
+  TrellisUpdateTest.BlocksNoNewFrameReachesAreCopied
+  TrellisUpdateTest.ExactTiesBetweenOldAndNewFramesAreBrokenAsAFullBuildDoes
+  TrellisUpdateTest.ExactUpdateIsTheFullBuildByteForByte
+  TrellisUpdateTest.LshNewColumnsAreTheFullBuildsAndAlmostAllEntriesAgree
+  TrellisUpdateTest.LshUpdateIsTheSameFileForOneAndTwoThreads
+  TrellisUpdateTest.TwoUpdatesInARowAreTheFullBuild
+  WindowSearch.FindsACopyOfTheQueryInsertedInAnotherTake
+  WindowSearch.WholeTakesAndErrors
+  WordsBuilderTest.AnInterruptedTrainingResumesToTheSameFiles
+  WordsBuilderTest.DamagedFilesAreMadeAgainOrRefused
+  WordsBuilderTest.FilesAreIdenticalForOneAndTwoThreads
+  WordsCliTest.ClassifyWritesItsDocumentWithAndWithoutLabels
+  WordsCliTest.SearchFindsAnExportedRangeAndTheWholeTake
+  WordsCliTest.WordsWritesItsFilesThenReusesThem
+  PROPERTIES LABELS slow)
+set_tests_properties(crash_harness_small PROPERTIES LABELS "slow;crash")
