@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The scaling suite of issue 6: every stage against N = 2^14, 2^15, ... frames, with its baselines,
+# The scaling suite: every stage against N = 2^14, 2^15, ... frames, with its baselines,
 # then the "Scaling" section of docs/benchmarks.md (tables) and its plots (docs/benchmarks/*.svg).
 #   scripts/bench.sh quick [JOBS]  N up to 2^16-2^17 (minutes)
 #   scripts/bench.sh full [JOBS]   N up to 2^24 (FAISS 2^22; the exact search and the reference

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Crash-consistency harness (issue 8): kills `motifmine import`, `trellis`, `mine` and `reindex`
-with SIGKILL at random moments and checks that what they leave is the old version or the new one,
-never a damaged file, and that the next run finishes with the result of an uninterrupted run.
+"""Crash-consistency harness (docs/reliability.md, "Crash consistency"): kills `motifmine import`,
+`trellis`, `mine` and `reindex` with SIGKILL at random moments and checks that what they leave is
+the old version or the new one, never a damaged file, and that the next run finishes with the result of an uninterrupted run.
 
     scripts/crash_harness.py --tool build/motifmine --seed 1 --kills 100 [--commands import,mine]
 

@@ -146,7 +146,7 @@ int RunReindex(const std::vector<std::string>& args) {
   spec.options.add_options()
       ("watch", po::value<std::string>(), "folder of BVH / ASF+AMC takes (searched recursively)")
       ("out", po::value<std::string>(), "output folder (created if missing)")
-      ("eps", po::value<std::string>(), "pose distance threshold, or auto (mu - 2 sigma); "
+      ("eps", po::value<std::string>(), "pose distance threshold, or auto (the joint-angle rule of mine, 12 degrees); "
        "default: recorded at the first run (auto then)")
       ("kmax", po::value<uint32_t>(), "neighbours kept per frame (first run: 256)")
       ("exclusion", po::value<uint32_t>(), "same-clip exclusion radius in frames (0: half the "

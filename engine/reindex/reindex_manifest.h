@@ -43,7 +43,7 @@ struct VersionFile {
 // unless the command line changes it (a change rebuilds everything after the archive).
 struct MiningParams {
   float eps = 0;               // the eps every version uses
-  bool eps_estimated = false;  // mu - 2 sigma of the first build's archive
+  bool eps_estimated = false;  // chosen by the first build's rule (not given)
   float mu = 0;                // of that estimate (0 if eps was given)
   float sigma = 0;
   uint32_t k_max = 0;

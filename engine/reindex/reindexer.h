@@ -43,7 +43,7 @@ struct ReindexOptions {
   std::string archive_path;
   std::string watch_dir;
   std::string out_dir;
-  std::optional<float> eps;              // 0: estimate (mu - 2 sigma) on the current archive
+  std::optional<float> eps;              // 0: the default rule of mine (joint angle 12 degrees)
   std::optional<uint32_t> k_max;         // default 256
   std::optional<uint32_t> exclusion;     // default 0: half the minimum length
   std::optional<TrellisSearchMode> search;  // default auto at the first run

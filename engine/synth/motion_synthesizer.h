@@ -41,7 +41,7 @@ struct SynthOptions {
   double warp_min = 0.7;
   double warp_max = 1.4;
   double noise_degrees = 1.0;    // std dev of the smooth noise added to each instance
-  // Beyond the options (defaults are the intended behaviour):
+  // Further options (defaults are the intended behaviour):
   double crossfade_seconds = 0.5;   // an instance blends into the background over this, before
                                     // its start and after its end (outside the truth range)
   double gap_seconds = 0.5;         // at least this much untouched background between instances

@@ -57,7 +57,7 @@ Status ComputeThresholds(const TrellisFileReader& previous, uint64_t first_block
       for (uint32_t column_idx = 0; column_idx < block.column_count; ++column_idx) {
         const uint32_t begin = block.offsets[column_idx];
         (*thresholds)[block.first_column + column_idx] =
-            ColumnThreshold(&block.neighbours[begin], block.offsets[column_idx + 1] - begin,
+            ColumnThreshold(block.neighbours.data() + begin, block.offsets[column_idx + 1] - begin,
                             params.eps, params.k_max);
       }
       // A memory hint; it fails only for a block out of range, and block_idx is in range.
@@ -407,7 +407,7 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
       while (pair != pairs_end && pair->old_frame == column) ++pair;
       const uint32_t begin = block.offsets[column_idx];
       const uint32_t end = block.offsets[column_idx + 1];
-      if (MergeColumn(features, column, params.eps, params.k_max, &block.neighbours[begin],
+      if (MergeColumn(features, column, params.eps, params.k_max, block.neighbours.data() + begin,
                       end - begin, pairs.data() + (column_pairs_begin - pairs.begin()),
                       static_cast<size_t>(pair - column_pairs_begin), &columns[column_idx],
                       &out->recomputed, &merge_scratch.local())) {

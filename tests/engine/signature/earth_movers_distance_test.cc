@@ -51,7 +51,7 @@ double CdfDistance(const Histogram& p, const Histogram& q, const std::vector<dou
   return distance;
 }
 
-// The mistake the issue warns about: a 1-D Wasserstein distance between the two sets of bin
+// A tempting mistake: a 1-D Wasserstein distance between the two sets of bin
 // VALUES (sorted, paired), which forgets which motif each bin is.
 double ValueWasserstein(Histogram p, Histogram q) {
   std::sort(p.begin(), p.end());
@@ -187,7 +187,7 @@ TEST(EarthMoversDistance, SatisfiesTheTriangleInequalityOverAMetricGround) {
 
 // Which motif each bin is matters. q1 and q2 hold the same VALUES as p (one bin of 1, three of
 // 0), at different motifs: moving p's mass to motif 1 costs 1, to motif 3 costs 3. A distance
-// over the bin values alone (ValueWasserstein, the mistake the issue warns about) gives 0 for
+// over the bin values alone (ValueWasserstein, the tempting mistake above) gives 0 for
 // both, so it fails every expectation below.
 TEST(EarthMoversDistance, PermutingBinsChangesTheDistance) {
   const Eigen::MatrixXd ground = LineGround(UnitSpacing(4));

@@ -83,7 +83,9 @@ TEST(WindowSearch, FindsACopyOfTheQueryInsertedInAnotherTake) {
       EXPECT_EQ(best.distance, 0.0);
       EXPECT_EQ(best.start_frame, 1000u);
     }
-    if (one->matches.size() > 1) EXPECT_GT(one->matches[1].distance, best.distance);
+    if (one->matches.size() > 1) {
+      EXPECT_GT(one->matches[1].distance, best.distance);
+    }
     ASSERT_EQ(one->matches.size(), two->matches.size());
     for (size_t rank = 0; rank < one->matches.size(); ++rank) {
       EXPECT_EQ(one->matches[rank].clip, two->matches[rank].clip);
