@@ -110,8 +110,7 @@ Result<PoseFeatures> HeavyFeatures(uint64_t frames, uint64_t static_frames) {
   for (size_t joint_idx = 0; joint_idx < skeleton.joint_count(); ++joint_idx) {
     weights.push_back(skeleton.joint(joint_idx).weight);
   }
-  return PoseFeatures::FromRows(rows.data(), total, layout.joint_count, weights,
-                                clip_first_frames);
+  return PoseFeatures::FromRows(rows.data(), total, layout.joint_count, weights, clip_first_frames);
 }
 
 Result<PoseFeatures> FeaturesOfFile(const std::string& path) {

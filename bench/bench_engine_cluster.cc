@@ -222,9 +222,9 @@ const bool registered = [] {
   std::vector<std::vector<int64_t>> rows;
   for (int64_t frames : bench::ScalingFrames()) rows.push_back({frames, 2});
   for (bool chained : {false, true}) {
-    if (auto* family = bench::RegisterRows(
-            chained ? "ClusterScale/chained" : "ClusterScale/separate", rows, BM_ClusterScale,
-            chained)) {
+    if (auto* family =
+            bench::RegisterRows(chained ? "ClusterScale/chained" : "ClusterScale/separate", rows,
+                                BM_ClusterScale, chained)) {
       family->ArgNames({"frames", "threads"})
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime()

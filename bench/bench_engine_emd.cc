@@ -41,9 +41,9 @@
 #include <benchmark/benchmark.h>
 
 #include "engine/lsh/split_mix64.h"
+#include "engine/signature/clip_words.h"
 #include "engine/signature/earth_movers_distance.h"
 #include "engine/signature/ground_distance.h"
-#include "engine/signature/clip_words.h"
 #include "engine/signature/k_means.h"
 #include "engine/signature/transport_problem.h"
 #include "engine/signature/transport_reference.h"
@@ -174,7 +174,8 @@ BenchClip MakeBenchClip(uint32_t joint_count, uint64_t frames, uint64_t seed) {
     const double frequency = 0.3 + 1.5 * random.Uniform();
     const double phase = 6.283185307179586 * random.Uniform();
     for (uint64_t frame = 0; frame < frames; ++frame) {
-      const double angle = amplitude * std::sin(6.283185307179586 * frequency * frame / 120.0 + phase);
+      const double angle =
+          amplitude * std::sin(6.283185307179586 * frequency * frame / 120.0 + phase);
       const Eigen::Quaterniond q(Eigen::AngleAxisd(angle, axis));
       float* out = &clip.rows[frame * clip.layout.stride() + clip.layout.quaternion_offset(joint)];
       out[0] = static_cast<float>(q.w());
@@ -240,7 +241,6 @@ void BM_WordDtwPrepared(benchmark::State& state) {
   }
   SetDtwCounters(state, band);
 }
-
 
 void BM_WordDtwAbandon(benchmark::State& state) {
   const uint32_t band = static_cast<uint32_t>(state.range(0));

@@ -143,9 +143,8 @@ void BM_ExactScale(benchmark::State& state, std::string data, bool extrapolated)
     const double cpu_start = bench::ProcessCpuSeconds();
     const auto start = std::chrono::steady_clock::now();
     for (uint64_t block = first; block < first + count; block += kScaleBlock) {
-      Status status =
-          search.SearchColumns(block, std::min(kScaleBlock, first + count - block), &columns,
-                               &stats);
+      Status status = search.SearchColumns(block, std::min(kScaleBlock, first + count - block),
+                                           &columns, &stats);
       if (!status.ok()) {
         state.SkipWithError(status.ToString().c_str());
         return;
@@ -192,9 +191,9 @@ const bool registered = [] {
       for (int64_t frames : bench::ScalingFrames()) {
         if ((frames > kLargestFullScale) == extrapolated) rows.push_back({frames, 2});
       }
-      auto* entry = bench::RegisterRows(
-          "ExactScale/" + data + (extrapolated ? "/extrapolated" : ""), rows, BM_ExactScale, data,
-          extrapolated);
+      auto* entry =
+          bench::RegisterRows("ExactScale/" + data + (extrapolated ? "/extrapolated" : ""), rows,
+                              BM_ExactScale, data, extrapolated);
       if (entry == nullptr) continue;
       entry->ArgNames({"frames", "threads"})
           ->Unit(benchmark::kSecond)

@@ -96,8 +96,8 @@ std::string TrellisOf(uint64_t frame_count, uint32_t k) {
   static std::map<std::pair<uint64_t, uint32_t>, std::string> paths;
   auto it = paths.find({frame_count, k});
   if (it != paths.end()) return it->second;
-  const std::string path = Files().dir + "/t_" + std::to_string(frame_count) + "_" +
-                           std::to_string(k) + ".mtr";
+  const std::string path =
+      Files().dir + "/t_" + std::to_string(frame_count) + "_" + std::to_string(k) + ".mtr";
   TrellisParams params;
   params.frame_count = frame_count;
   params.eps = 1.0f;
@@ -198,9 +198,8 @@ void RunStreaming(benchmark::State& state, Pages pages) {
   const double base_rss_bytes = StartPeakRss();
   const double cpu_start = ThreadCpuSeconds();
   for (auto _ : state) {
-    auto result = pages == Pages::kRelease
-                      ? GrowPaths(**reader, clips, Options(), nullptr, &stats)
-                      : GrowKeepingPages(**reader, clips, Options(), &stats);
+    auto result = pages == Pages::kRelease ? GrowPaths(**reader, clips, Options(), nullptr, &stats)
+                                           : GrowKeepingPages(**reader, clips, Options(), &stats);
     if (!result.ok()) Die(result.status());
     candidates = result->size();
     benchmark::DoNotOptimize(result->data());
@@ -262,9 +261,7 @@ void BM_ReferenceGrower(benchmark::State& state) {
 }
 
 // $MOTIF_BENCH_GROWER_MAX: the largest N of the StreamingGrowerScaling series (default 2^17).
-int64_t GrowerScalingMaxFrames() {
-  return bench::FramesFromEnv("MOTIF_BENCH_GROWER_MAX", 1 << 17);
-}
+int64_t GrowerScalingMaxFrames() { return bench::FramesFromEnv("MOTIF_BENCH_GROWER_MAX", 1 << 17); }
 
 constexpr int64_t kScalingK = 256;
 constexpr int64_t kLargestScaleReference = 1 << 20;
@@ -277,8 +274,8 @@ const bool registered = [] {
       {"StreamingGrowerKeepPages", BM_StreamingGrowerKeepPages}};
   for (const auto& [name, function] : kScalingSeries) {
     benchmark::internal::Benchmark* scaling = benchmark::RegisterBenchmark(name, function);
-    for (int64_t frames : {int64_t{1} << 13, int64_t{1} << 15, int64_t{1} << 17,
-                           int64_t{1} << 20, int64_t{1} << 22, int64_t{10'000'000}}) {
+    for (int64_t frames : {int64_t{1} << 13, int64_t{1} << 15, int64_t{1} << 17, int64_t{1} << 20,
+                           int64_t{1} << 22, int64_t{10'000'000}}) {
       if (frames <= max_frames) scaling->Args({frames, kScalingK});
     }
     scaling->ArgNames({"frames", "k"})

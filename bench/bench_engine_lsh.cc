@@ -60,13 +60,15 @@ LshOptions OptionsFor(uint32_t threads) {
   LshOptions options;
   options.threads = static_cast<int>(threads);
   auto from_env = [](const char* name, auto* value) {
-    if (const char* text = std::getenv(name)) *value = static_cast<std::decay_t<decltype(*value)>>(std::atof(text));
+    if (const char* text = std::getenv(name))
+      *value = static_cast<std::decay_t<decltype(*value)>>(std::atof(text));
   };
   from_env("MOTIF_LSH_PROBES", &options.probes_per_table);
   from_env("MOTIF_LSH_MAX_CANDIDATES", &options.max_candidates);
   from_env("MOTIF_LSH_MAX_ENTRIES", &options.max_entries);
   from_env("MOTIF_LSH_WIDTH_PER_HASH", &options.width_per_hash);
-  if (const char* ranking = std::getenv("MOTIF_LSH_RANKING")) ParseLshRanking(ranking, &options.ranking);
+  if (const char* ranking = std::getenv("MOTIF_LSH_RANKING"))
+    ParseLshRanking(ranking, &options.ranking);
   return options;
 }
 

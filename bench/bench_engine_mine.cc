@@ -97,8 +97,16 @@ std::string ArchiveOf(const std::string& data, uint64_t frames, std::string* err
   const std::string truth = dir + "/" + data + "-" + std::to_string(frames) + ".truth.json";
   if (std::filesystem::exists(path) && std::filesystem::exists(truth)) return path;
   const uint64_t motifs = std::clamp<uint64_t>(frames >> 14, 1, 20);
-  std::vector<std::string> args = {Motifmine(), "synth", path, "--frames", std::to_string(frames),
-                                   "--motifs", std::to_string(motifs), "--seed", "1", "--force",
+  std::vector<std::string> args = {Motifmine(),
+                                   "synth",
+                                   path,
+                                   "--frames",
+                                   std::to_string(frames),
+                                   "--motifs",
+                                   std::to_string(motifs),
+                                   "--seed",
+                                   "1",
+                                   "--force",
                                    "-q"};
   if (data == "resequenced") {
     const std::string mocap = bench::MocapDir();
@@ -123,8 +131,8 @@ std::map<std::string, double> StageSeconds(const std::string& output) {
   if (!std::regex_search(output, line, std::regex(R"(\n\s*time\s+([^\n]*))"))) return stages;
   const std::string text = line[1].str();
   const std::regex part(R"(([a-z]+) ([0-9.]+)s)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), part);
-       it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), part); it != std::sregex_iterator();
+       ++it) {
     stages[(*it)[1].str()] = std::stod((*it)[2].str());
   }
   return stages;
@@ -153,9 +161,9 @@ void BM_MineScale(benchmark::State& state, std::string data) {
   ChildRun run;
   for (auto _ : state) {
     std::filesystem::remove_all(out);
-    run = Run({Motifmine(), "mine", archive, "--out", out, "--threads", std::to_string(threads),
-               "-q"},
-              archive + ".mine.log");
+    run = Run(
+        {Motifmine(), "mine", archive, "--out", out, "--threads", std::to_string(threads), "-q"},
+        archive + ".mine.log");
     if (run.exit_code != 0) {
       state.SkipWithError(("motifmine mine failed: " + run.output).c_str());
       break;

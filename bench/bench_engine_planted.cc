@@ -60,9 +60,8 @@ void BM_PlantedMotifs(benchmark::State& state) {
   auto synthesizer = Check(MotionSynthesizer::Create(options));
   {
     auto writer = Check(FrameFileWriter::Create(archive, synthesizer->skeleton(), options.fps));
-    Status status = synthesizer->Run([&](const ClipFrames& clip) {
-      return writer->AppendClip(clip);
-    });
+    Status status =
+        synthesizer->Run([&](const ClipFrames& clip) { return writer->AppendClip(clip); });
     if (!status.ok()) Die(status);
     if (Status commit = writer->Commit(); !commit.ok()) Die(commit);
   }

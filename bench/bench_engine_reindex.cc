@@ -219,16 +219,15 @@ void BM_ReindexOnePercent(benchmark::State& state) {
     state.counters["ratio_cpu"] = incremental_cpu_s / full_cpu_s;
     state.counters["new_frames"] = static_cast<double>(night.manifest.build.new_frames);
     state.counters["changed_columns"] = static_cast<double>(night.manifest.build.changed_columns);
-    state.counters["rewritten_blocks"] =
-        static_cast<double>(night.manifest.build.rewritten_blocks);
+    state.counters["rewritten_blocks"] = static_cast<double>(night.manifest.build.rewritten_blocks);
     // Where the incremental run's time goes (wall seconds of Reindex's stages).
     state.counters["incremental_import_s"] = night.import_seconds;
     state.counters["incremental_trellis_s"] = night.trellis_seconds;
     state.counters["incremental_grow_s"] = night.grow_seconds;
     state.counters["incremental_cluster_s"] = night.cluster_seconds;
     state.counters["incremental_report_s"] = night.report_seconds;
-    state.counters["shared_entries"] = SharedEntries(
-        options.out_dir + "/" + night.manifest.trellis.path, full_trellis);
+    state.counters["shared_entries"] =
+        SharedEntries(options.out_dir + "/" + night.manifest.trellis.path, full_trellis);
   }
   std::error_code error;
   fs::remove_all(dir, error);

@@ -103,14 +103,13 @@ Result<LoadedArchive> LoadFeatures(const std::string& archive_path) {
   const auto start = std::chrono::steady_clock::now();
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
                          FrameFileReader::Open(archive_path));
-  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
-                         LoadDistanceWeights(reader->skeleton(), ""));
+  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights, LoadDistanceWeights(reader->skeleton(), ""));
   MOTIF_ASSIGN_OR_RETURN(PoseFeatures features, PoseFeatures::FromArchive(*reader, weights));
   LoadedArchive loaded;
   loaded.features = std::make_unique<PoseFeatures>(std::move(features));
   loaded.rules.k_max = TrellisOptions().k_max;
-  loaded.rules.exclusion_frames = static_cast<uint32_t>(
-      std::lround(TrellisOptions().min_length_seconds * reader->fps() / 2));
+  loaded.rules.exclusion_frames =
+      static_cast<uint32_t>(std::lround(TrellisOptions().min_length_seconds * reader->fps() / 2));
   loaded.rules.clip_first_frames = loaded.features->clip_first_frames();
   loaded.features_seconds = Seconds(start);
   return loaded;
@@ -160,27 +159,29 @@ Result<double> RecallOf(const LoadedArchive& archive, const std::string& trellis
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, sample.size(), 1),
                       [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t idx = range.begin(); idx != range.end(); ++idx) {
-        std::vector<std::vector<Neighbour>> truth;
-        std::vector<std::vector<Neighbour>> stored;
-        SearchStats ignored;
-        if (!exact.SearchColumns(sample[idx], 1, &truth, &ignored).ok() ||
-            !trellis->ReadColumns(sample[idx], 1, &stored).ok()) {
-          ++failures;
-          continue;
-        }
-        uint64_t hits = 0;
-        size_t stored_idx = 0;
-        for (const Neighbour& neighbour : truth[0]) {  // both sorted by frame
-          while (stored_idx < stored[0].size() && stored[0][stored_idx].frame < neighbour.frame) {
-            ++stored_idx;
-          }
-          hits += stored_idx < stored[0].size() && stored[0][stored_idx].frame == neighbour.frame;
-        }
-        found += hits;
-        exact_total += truth[0].size();
-      }
-    });
+                        for (size_t idx = range.begin(); idx != range.end(); ++idx) {
+                          std::vector<std::vector<Neighbour>> truth;
+                          std::vector<std::vector<Neighbour>> stored;
+                          SearchStats ignored;
+                          if (!exact.SearchColumns(sample[idx], 1, &truth, &ignored).ok() ||
+                              !trellis->ReadColumns(sample[idx], 1, &stored).ok()) {
+                            ++failures;
+                            continue;
+                          }
+                          uint64_t hits = 0;
+                          size_t stored_idx = 0;
+                          for (const Neighbour& neighbour : truth[0]) {  // both sorted by frame
+                            while (stored_idx < stored[0].size() &&
+                                   stored[0][stored_idx].frame < neighbour.frame) {
+                              ++stored_idx;
+                            }
+                            hits += stored_idx < stored[0].size() &&
+                                    stored[0][stored_idx].frame == neighbour.frame;
+                          }
+                          found += hits;
+                          exact_total += truth[0].size();
+                        }
+                      });
   });
   if (failures > 0) return Status::IOError("recall: a sampled column failed");
   return exact_total ? static_cast<double>(found) / static_cast<double>(exact_total) : 1.0;
@@ -243,8 +244,7 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
   bench::SetMemoryCounters(state, peak, baseline, frames);
   state.counters["peak_rss_mb"] = peak / (1 << 20);
   state.counters["baseline_rss_mb"] = baseline / (1 << 20);
-  state.counters["evaluations_per_column"] =
-      static_cast<double>(report->distance_evaluations) / n;
+  state.counters["evaluations_per_column"] = static_cast<double>(report->distance_evaluations) / n;
   state.counters["build_cpu_s"] = cpu_seconds;
   state.counters["features_s"] = report->features_seconds;
   state.counters["eps_s"] = report->eps_seconds;
@@ -278,8 +278,8 @@ void BM_TrellisBuild(benchmark::State& state, std::string data, TrellisSearchMod
     state.SkipWithError(exact_per_column.status().ToString().c_str());
     return;
   }
-  const double exact_seconds = report->features_seconds + report->eps_seconds +
-                               exact_per_column->wall * n;
+  const double exact_seconds =
+      report->features_seconds + report->eps_seconds + exact_per_column->wall * n;
   // CPU: the exact column search alone (its features and eps stages left out, so a lower bound).
   const double exact_cpu_seconds = exact_per_column->cpu * n;
   state.counters["exact_extrapolated_s"] = exact_seconds;

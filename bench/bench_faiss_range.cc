@@ -93,7 +93,7 @@ constexpr uint64_t kBlockColumns = 1024;         // 4 of ExactSearch's 256-query
 // and the range search returns up to ~60 % of the archive per column, docs/benchmarks.md), so
 // the budget bounds them to a few hundred MB at any N.
 constexpr uint64_t kQueryFrameBudget = uint64_t{1} << 26;
-constexpr float kRadiusScale = 1.002f;           // squared radius = scale * eps^2 + slack
+constexpr float kRadiusScale = 1.002f;  // squared radius = scale * eps^2 + slack
 constexpr float kRadiusSlack = 1e-3f;
 
 double Seconds(std::chrono::steady_clock::time_point start) {
@@ -160,9 +160,9 @@ FaissArchiveIndex BuildIndex(const PoseFeatures& features, int threads) {
 }
 
 struct FaissBlockStats {
-  uint64_t candidates = 0;     // returned by range_search
-  uint64_t within_eps = 0;     // allowed and D <= eps, before the k_max cap
-  uint64_t neighbours = 0;     // kept
+  uint64_t candidates = 0;  // returned by range_search
+  uint64_t within_eps = 0;  // allowed and D <= eps, before the k_max cap
+  uint64_t neighbours = 0;  // kept
   double range_search_seconds = 0;
   double verify_seconds = 0;
 };

@@ -61,9 +61,8 @@ const std::string& ArchiveOf(uint64_t frames) {
   if (!synthesizer.ok()) Die(synthesizer.status());
   auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
   if (!writer.ok()) Die(writer.status());
-  Status status = (*synthesizer)->Run([&](const ClipFrames& clip) {
-    return (*writer)->AppendClip(clip);
-  });
+  Status status =
+      (*synthesizer)->Run([&](const ClipFrames& clip) { return (*writer)->AppendClip(clip); });
   if (status.ok()) status = (*writer)->Commit();
   if (!status.ok()) Die(status);
   return archives[frames] = path;
@@ -141,8 +140,10 @@ const bool scale_registered = [] {
   for (int64_t frames : bench::ScalingFrames()) rows.push_back({frames});
   for (const std::string data : {"synth", "resequenced"}) {
     if (auto* family = bench::RegisterRows("DecodeScale/" + data, rows, BM_DecodeScale, data)) {
-      family->ArgName("frames")->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity(
-          benchmark::oN);
+      family->ArgName("frames")
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Complexity(benchmark::oN);
     }
   }
   return true;

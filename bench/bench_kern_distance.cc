@@ -178,10 +178,11 @@ const bool scale_registered = [] {
   std::vector<std::vector<int64_t>> rows;
   for (int64_t frames : bench::ScalingFrames()) rows.push_back({frames});
   for (const std::string data : {"synth", "resequenced"}) {
-    if (auto* family =
-            bench::RegisterRows("DistanceScale/" + data, rows, BM_DistanceScale, data)) {
-      family->ArgName("frames")->Unit(benchmark::kMillisecond)->UseRealTime()->Complexity(
-          benchmark::oN);
+    if (auto* family = bench::RegisterRows("DistanceScale/" + data, rows, BM_DistanceScale, data)) {
+      family->ArgName("frames")
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()
+          ->Complexity(benchmark::oN);
     }
   }
   return true;

@@ -4,7 +4,9 @@
 
 namespace motif::bench {
 RandomWalkTrellis::RandomWalkTrellis(uint64_t frame_count, uint32_t k)
-    : frame_count_(frame_count), k_(k), rng_(frame_count * 1000 + k),
+    : frame_count_(frame_count),
+      k_(k),
+      rng_(frame_count * 1000 + k),
       walkers_(std::max<uint32_t>(1, k / 2 / kRun)) {
   for (Walker& walker : walkers_) Respawn(&walker);
 }

@@ -27,8 +27,7 @@ class RandomWalkTrellis {
   RandomWalkTrellis(uint64_t frame_count, uint32_t k);
 
   // Columns [first_column, first_column + count) into *block (its vectors are reused).
-  void NextBlock(uint64_t first_column, uint64_t count,
-                 std::vector<std::vector<Neighbour>>* block);
+  void NextBlock(uint64_t first_column, uint64_t count, std::vector<std::vector<Neighbour>>* block);
 
  private:
   static constexpr uint32_t kRun = 8;

@@ -7,10 +7,10 @@
 #include <cstdlib>
 
 #include <atomic>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <system_error>
-#include <filesystem>
 
 namespace motif {
 
@@ -43,12 +43,11 @@ std::string TemporaryPathFor(const std::string& path) {
   return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
-Status AtomicWriteFile(const std::string& path, std::string_view content,
-                       FileSystem* file_system) {
+Status AtomicWriteFile(const std::string& path, std::string_view content, FileSystem* file_system) {
   const std::string temp_path = TemporaryPathFor(path);
   Status status = [&]() -> Status {
-    MOTIF_ASSIGN_OR_RETURN(auto file, file_system->OpenWritable(temp_path,
-                                                                OpenMode::kCreateExclusive));
+    MOTIF_ASSIGN_OR_RETURN(auto file,
+                           file_system->OpenWritable(temp_path, OpenMode::kCreateExclusive));
     MOTIF_RETURN_IF_ERROR(file->WriteAt(0, content.data(), content.size()));
     MOTIF_RETURN_IF_ERROR(file->Sync());
     MOTIF_RETURN_IF_ERROR(file->Close());

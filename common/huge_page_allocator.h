@@ -22,14 +22,15 @@ inline constexpr size_t kHugePage = size_t{2} << 20;
 inline void* MapAligned(size_t bytes) {
   const size_t length = (bytes + kHugePage - 1) / kHugePage * kHugePage;
   // Map one huge page more than needed and trim both ends to a 2 MiB boundary.
-  void* raw = mmap(nullptr, length + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
-                   -1, 0);
+  void* raw =
+      mmap(nullptr, length + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (raw == MAP_FAILED) throw std::bad_alloc();
   const uintptr_t start = reinterpret_cast<uintptr_t>(raw);
   const uintptr_t aligned = (start + kHugePage - 1) / kHugePage * kHugePage;
   if (aligned > start) munmap(raw, aligned - start);
   const uintptr_t end = start + length + kHugePage;
-  if (end > aligned + length) munmap(reinterpret_cast<void*>(aligned + length), end - aligned - length);
+  if (end > aligned + length)
+    munmap(reinterpret_cast<void*>(aligned + length), end - aligned - length);
   madvise(reinterpret_cast<void*>(aligned), length, MADV_HUGEPAGE);
   return reinterpret_cast<void*>(aligned);
 }
@@ -54,18 +55,20 @@ class HugePageAllocator {
     if (bytes >= huge_page_internal::kHugePage) {
       return static_cast<T*>(huge_page_internal::MapAligned(bytes));
     }
-    return static_cast<T*>(::operator new(bytes, std::align_val_t{alignof(T)}));
+    return static_cast<T*>(::operator new (bytes, std::align_val_t{alignof(T)}));
   }
   void deallocate(T* pointer, size_t count) {
     const size_t bytes = count * sizeof(T);
     if (bytes >= huge_page_internal::kHugePage) {
       huge_page_internal::Unmap(pointer, bytes);
     } else {
-      ::operator delete(pointer, std::align_val_t{alignof(T)});
+      ::operator delete (pointer, std::align_val_t{alignof(T)});
     }
   }
   template <typename U>
-  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  bool operator==(const HugePageAllocator<U>&) const {
+    return true;
+  }
 };
 
 }  // namespace motif

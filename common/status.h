@@ -81,7 +81,7 @@ namespace internal {
 template <typename T>
 class [[nodiscard]] Result {
  public:
-  Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(T value) : value_(std::move(value)) {}         // NOLINT: implicit by design
   Result(Status status) : status_(std::move(status)) {  // NOLINT: implicit by design
     if (status_.ok()) {
       std::fprintf(stderr, "Result constructed from an OK status without a value\n");
@@ -110,7 +110,8 @@ class [[nodiscard]] Result {
 
  private:
   void CheckHasValue() const {
-    if (!value_.has_value()) [[unlikely]] internal::DieOnResultError(status_);
+    if (!value_.has_value()) [[unlikely]]
+      internal::DieOnResultError(status_);
   }
   Status status_;
   std::optional<T> value_;
@@ -136,10 +137,10 @@ class [[nodiscard]] Result {
   MOTIF_ASSIGN_OR_RETURN_IMPL(MOTIF_CONCAT(motif_result_, __LINE__), lhs, expr)
 
 // Aborts with the condition, file and line when an internal invariant is broken.
-#define MOTIF_CHECK(cond)                                                          \
-  do {                                                                             \
-    if (!(cond)) {                                                                 \
+#define MOTIF_CHECK(cond)                                                           \
+  do {                                                                              \
+    if (!(cond)) {                                                                  \
       std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
-      std::abort();                                                                \
-    }                                                                              \
+      std::abort();                                                                 \
+    }                                                                               \
   } while (0)

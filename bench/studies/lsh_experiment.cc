@@ -15,22 +15,22 @@
 // Ground truth (the direct loop with PoseDistance) is cached in /tmp/lshgt_*.bin.
 #include <tbb/parallel_for.h>
 
+#include <malloc.h>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <map>
-#include <malloc.h>
-#include <ctime>
 #include <set>
-#include <array>
-#include <cmath>
 
-#include "engine/lsh/lsh_tuning.h"
+#include "bench/studies/experiment_args.h"
 #include "engine/distance/exact_search.h"
 #include "engine/lsh/lsh_search.h"
+#include "engine/lsh/lsh_tuning.h"
 #include "tests/engine/lsh/lsh_test_util.h"
-#include "bench/studies/experiment_args.h"
 #include "tests/testing/mocap_data.h"
 
 using namespace motif;
@@ -88,8 +88,8 @@ int main(int argc, char** argv) {
       rows.insert(rows.end(), clip.rows.begin(), clip.rows.end());
       return Status::Ok();
     }));
-    features = PoseFeatures::FromRows(rows.data(), rows.size() / layout.stride(), layout.joint_count,
-                                      DefaultWeights(skeleton), starts);
+    features = PoseFeatures::FromRows(rows.data(), rows.size() / layout.stride(),
+                                      layout.joint_count, DefaultWeights(skeleton), starts);
     rows = std::vector<float>();
   } else if (data == "reseq") {
     auto sources = DiscoverTakes({MocapDir() + "/bvh"}, ImportOptions());
@@ -104,9 +104,15 @@ int main(int argc, char** argv) {
     so.frames = frames;
     so.seed = static_cast<uint64_t>(get("seed", 7));
     auto synthesizer = MotionSynthesizer::CreateFromTakes(so, std::move(takes));
-    if (!synthesizer.ok()) { std::printf("%s\n", synthesizer.status().ToString().c_str()); return 1; }
+    if (!synthesizer.ok()) {
+      std::printf("%s\n", synthesizer.status().ToString().c_str());
+      return 1;
+    }
     std::vector<ClipFrames> clips;
-    CheckOk((*synthesizer)->Run([&](const ClipFrames& clip) { clips.push_back(clip); return Status::Ok(); }));
+    CheckOk((*synthesizer)->Run([&](const ClipFrames& clip) {
+      clips.push_back(clip);
+      return Status::Ok();
+    }));
     features = FeaturesFromClips((*synthesizer)->skeleton(), clips);
   } else {
     features = SyntheticFeatures(frames, static_cast<uint64_t>(get("seed", 7)));
@@ -155,8 +161,8 @@ int main(int argc, char** argv) {
     exact_mean += c.size();
     full += c.size() == rules.k_max;
   }
-  std::printf("exact neighbours/column %.1f, columns at k_max %zu/%zu\n",
-              exact_mean / exact.size(), full, exact.size());
+  std::printf("exact neighbours/column %.1f, columns at k_max %zu/%zu\n", exact_mean / exact.size(),
+              full, exact.size());
 
   if (args.count("exact_speed")) {
     ExactSearchOptions eo;
@@ -169,12 +175,15 @@ int main(int argc, char** argv) {
     Status status = exact_search.SearchColumns(features.frame_count() / 2, count, &cols, &st);
     CheckOk(status);
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    std::printf("exact search: %s %llu columns in %.2fs = %.1f us/column wall, %.2f ns/eval wall; full archive would take %.0f s\n",
-                status.ToString().c_str(), (unsigned long long)count, sec, 1e6 * sec / count,
-                1e9 * sec / (count * (double)features.frame_count()), sec / count * features.frame_count());
+    std::printf(
+        "exact search: %s %llu columns in %.2fs = %.1f us/column wall, %.2f ns/eval wall; full "
+        "archive would take %.0f s\n",
+        status.ToString().c_str(), (unsigned long long)count, sec, 1e6 * sec / count,
+        1e9 * sec / (count * (double)features.frame_count()), sec / count * features.frame_count());
     // sanity vs direct loop
     size_t same = 0;
-    for (uint64_t i = 0; i < std::min<uint64_t>(count, 16); ++i) same += cols[i] == ExactColumn(features, rules, features.frame_count() / 2 + i);
+    for (uint64_t i = 0; i < std::min<uint64_t>(count, 16); ++i)
+      same += cols[i] == ExactColumn(features, rules, features.frame_count() / 2 + i);
     std::printf("identical to direct loop: %zu/16\n", same);
     return 0;
   }
@@ -196,10 +205,18 @@ int main(int argc, char** argv) {
       r4.push_back(d[4 * k - 1] / d[k - 1]);
       r16.push_back(d[16 * k - 1] / d[k - 1]);
     }
-    auto med = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v.empty() ? 0 : v[v.size() / 2]; };
-    auto p10 = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v.empty() ? 0 : v[v.size() / 10]; };
-    std::printf("capped columns %zu: D_k median %.3f; D_2k/D_k median %.3f p10 %.3f; D_4k/D_k %.3f p10 %.3f; D_16k/D_k %.3f p10 %.3f\n",
-                r1.size(), med(r1), med(r2), p10(r2), med(r4), p10(r4), med(r16), p10(r16));
+    auto med = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v.empty() ? 0 : v[v.size() / 2];
+    };
+    auto p10 = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v.empty() ? 0 : v[v.size() / 10];
+    };
+    std::printf(
+        "capped columns %zu: D_k median %.3f; D_2k/D_k median %.3f p10 %.3f; D_4k/D_k %.3f p10 "
+        "%.3f; D_16k/D_k %.3f p10 %.3f\n",
+        r1.size(), med(r1), med(r2), p10(r2), med(r4), p10(r4), med(r16), p10(r16));
     return 0;
   }
   if (args.count("oracle")) {
@@ -209,7 +226,8 @@ int main(int argc, char** argv) {
     const uint32_t dims = family.embedding_dims();
     const uint32_t J = features.weighted_joint_count();
     std::vector<float> all((size_t)features.frame_count() * dims);
-    for (uint64_t f = 0; f < features.frame_count(); ++f) family.Embed(features.frame(f), &all[f * dims]);
+    for (uint64_t f = 0; f < features.frame_count(); ++f)
+      family.Embed(features.frame(f), &all[f * dims]);
     std::vector<std::vector<double>> needed(2);  // per proxy: per exact neighbour, its proxy rank
     std::vector<std::vector<double>> share(2);
     for (size_t qi = 0; qi < columns.size(); ++qi) {
@@ -241,7 +259,9 @@ int main(int argc, char** argv) {
         for (auto& n : exact[qi]) ranks.push_back(rank[n.frame] + 1);
         std::sort(ranks.begin(), ranks.end());
         // candidates needed for 95% of this column
-        share[p].push_back(ranks[std::min(ranks.size() - 1, (size_t)std::ceil(0.95 * ranks.size()) - 1)] / ranks.size());
+        share[p].push_back(
+            ranks[std::min(ranks.size() - 1, (size_t)std::ceil(0.95 * ranks.size()) - 1)] /
+            ranks.size());
         for (double r : ranks) needed[p].push_back(r / exact[qi].size());
       }
     }
@@ -250,9 +270,11 @@ int main(int argc, char** argv) {
       std::sort(v.begin(), v.end());
       auto c = share[p];
       std::sort(c.begin(), c.end());
-      std::printf("%s: pooled rank/|col| quantiles 0.9=%.2f 0.95=%.2f 0.99=%.2f; per-column 95%%-cover ratio median=%.2f p90=%.2f\n",
-                  p == 0 ? "L2(e)" : "L1,2(e)", v[v.size() * 9 / 10], v[v.size() * 95 / 100],
-                  v[v.size() * 99 / 100], c[c.size() / 2], c[c.size() * 9 / 10]);
+      std::printf(
+          "%s: pooled rank/|col| quantiles 0.9=%.2f 0.95=%.2f 0.99=%.2f; per-column 95%%-cover "
+          "ratio median=%.2f p90=%.2f\n",
+          p == 0 ? "L2(e)" : "L1,2(e)", v[v.size() * 9 / 10], v[v.size() * 95 / 100],
+          v[v.size() * 99 / 100], c[c.size() / 2], c[c.size() * 9 / 10]);
     }
     return 0;
   }
@@ -282,7 +304,10 @@ int main(int argc, char** argv) {
     std::string key;
     double kb = 0;
     while (status >> key) {
-      if (key == "VmRSS:") { status >> kb; break; }
+      if (key == "VmRSS:") {
+        status >> kb;
+        break;
+      }
       std::getline(status, key);
     }
     return kb * 1024;
@@ -292,15 +317,22 @@ int main(int argc, char** argv) {
     std::string key;
     double kb = 0;
     while (status >> key) {
-      if (key == "VmHWM:") { status >> kb; break; }
+      if (key == "VmHWM:") {
+        status >> kb;
+        break;
+      }
       std::getline(status, key);
     }
     return kb * 1024;
   };
   const double rss_before = rss();
-  { std::ofstream clear("/proc/self/clear_refs"); clear << "5"; }
+  {
+    std::ofstream clear("/proc/self/clear_refs");
+    clear << "5";
+  }
   auto tr = std::chrono::steady_clock::now();
-  SearchScale scale = EstimateSearchScale(features, rules, options); float radius = scale.radius;
+  SearchScale scale = EstimateSearchScale(features, rules, options);
+  float radius = scale.radius;
   auto tb = std::chrono::steady_clock::now();
   auto search = LshSearch::Create(features, rules, options);
   auto tc = std::chrono::steady_clock::now();
@@ -308,10 +340,13 @@ int main(int argc, char** argv) {
     std::printf("%s\n", search.status().ToString().c_str());
     return 1;
   }
-  std::printf("memory: features %.1f B/frame; rss before create %.1f B/frame; peak growth during create %.1f B/frame\n",
-              (double)features.memory_bytes() / features.frame_count(), rss_before / features.frame_count(),
-              (peak() - rss_before) / features.frame_count());
-  std::printf("neighbour_l2 median %.4f p90 %.4f pairs %llu\n", scale.neighbour_l2, scale.neighbour_l2_p90, (unsigned long long)scale.neighbour_pairs);
+  std::printf(
+      "memory: features %.1f B/frame; rss before create %.1f B/frame; peak growth during create "
+      "%.1f B/frame\n",
+      (double)features.memory_bytes() / features.frame_count(), rss_before / features.frame_count(),
+      (peak() - rss_before) / features.frame_count());
+  std::printf("neighbour_l2 median %.4f p90 %.4f pairs %llu\n", scale.neighbour_l2,
+              scale.neighbour_l2_p90, (unsigned long long)scale.neighbour_pairs);
   std::printf("%s\nradius=%.4f (%.2fs) build=%.2fs index=%.1f B/frame\n",
               (*search)->DescribeParams().c_str(), radius,
               std::chrono::duration<double>(tb - tr).count(),
@@ -378,8 +413,10 @@ int main(int argc, char** argv) {
           double slb = p.lower_bound * p.lower_bound + sd * sd;
           auto it = prio.find(f);
           std::array<float, 3> v{(float)code, (float)exact_proj, (float)slb};
-          if (it == prio.end()) prio[f] = v;
-          else for (int k = 0; k < 3; ++k) it->second[k] = std::min(it->second[k], v[k]);
+          if (it == prio.end())
+            prio[f] = v;
+          else
+            for (int k = 0; k < 3; ++k) it->second[k] = std::min(it->second[k], v[k]);
         }
       }
       std::set<uint32_t> truth;
@@ -391,7 +428,8 @@ int main(int argc, char** argv) {
         std::sort(order.begin(), order.end());
         for (int bi = 0; bi < 4; ++bi) {
           int h = 0;
-          for (int r = 0; r < std::min<int>(budgets[bi], order.size()); ++r) h += truth.count(order[r].second);
+          for (int r = 0; r < std::min<int>(budgets[bi], order.size()); ++r)
+            h += truth.count(order[r].second);
           hits[k][bi] += h;
         }
       }
@@ -423,7 +461,8 @@ int main(int argc, char** argv) {
         auto r = (*search)->index().FindBucket(p.first, p.second);
         entries += r.second - r.first;
         if (args.count("count"))
-          for (uint32_t i = r.first; i < r.second; ++i) counts[(*search)->index().table(p.first).frames[i]]++;
+          for (uint32_t i = r.first; i < r.second; ++i)
+            counts[(*search)->index().table(p.first).frames[i]]++;
       }
       total_entries += entries;
       if (args.count("count")) {
@@ -448,7 +487,8 @@ int main(int argc, char** argv) {
           hit_tables += probed.count({t, key});
         }
         probed_tables_hist[hit_tables]++;
-        if (got) ++found;
+        if (got)
+          ++found;
         else {
           ++missed;
           if (hit_tables) ++missed_in_probed;
@@ -458,14 +498,16 @@ int main(int argc, char** argv) {
     std::printf("diagnose: total %llu found %llu missed %llu (of which in a probed bucket %llu)\n",
                 (unsigned long long)total, (unsigned long long)found, (unsigned long long)missed,
                 (unsigned long long)missed_in_probed);
-    std::printf("entries in probed buckets per query: %.0f\n", (double)total_entries / columns.size());
+    std::printf("entries in probed buckets per query: %.0f\n",
+                (double)total_entries / columns.size());
     if (args.count("count")) {
       double nb_total = 0, all_total = 0;
       for (int c = 64; c >= 1; --c) {
         nb_total += nb_count_hist[c];
         all_total += all_count_hist[c];
         if (nb_count_hist[c] + all_count_hist[c] > 0)
-          std::printf("count>=%d: neighbours %.3f, candidates/q %.0f\n", c, nb_total / total, all_total / columns.size());
+          std::printf("count>=%d: neighbours %.3f, candidates/q %.0f\n", c, nb_total / total,
+                      all_total / columns.size());
       }
     }
     std::printf("tables probed-hit histogram:");
@@ -479,7 +521,9 @@ int main(int argc, char** argv) {
       if (one.column_mean < 0.5) {
         float far = 0;
         for (auto& n : exact[idx]) far = std::max(far, n.distance);
-        std::printf("column %llu: exact %zu (max d %.3f) found %zu recall %.2f\n", (unsigned long long)columns[idx], exact[idx].size(), far, approx[idx].size(), one.column_mean);
+        std::printf("column %llu: exact %zu (max d %.3f) found %zu recall %.2f\n",
+                    (unsigned long long)columns[idx], exact[idx].size(), far, approx[idx].size(),
+                    one.column_mean);
       }
     }
   }
@@ -488,7 +532,8 @@ int main(int argc, char** argv) {
       "budget_capped=%.3f bound_stopped=%.3f ext/q=%.2f | %.1f us/q (sampled, 1 col calls)\n",
       recall.pooled(), recall.column_mean, recall.worst_column,
       (double)stats.distance_evaluations / columns.size(),
-      (double)lsh_stats.entries_examined / columns.size(), (double)lsh_stats.probes / columns.size(),
+      (double)lsh_stats.entries_examined / columns.size(),
+      (double)lsh_stats.probes / columns.size(),
       (double)lsh_stats.columns_budget_capped / columns.size(),
       (double)lsh_stats.columns_bound_stopped / columns.size(),
       (double)lsh_stats.extensions / columns.size(), 1e6 * tquery / columns.size());
@@ -497,15 +542,21 @@ int main(int argc, char** argv) {
   std::vector<std::vector<Neighbour>> block;
   SearchStats bstats2;
   const uint64_t block_first = (features.frame_count() - range) / 2;
-  auto cpu = [] { timespec t; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t); return t.tv_sec + 1e-9 * t.tv_nsec; };
+  auto cpu = [] {
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+  };
   const double c0 = cpu();
   auto ts = std::chrono::steady_clock::now();
   CheckOk((*search)->SearchColumns(block_first, range, &block, &bstats2));
   double tblock = std::chrono::duration<double>(std::chrono::steady_clock::now() - ts).count();
   const double cblock = cpu() - c0;
-  std::printf("peak growth after block %.1f B/frame\n", (peak() - rss_before) / features.frame_count());
-  std::printf("block of %llu columns: %.2fs = %.1f us/column wall, %.1f us/column cpu, evals/col=%.0f\n",
-              (unsigned long long)range, tblock, 1e6 * tblock / range, 1e6 * cblock / range,
-              (double)bstats2.distance_evaluations / range);
+  std::printf("peak growth after block %.1f B/frame\n",
+              (peak() - rss_before) / features.frame_count());
+  std::printf(
+      "block of %llu columns: %.2fs = %.1f us/column wall, %.1f us/column cpu, evals/col=%.0f\n",
+      (unsigned long long)range, tblock, 1e6 * tblock / range, 1e6 * cblock / range,
+      (double)bstats2.distance_evaluations / range);
   return 0;
 }

@@ -27,13 +27,13 @@
 #include <string>
 #include <vector>
 
+#include "bench/studies/experiment_args.h"
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_search.h"
 #include "engine/lsh/query_distance.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
-#include "bench/studies/experiment_args.h"
 
 using namespace motif;
 
@@ -242,7 +242,8 @@ int main(int argc, char** argv) {
         CheckOk(exact_search.SearchColumns(first, std::min<uint64_t>(256, count), &found, &stats));
         clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t1);
         const double cpu = (t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec);
-        std::printf("%-14s cpu %.1f us/column\n", "exact", 1e6 * cpu / std::min<uint64_t>(256, count));
+        std::printf("%-14s cpu %.1f us/column\n", "exact",
+                    1e6 * cpu / std::min<uint64_t>(256, count));
         std::fflush(stdout);
         continue;
       }
@@ -262,7 +263,8 @@ int main(int argc, char** argv) {
         if (key == 'p') options.probes_per_table = static_cast<uint32_t>(value);
         if (key == 't') options.tables = static_cast<uint32_t>(value);
         if (key == 'w') options.width_per_hash = static_cast<float>(value);
-        if (key == 'r') options.ranking = value != 0 ? LshRanking::kPositionCode : LshRanking::kSortValue;
+        if (key == 'r')
+          options.ranking = value != 0 ? LshRanking::kPositionCode : LshRanking::kSortValue;
       }
       auto search = LshSearch::Create(*features, context.rules, options);
       if (!search.ok()) {
@@ -285,12 +287,13 @@ int main(int argc, char** argv) {
         total += probe_truth[idx].size();
       }
       std::printf("%-14s recall %.4f  ", spec.c_str(), total ? double(hits) / total : 1.0);
-      std::printf("cpu %.1f us/column, evaluations %.0f (seeds %.0f, sweeps %.0f), entries "
-                  "%.0f, probes %.1f, extensions %.2f, budget-capped %.2f\n",
-                  1e6 * cpu / count, double(stats.distance_evaluations) / count,
-                  double(lsh.seed_evaluations) / count, double(lsh.sweep_evaluations) / count,
-                  double(lsh.entries_examined) / count, double(lsh.probes) / count,
-                  double(lsh.extensions) / count, double(lsh.columns_budget_capped) / count);
+      std::printf(
+          "cpu %.1f us/column, evaluations %.0f (seeds %.0f, sweeps %.0f), entries "
+          "%.0f, probes %.1f, extensions %.2f, budget-capped %.2f\n",
+          1e6 * cpu / count, double(stats.distance_evaluations) / count,
+          double(lsh.seed_evaluations) / count, double(lsh.sweep_evaluations) / count,
+          double(lsh.entries_examined) / count, double(lsh.probes) / count,
+          double(lsh.extensions) / count, double(lsh.columns_budget_capped) / count);
       std::fflush(stdout);
     }
     return 0;
@@ -330,8 +333,8 @@ int main(int argc, char** argv) {
         }
       }
     }
-    std::printf("%-40s recall %.4f (capped %.4f, uncapped %.4f)  +%.0f evaluations/column\n",
-                what, total ? double(hits) / total : 1.0, total_c ? double(hits_c) / total_c : 1.0,
+    std::printf("%-40s recall %.4f (capped %.4f, uncapped %.4f)  +%.0f evaluations/column\n", what,
+                total ? double(hits) / total : 1.0, total_c ? double(hits_c) / total_c : 1.0,
                 total > total_c ? double(hits - hits_c) / (total - total_c) : 1.0,
                 double(evaluations) / n);
     std::fflush(stdout);

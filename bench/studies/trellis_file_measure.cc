@@ -59,8 +59,8 @@ double Seconds(const std::function<void()>& work, int repeat) {
   for (int run = 0; run < repeat; ++run) {
     const auto start = std::chrono::steady_clock::now();
     work();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                              .count());
+    best = std::min(
+        best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   return best;
 }
@@ -278,12 +278,16 @@ std::string EncodeDistances(int variant, const TrellisColumns& columns, float ep
       const int left = entry_idx > 0 ? codes[entry_idx - 1] : 0;
       const bool in_run =
           entry_idx > 0 && column[entry_idx].frame == column[entry_idx - 1].frame + 1;
-      const bool in_run2 = in_run && entry_idx > 1 &&
-                           column[entry_idx - 1].frame == column[entry_idx - 2].frame + 1;
+      const bool in_run2 =
+          in_run && entry_idx > 1 && column[entry_idx - 1].frame == column[entry_idx - 2].frame + 1;
       switch (variant) {
         case 0:
-        case 1: words.push_back(static_cast<uint16_t>(code)); break;
-        case 2: words.push_back(ZigZag16(code - left)); break;
+        case 1:
+          words.push_back(static_cast<uint16_t>(code));
+          break;
+        case 2:
+          words.push_back(ZigZag16(code - left));
+          break;
         case 3: {
           const int prediction = in_run2 ? 2 * left - codes[entry_idx - 2] : left;
           words.push_back(ZigZag16(code - prediction));
@@ -349,7 +353,8 @@ void PrintVariants(const DataSet& data, uint32_t block_columns, int level) {
   const char* id_names[] = {"gaps as varints, first vs the column index",
                             "gaps as varints, first vs the previous column's first + 1",
                             "count + gaps as u32, byte shuffle"};
-  const char* distance_names[] = {"u16 little-endian", "u16, byte shuffle",
+  const char* distance_names[] = {"u16 little-endian",
+                                  "u16, byte shuffle",
                                   "delta 1 in the column, zigzag, shuffle",
                                   "delta 2 inside runs, zigzag, shuffle (chosen)",
                                   "2-D planar predictor (left + diag - diag-left)",
@@ -406,13 +411,13 @@ void Measure(DataSet& data, uint32_t block_columns, int level, int repeat, bool 
   }
   const double entries = static_cast<double>(data.entries);
   std::printf("== %s: %zu columns, %llu neighbours (mean %.1f, max %llu), mean run %.2f frames\n",
-              data.name.c_str(), data.columns.size(),
-              static_cast<unsigned long long>(data.entries), entries / data.columns.size(),
-              static_cast<unsigned long long>(max_k), entries / std::max<uint64_t>(runs, 1));
+              data.name.c_str(), data.columns.size(), static_cast<unsigned long long>(data.entries),
+              entries / data.columns.size(), static_cast<unsigned long long>(max_k),
+              entries / std::max<uint64_t>(runs, 1));
   std::vector<TrellisColumns> blocks;
   for (uint64_t first = 0; first < data.columns.size(); first += block_columns) {
-    blocks.push_back(Slice(data.columns, first,
-                           std::min<uint64_t>(block_columns, data.columns.size() - first)));
+    blocks.push_back(
+        Slice(data.columns, first, std::min<uint64_t>(block_columns, data.columns.size() - first)));
   }
   trellis_file::BlockEncoder encoder(level);
   std::vector<std::string> encoded(blocks.size());
@@ -474,16 +479,15 @@ void Measure(DataSet& data, uint32_t block_columns, int level, int repeat, bool 
       },
       repeat);
 
-  std::printf("  bytes per neighbour: %.4f total (ids %.4f (raw %.3f), distances %.4f, block framing"
-              " %.4f); file %.4f\n",
-              block_bytes / entries, id_bytes / entries, id_raw_bytes / entries,
-              distance_bytes / entries,
-              (block_bytes - id_bytes - distance_bytes) / entries,
-              (*reader)->file_bytes() / entries);
-  std::printf("  codec, one thread: encode %.1f M neighbours/s, decode %.1f M/s, frames only %.1f "
-              "M/s\n",
-              entries / encode_seconds / 1e6, entries / decode_seconds / 1e6,
-              entries / ids_seconds / 1e6);
+  std::printf(
+      "  bytes per neighbour: %.4f total (ids %.4f (raw %.3f), distances %.4f, block framing"
+      " %.4f); file %.4f\n",
+      block_bytes / entries, id_bytes / entries, id_raw_bytes / entries, distance_bytes / entries,
+      (block_bytes - id_bytes - distance_bytes) / entries, (*reader)->file_bytes() / entries);
+  std::printf(
+      "  codec, one thread: encode %.1f M neighbours/s, decode %.1f M/s, frames only %.1f "
+      "M/s\n",
+      entries / encode_seconds / 1e6, entries / decode_seconds / 1e6, entries / ids_seconds / 1e6);
   std::printf("  file: write %.1f M/s (fsync per block), ReadBlock %.1f M/s (page cache warm)\n",
               entries / write_seconds / 1e6, entries / read_seconds / 1e6);
   if (variants) PrintVariants(data, block_columns, level);
@@ -502,13 +506,20 @@ int main(int argc, char** argv) {
   for (int arg_idx = 1; arg_idx < argc; ++arg_idx) {
     const std::string arg = argv[arg_idx];
     const auto next = [&] { return arg_idx + 1 < argc ? std::string(argv[++arg_idx]) : ""; };
-    if (arg == "--columns") columns = std::stoull(next());
-    else if (arg == "--bvh") bvh_dir = next();
-    else if (arg == "--cache") cache = next();
-    else if (arg == "--block-columns") block_columns = static_cast<uint32_t>(std::stoul(next()));
-    else if (arg == "--level") level = std::stoi(next());
-    else if (arg == "--repeat") repeat = std::stoi(next());
-    else if (arg == "--variants") variants = true;
+    if (arg == "--columns")
+      columns = std::stoull(next());
+    else if (arg == "--bvh")
+      bvh_dir = next();
+    else if (arg == "--cache")
+      cache = next();
+    else if (arg == "--block-columns")
+      block_columns = static_cast<uint32_t>(std::stoul(next()));
+    else if (arg == "--level")
+      level = std::stoi(next());
+    else if (arg == "--repeat")
+      repeat = std::stoi(next());
+    else if (arg == "--variants")
+      variants = true;
     else {
       std::fprintf(stderr,
                    "usage: %s [--columns N] [--bvh DIR [--cache FILE]] [--block-columns B] "

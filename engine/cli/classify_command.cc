@@ -23,8 +23,9 @@ namespace po = boost::program_options;
 int RunClassify(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "classify";
-  spec.usage = "motifmine classify ARCHIVE [--labels FILE.tsv] [--distance emd|emd-tf|dtw] "
-               "[--groups G] [--knn K] [--top T] [--out DIR]";
+  spec.usage =
+      "motifmine classify ARCHIVE [--labels FILE.tsv] [--distance emd|emd-tf|dtw] "
+      "[--groups G] [--knn K] [--top T] [--out DIR]";
   spec.summary =
       "Classifies the takes of ARCHIVE (those with at least one motion word) by the Earth\n"
       "Mover's Distance between their motion signatures (run `motifmine words` first).\n"
@@ -34,22 +35,21 @@ int RunClassify(const std::vector<std::string>& args) {
       "signatures without TF-IDF, dtw the takes' frames by dynamic time warping (baselines).\n"
       "Writes DIR/classify.json and DIR/classify.html.";
   ClassifyOptions defaults;
-  spec.options.add_options()
-      ("labels", po::value<std::string>()->default_value(""),
-       "labels of takes: a TSV file of clip<TAB>label lines")
-      ("distance", po::value<std::string>()->default_value("emd"),
-       "emd (TF-IDF signatures), emd-tf (term frequencies only) or dtw (frames)")
-      ("groups", po::value<std::string>()->default_value("auto"),
-       "unsupervised groups, or auto (the number of labels, else 8)")
-      ("dims", po::value<uint32_t>()->default_value(defaults.dims), "MDS dimensions")
-      ("knn", po::value<uint32_t>()->default_value(defaults.knn), "neighbours of the kNN vote")
-      ("top", po::value<uint32_t>()->default_value(defaults.top),
-       "takes retrieved per take for the precision")
-      ("dtw-step", po::value<uint32_t>()->default_value(1),
-       "dtw: compare every n-th frame (1: every frame)")
-      ("weights", po::value<std::string>()->default_value(""),
-       "dtw: per-joint weights file (default: the skeleton's)")
-      ("seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of k-means");
+  spec.options.add_options()("labels", po::value<std::string>()->default_value(""),
+                             "labels of takes: a TSV file of clip<TAB>label lines")(
+      "distance", po::value<std::string>()->default_value("emd"),
+      "emd (TF-IDF signatures), emd-tf (term frequencies only) or dtw (frames)")(
+      "groups", po::value<std::string>()->default_value("auto"),
+      "unsupervised groups, or auto (the number of labels, else 8)")(
+      "dims", po::value<uint32_t>()->default_value(defaults.dims), "MDS dimensions")(
+      "knn", po::value<uint32_t>()->default_value(defaults.knn), "neighbours of the kNN vote")(
+      "top", po::value<uint32_t>()->default_value(defaults.top),
+      "takes retrieved per take for the precision")(
+      "dtw-step", po::value<uint32_t>()->default_value(1),
+      "dtw: compare every n-th frame (1: every frame)")(
+      "weights", po::value<std::string>()->default_value(""),
+      "dtw: per-joint weights file (default: the skeleton's)")(
+      "seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of k-means");
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "classify");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
@@ -155,7 +155,8 @@ int RunClassify(const std::vector<std::string>& args) {
 
   const std::string& json_path = output->json_path;
   const std::string& html_path = output->html_path;
-  if (Status status = AtomicWriteFile(json_path, ClassificationJson(*result, archive).dump(2) + "\n");
+  if (Status status =
+          AtomicWriteFile(json_path, ClassificationJson(*result, archive).dump(2) + "\n");
       !status.ok()) {
     return fail(status);
   }
@@ -164,9 +165,10 @@ int RunClassify(const std::vector<std::string>& args) {
   }
 
   const TakeClassification& r = *result;
-  std::printf("motifmine classify: %s (%zu takes, distance %s%s)\n", archive.c_str(),
-              r.names.size(), distance_name.c_str(),
-              dtw ? "" : (" over " + std::to_string(words->motifs.motif_count()) + " motifs").c_str());
+  std::printf(
+      "motifmine classify: %s (%zu takes, distance %s%s)\n", archive.c_str(), r.names.size(),
+      distance_name.c_str(),
+      dtw ? "" : (" over " + std::to_string(words->motifs.motif_count()) + " motifs").c_str());
   std::printf("  unsupervised MDS into %lld dimensions, k-means into %u groups",
               static_cast<long long>(r.mds.coordinates.cols()), r.group_count);
   if (!r.label_names.empty()) {
@@ -175,10 +177,11 @@ int RunClassify(const std::vector<std::string>& args) {
   }
   std::printf("\n");
   if (!r.label_names.empty()) {
-    std::printf("  supervised   %u-NN leave-one-out accuracy %.3f (%s of %s labelled takes, %zu "
-                "labels)\n",
-                r.knn.k, r.knn.accuracy, WithCommas(r.knn.correct).c_str(),
-                WithCommas(r.knn.labelled).c_str(), r.label_names.size());
+    std::printf(
+        "  supervised   %u-NN leave-one-out accuracy %.3f (%s of %s labelled takes, %zu "
+        "labels)\n",
+        r.knn.k, r.knn.accuracy, WithCommas(r.knn.correct).c_str(),
+        WithCommas(r.knn.labelled).c_str(), r.label_names.size());
     std::printf("  retrieval    precision@%u %.3f\n", r.top, r.precision_at_top);
     for (size_t label = 0; label < r.label_names.size(); ++label) {
       uint64_t count = 0;

@@ -23,11 +23,10 @@ int ReportError(const std::string& command, const Status& status) {
 }
 
 void AddProgressOptions(CommandSpec& spec) {
-  spec.options.add_options()
-      ("quiet,q", "print no progress, only the result and errors")
-      ("progress", po::value<std::string>()->default_value("auto"),
-       "progress display: auto (in place on a terminal, a line every 5 s otherwise), json "
-       "(one JSON object per line on stderr, for logs and other tools), quiet");
+  spec.options.add_options()("quiet,q", "print no progress, only the result and errors")(
+      "progress", po::value<std::string>()->default_value("auto"),
+      "progress display: auto (in place on a terminal, a line every 5 s otherwise), json "
+      "(one JSON object per line on stderr, for logs and other tools), quiet");
 }
 
 ProgressMode ProgressModeFrom(const po::variables_map& vm) {
@@ -133,11 +132,13 @@ Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds
   const std::string number = in_seconds ? text.substr(0, text.size() - 1) : text;
   char* end = nullptr;
   const double value = std::strtod(number.c_str(), &end);
-  const bool parsed = !number.empty() && end == number.c_str() + number.size() &&
-                      std::isfinite(value) && value > 0;
+  const bool parsed =
+      !number.empty() && end == number.c_str() + number.size() && std::isfinite(value) && value > 0;
   if (!parsed || (!in_seconds && (value != std::floor(value) || value > 4294967296.0))) {
-    return Status::InvalidArgument("--min-length must be a whole number of frames (60) or "
-                                   "seconds with an s (0.5s), not '" + text + "'");
+    return Status::InvalidArgument(
+        "--min-length must be a whole number of frames (60) or "
+        "seconds with an s (0.5s), not '" +
+        text + "'");
   }
   *frames = in_seconds ? 0 : static_cast<uint64_t>(value);
   *seconds = in_seconds ? value : 0;
@@ -161,12 +162,11 @@ Status ParseGroups(const std::string& text, uint32_t* groups) {
 
 void AddWordsReaderOptions(CommandSpec& spec, const std::string& files_read,
                            const std::string& name) {
-  spec.options.add_options()
-      ("prefix", po::value<std::string>()->default_value(""),
-       ("read " + files_read + " (default: ARCHIVE without .mfs)").c_str())
-      ("out", po::value<std::string>()->default_value(""),
-       ("output folder (default: the archive's): " + name + ".json, " + name + ".html").c_str())
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)");
+  spec.options.add_options()("prefix", po::value<std::string>()->default_value(""),
+                             ("read " + files_read + " (default: ARCHIVE without .mfs)").c_str())(
+      "out", po::value<std::string>()->default_value(""),
+      ("output folder (default: the archive's): " + name + ".json, " + name + ".html").c_str())(
+      "threads", po::value<int>()->default_value(0), "threads (0: all cores)");
 }
 
 Result<WordsReaderOutput> WordsReaderOutputFrom(const po::variables_map& vm,
@@ -188,13 +188,13 @@ Result<WordsReaderOutput> WordsReaderOutputFrom(const po::variables_map& vm,
 
 void AddEpsilonRuleOptions(CommandSpec& spec) {
   namespace po = boost::program_options;
-  spec.options.add_options()
-      ("eps-rule", po::value<std::string>()->default_value("joint-angle"),
-       "how eps is chosen when --eps is not given: joint-angle (poses match when their weighted "
-       "joints differ by about --eps-angle degrees) or paper (mu - 2 sigma of sampled pair "
-       "distances, Meng et al. 2008)")
-      ("eps-angle", po::value<double>()->default_value(kDefaultJointAngleDegrees),
-       "the joint-angle rule's tolerated rotation per weighted joint, in degrees");
+  spec.options.add_options()(
+      "eps-rule", po::value<std::string>()->default_value("joint-angle"),
+      "how eps is chosen when --eps is not given: joint-angle (poses match when their weighted "
+      "joints differ by about --eps-angle degrees) or paper (mu - 2 sigma of sampled pair "
+      "distances, Meng et al. 2008)")(
+      "eps-angle", po::value<double>()->default_value(kDefaultJointAngleDegrees),
+      "the joint-angle rule's tolerated rotation per weighted joint, in degrees");
 }
 
 Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisOptions* options) {

@@ -35,9 +35,9 @@ int ReportError(const std::string& command, const Status& status);
 // A parsed command line. `options` are the named options, `positional` names the positional
 // arguments in order (the last one may take any number of values).
 struct CommandSpec {
-  std::string name;        // "import"
-  std::string usage;       // "motifmine import ARCHIVE PATH... [options]"
-  std::string summary;     // one paragraph
+  std::string name;     // "import"
+  std::string usage;    // "motifmine import ARCHIVE PATH... [options]"
+  std::string summary;  // one paragraph
   boost::program_options::options_description options{"Options", 100};
   std::vector<std::pair<std::string, int>> positional;  // name, count (-1: the rest)
 };
@@ -70,8 +70,7 @@ Status ParseGroups(const std::string& text, uint32_t* groups);
 // (engine/distance/epsilon_estimator.h). EpsilonRuleFrom reads them back into the trellis
 // options; InvalidArgument naming the flag for an unknown rule or an angle outside (0, 180].
 void AddEpsilonRuleOptions(CommandSpec& spec);
-Status EpsilonRuleFrom(const boost::program_options::variables_map& vm,
-                       TrellisOptions* options);
+Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisOptions* options);
 // --first-frame: "auto", "keep" or "drop". InvalidArgument otherwise.
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy);
 

@@ -20,8 +20,7 @@ Result<Take> ReadClipRangeAsTake(const FrameFileReader& reader, const ClipInfo& 
   if (start >= end || end > clip.frame_count) {
     return Status::InvalidArgument("frame range [" + std::to_string(start) + ", " +
                                    std::to_string(end) + ") is not inside clip '" + clip.name +
-                                   "', which has " + std::to_string(clip.frame_count) +
-                                   " frames");
+                                   "', which has " + std::to_string(clip.frame_count) + " frames");
   }
   std::vector<float> rows;
   MOTIF_RETURN_IF_ERROR(reader.ReadFrames(clip.first_frame, end, &rows));

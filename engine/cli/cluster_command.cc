@@ -31,7 +31,8 @@ struct LoadedPaths {
 // The grower's candidates from the paths file, checked to belong to `trellis`.
 Result<LoadedPaths> LoadPathCandidates(const std::string& paths_path,
                                        const TrellisFileReader& trellis) {
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathsFileReader> reader, PathsFileReader::Open(paths_path));
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathsFileReader> reader,
+                         PathsFileReader::Open(paths_path));
   if (reader->params().trellis_identity != trellis.identity() ||
       reader->params().frame_count != trellis.column_count()) {
     return Status::InvalidArgument(paths_path + " was grown from another trellis than " +
@@ -61,8 +62,9 @@ int PrintTruthScore(const std::string& truth_path, const MotifsDocument& documen
 int RunCluster(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "cluster";
-  spec.usage = "motifmine cluster ARCHIVE [--trellis PATH] [--paths PATH] [--groups G|auto] "
-               "[--seed S] --out DIR [--truth FILE.truth.json]";
+  spec.usage =
+      "motifmine cluster ARCHIVE [--trellis PATH] [--paths PATH] [--groups G|auto] "
+      "[--seed S] --out DIR [--truth FILE.truth.json]";
   spec.summary =
       "Clusters the paths grown by `motifmine grow` into motifs: keeps the longest path per\n"
       "tree, merges instances that overlap by 3/4, scores instance pairs by the similar frames\n"
@@ -72,23 +74,23 @@ int RunCluster(const std::vector<std::string>& args) {
       "planted motifs of a synthetic archive (recall, precision, adjusted Rand index).";
   NormalizedCutOptions cut_defaults;
   SimilarityOptions similarity_defaults;
-  spec.options.add_options()
-      ("trellis", po::value<std::string>()->default_value(""), "default: ARCHIVE.mtr")
-      ("paths", po::value<std::string>()->default_value(""), "default: ARCHIVE.mpa")
-      ("groups", po::value<std::string>()->default_value("auto"),
-       "number of motifs G, or auto (cut while a cut's Ncut is below --max-ncut)")
-      ("seed", po::value<uint64_t>()->default_value(1), "seed of the sparse eigensolver")
-      ("out", po::value<std::string>(), "output folder (created if missing): DIR/motifs.json")
-      ("truth", po::value<std::string>()->default_value(""),
-       "a synthetic archive's truth file: print recall, precision and ARI")
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
-      ("max-ncut", po::value<double>()->default_value(cut_defaults.max_ncut),
-       "auto: stop cutting a group when its best cut's Ncut (0..2) is not below this")
-      ("min-similarity", po::value<double>()->default_value(similarity_defaults.min_similarity),
-       "instance pairs sharing less than this fraction of the shorter get no edge")
-      ("max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
-       "drop an instance from its motif when its length is more than this factor from the "
-       "motif's median (a fragment or a run-on; 0 keeps all)");
+  spec.options.add_options()("trellis", po::value<std::string>()->default_value(""),
+                             "default: ARCHIVE.mtr")(
+      "paths", po::value<std::string>()->default_value(""), "default: ARCHIVE.mpa")(
+      "groups", po::value<std::string>()->default_value("auto"),
+      "number of motifs G, or auto (cut while a cut's Ncut is below --max-ncut)")(
+      "seed", po::value<uint64_t>()->default_value(1), "seed of the sparse eigensolver")(
+      "out", po::value<std::string>(), "output folder (created if missing): DIR/motifs.json")(
+      "truth", po::value<std::string>()->default_value(""),
+      "a synthetic archive's truth file: print recall, precision and ARI")(
+      "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
+      "max-ncut", po::value<double>()->default_value(cut_defaults.max_ncut),
+      "auto: stop cutting a group when its best cut's Ncut (0..2) is not below this")(
+      "min-similarity", po::value<double>()->default_value(similarity_defaults.min_similarity),
+      "instance pairs sharing less than this fraction of the shorter get no edge")(
+      "max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
+      "drop an instance from its motif when its length is more than this factor from the "
+      "motif's median (a fragment or a run-on; 0 keeps all)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -122,8 +124,8 @@ int RunCluster(const std::vector<std::string>& args) {
   }
   if (!(options.max_length_ratio == 0 || options.max_length_ratio >= 1) ||
       !std::isfinite(options.max_length_ratio)) {
-    return ReportError("cluster", Status::InvalidArgument(
-                                      "--max-length-ratio must be 0 (keep all) or >= 1"));
+    return ReportError("cluster",
+                       Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1"));
   }
 
   Result<std::unique_ptr<FrameFileReader>> frames = FrameFileReader::Open(archive);
@@ -132,9 +134,9 @@ int RunCluster(const std::vector<std::string>& args) {
   if (!trellis.ok()) return ReportError("cluster", trellis.status());
   if ((*trellis)->params().archive_identity != (*frames)->summary().identity ||
       (*trellis)->column_count() != (*frames)->frame_count()) {
-    return ReportError("cluster", Status::InvalidArgument(
-                                      trellis_path + " was built over another archive than " +
-                                      archive + " (or another version of it)"));
+    return ReportError(
+        "cluster", Status::InvalidArgument(trellis_path + " was built over another archive than " +
+                                           archive + " (or another version of it)"));
   }
   Result<LoadedPaths> paths = LoadPathCandidates(paths_path, **trellis);
   if (!paths.ok()) return ReportError("cluster", paths.status());
@@ -159,15 +161,15 @@ int RunCluster(const std::vector<std::string>& args) {
   params.min_length = paths->params.min_length;
   params.groups = options.cut.groups;
   params.seed = options.seed;
-  Result<MotifsDocument> document = MakeMotifsDocument(
-      *result, archive, (*frames)->frame_count(), (*frames)->clips(), params);
+  Result<MotifsDocument> document =
+      MakeMotifsDocument(*result, archive, (*frames)->frame_count(), (*frames)->clips(), params);
   if (!document.ok()) return ReportError("cluster", document.status());
   document->archive_version = ArchiveVersionOf(**frames);
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   if (error) {
-    return ReportError("cluster", Status::IOError("cannot create " + out_dir + ": " +
-                                                  error.message()));
+    return ReportError("cluster",
+                       Status::IOError("cannot create " + out_dir + ": " + error.message()));
   }
   const std::string out_path = (std::filesystem::path(out_dir) / "motifs.json").string();
   if (Status status = WriteMotifsJson(out_path, *document); !status.ok()) {
@@ -182,25 +184,23 @@ int RunCluster(const std::vector<std::string>& args) {
               WithCommas(result->motifs.size()).c_str(),
               params.groups ? std::to_string(params.groups).c_str() : "auto",
               WithCommas(report.cut_stats.components).c_str());
-  std::printf("  instances    %s in motifs (%s fragments dropped), of %s merged from "
-              "%s segments of %s paths (%s candidates)\n",
-              WithCommas(report.clustered_instances).c_str(),
-              WithCommas(report.length_outliers).c_str(),
-              WithCommas(instances.instances).c_str(),
-              WithCommas(instances.raw_instances).c_str(),
-              WithCommas(instances.kept_paths).c_str(),
-              WithCommas(instances.candidates).c_str());
+  std::printf(
+      "  instances    %s in motifs (%s fragments dropped), of %s merged from "
+      "%s segments of %s paths (%s candidates)\n",
+      WithCommas(report.clustered_instances).c_str(), WithCommas(report.length_outliers).c_str(),
+      WithCommas(instances.instances).c_str(), WithCommas(instances.raw_instances).c_str(),
+      WithCommas(instances.kept_paths).c_str(), WithCommas(instances.candidates).c_str());
   std::printf("  coverage     %s frames, %s of the archive\n",
               WithCommas(report.covered_frames).c_str(),
               Percent(report.covered_frames, (*frames)->frame_count()).c_str());
   std::printf("  graph        %s edges (%s similar pairs, %s links)\n",
               WithCommas(similarity.edges).c_str(), WithCommas(similarity.similar_pairs).c_str(),
               WithCommas(similarity.linked_pairs).c_str());
-  std::printf("  time         instances %.2fs, similarity %.2fs (%s blocks), cut %.2fs "
-              "(%s eigenvectors)\n",
-              report.instance_seconds, similarity.seconds,
-              WithCommas(similarity.blocks_decoded).c_str(), report.cut_seconds,
-              WithCommas(report.cut_stats.eigen_solves).c_str());
+  std::printf(
+      "  time         instances %.2fs, similarity %.2fs (%s blocks), cut %.2fs "
+      "(%s eigenvectors)\n",
+      report.instance_seconds, similarity.seconds, WithCommas(similarity.blocks_decoded).c_str(),
+      report.cut_seconds, WithCommas(report.cut_stats.eigen_solves).c_str());
   for (size_t rank = 0; rank < std::min<size_t>(5, document->motifs.size()); ++rank) {
     const MotifsJsonMotif& motif = document->motifs[rank];
     const MotifsJsonInstance& first = motif.instances.front();

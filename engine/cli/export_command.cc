@@ -17,11 +17,11 @@ int RunExport(const std::vector<std::string>& args) {
   spec.summary =
       "Writes a clip, or frames [S, E) of it (0-based, E exclusive), as a BVH file that opens in\n"
       "Blender and other BVH viewers, with the clip's own bone lengths and its root trajectory.";
-  spec.options.add_options()
-      ("clip", po::value<std::string>()->required(), "clip name (see motifmine info)")
-      ("start", po::value<uint64_t>()->default_value(0), "first frame, 0-based")
-      ("end", po::value<uint64_t>(), "end frame, exclusive (default: the clip's end)")
-      ("out", po::value<std::string>()->required(), "the BVH file to write");
+  spec.options.add_options()("clip", po::value<std::string>()->required(),
+                             "clip name (see motifmine info)")(
+      "start", po::value<uint64_t>()->default_value(0), "first frame, 0-based")(
+      "end", po::value<uint64_t>(), "end frame, exclusive (default: the clip's end)")(
+      "out", po::value<std::string>()->required(), "the BVH file to write");
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
@@ -35,9 +35,9 @@ int RunExport(const std::vector<std::string>& args) {
     if (candidate.name == name) clip = &candidate;
   }
   if (clip == nullptr) {
-    return ReportError("export", Status::NotFound(path + ": no clip named '" + name +
-                                                  "' (motifmine info " + path +
-                                                  " --clips 0 lists them)"));
+    return ReportError(
+        "export", Status::NotFound(path + ": no clip named '" + name + "' (motifmine info " + path +
+                                   " --clips 0 lists them)"));
   }
   const uint64_t start = vm["start"].as<uint64_t>();
   const uint64_t end = vm.count("end") ? vm["end"].as<uint64_t>() : clip->frame_count;

@@ -50,11 +50,11 @@ int RunExportMotif(const std::vector<std::string>& args) {
       "0 in motifs.json order; start and end are the instance's frames in its clip, end\n"
       "excluded), with the clip's bone lengths and root trajectory. The frames come from the\n"
       "archive named in motifs.json, or --archive if it has moved.";
-  spec.options.add_options()
-      ("motif", po::value<uint32_t>()->required(), "the motif id (see motifs.json or the report)")
-      ("out", po::value<std::string>()->required(), "folder for the BVH files (created if missing)")
-      ("archive", po::value<std::string>()->default_value(""),
-       "the archive (default: the one named in motifs.json)");
+  spec.options.add_options()("motif", po::value<uint32_t>()->required(),
+                             "the motif id (see motifs.json or the report)")(
+      "out", po::value<std::string>()->required(), "folder for the BVH files (created if missing)")(
+      "archive", po::value<std::string>()->default_value(""),
+      "the archive (default: the one named in motifs.json)");
   spec.positional = {{"dir", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;

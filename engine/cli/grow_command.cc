@@ -16,8 +16,9 @@ namespace po = boost::program_options;
 int RunGrow(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "grow";
-  spec.usage = "motifmine grow ARCHIVE [--trellis PATH] [--branch B] [--min-length L] "
-               "[--all-branches] [--out PATH]";
+  spec.usage =
+      "motifmine grow ARCHIVE [--trellis PATH] [--branch B] [--min-length L] "
+      "[--all-branches] [--out PATH]";
   spec.summary =
       "Grows continuous paths through ARCHIVE's matching trellis (built by `motifmine trellis`)\n"
       "with the streaming tree-growing scheme of Meng et al. 2008, and writes the candidates\n"
@@ -25,15 +26,16 @@ int RunGrow(const std::vector<std::string>& args) {
       "--all-branches) to ARCHIVE.mpa. A path at frame j may\n"
       "continue to frames j .. j+B-1 of the next column; paths never cross a clip boundary.\n"
       "An existing paths file grown from the same trellis with the same parameters is reused.";
-  spec.options.add_options()
-      ("trellis", po::value<std::string>()->default_value(""), "default: ARCHIVE.mtr")
-      ("branch", po::value<uint32_t>()->default_value(GrowOptions{}.branch),
-       "branching factor B (the paper's experiments: 5)")
-      ("min-length", po::value<std::string>()->default_value("0.5s"),
-       "minimum path length lambda, on both sides: frames (60) or seconds (0.5s)")
-      ("all-branches", "keep every path of a tree that died long enough (default: the longest "
-                       "of each tree)")
-      ("out", po::value<std::string>()->default_value(""), "paths file (default ARCHIVE.mpa)");
+  spec.options.add_options()("trellis", po::value<std::string>()->default_value(""),
+                             "default: ARCHIVE.mtr")(
+      "branch", po::value<uint32_t>()->default_value(GrowOptions{}.branch),
+      "branching factor B (the paper's experiments: 5)")(
+      "min-length", po::value<std::string>()->default_value("0.5s"),
+      "minimum path length lambda, on both sides: frames (60) or seconds (0.5s)")(
+      "all-branches",
+      "keep every path of a tree that died long enough (default: the longest "
+      "of each tree)")("out", po::value<std::string>()->default_value(""),
+                       "paths file (default ARCHIVE.mpa)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -47,9 +49,8 @@ int RunGrow(const std::vector<std::string>& args) {
   PathsOptions options;
   options.branch = vm["branch"].as<uint32_t>();
   options.all_branches = vm.count("all-branches") > 0;
-  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(),
-                                                 &options.min_length_frames,
-                                                 &options.min_length_seconds);
+  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(), &options.min_length_frames,
+                                     &options.min_length_seconds);
       !status.ok()) {
     return ReportError("grow", status);
   }
@@ -82,14 +83,13 @@ int RunGrow(const std::vector<std::string>& args) {
     std::printf("  trees        %s roots, %s paths died, %s of them long enough\n",
                 WithCommas(stats.trees).c_str(), WithCommas(stats.dead_paths).c_str(),
                 WithCommas(stats.long_paths).c_str());
-    std::printf("  time         grow %.2fs (%.1f M entries/s), write %.2fs\n",
-                report->grow_seconds,
+    std::printf("  time         grow %.2fs (%.1f M entries/s), write %.2fs\n", report->grow_seconds,
                 report->grow_seconds > 0
                     ? static_cast<double>(stats.entries) / report->grow_seconds / 1e6
                     : 0.0,
                 report->write_seconds);
-    std::printf("  memory       grower %s, peak resident %s\n", FormatBytes(stats.memory_bytes).c_str(),
-                FormatBytes(PeakResidentBytes()).c_str());
+    std::printf("  memory       grower %s, peak resident %s\n",
+                FormatBytes(stats.memory_bytes).c_str(), FormatBytes(PeakResidentBytes()).c_str());
   }
   return kExitOk;
 }

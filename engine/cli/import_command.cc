@@ -18,21 +18,21 @@ int RunImport(const std::vector<std::string>& args) {
       "fails, the archive is left exactly as it was. A take already in the archive (same file\n"
       "content) is skipped. An AMC file is paired with the ASF in its folder (or the one sharing\n"
       "its subject prefix); --asf names it outright.";
-  spec.options.add_options()
-      ("fps", po::value<double>()->default_value(0),
-       "frame rate of a NEW archive (takes at other rates are resampled); default: the first "
-       "take's rate")
-      ("asf", po::value<std::string>()->default_value(""), "the ASF skeleton for every AMC file")
-      ("amc-fps", po::value<double>()->default_value(120.0),
-       "frame rate of AMC files (they store none)")
-      ("bvh-fps", po::value<double>()->default_value(0),
-       "override every BVH file's Frame Time with this rate")
-      ("first-frame", po::value<std::string>()->default_value("auto"),
-       "auto: drop a first frame that is a converter's T-pose (discontinuous with the take); "
-       "keep; drop")
-      ("skip-bad", "import the good takes and report the bad ones (default: all or nothing)")
-      ("block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")
-      ("threads", po::value<int>()->default_value(0), "parser threads (0: all cores)");
+  spec.options.add_options()(
+      "fps", po::value<double>()->default_value(0),
+      "frame rate of a NEW archive (takes at other rates are resampled); default: the first "
+      "take's rate")("asf", po::value<std::string>()->default_value(""),
+                     "the ASF skeleton for every AMC file")(
+      "amc-fps", po::value<double>()->default_value(120.0),
+      "frame rate of AMC files (they store none)")(
+      "bvh-fps", po::value<double>()->default_value(0),
+      "override every BVH file's Frame Time with this rate")(
+      "first-frame", po::value<std::string>()->default_value("auto"),
+      "auto: drop a first frame that is a converter's T-pose (discontinuous with the take); "
+      "keep; drop")("skip-bad",
+                    "import the good takes and report the bad ones (default: all or nothing)")(
+      "block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")(
+      "threads", po::value<int>()->default_value(0), "parser threads (0: all cores)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}, {"paths", -1}};
   po::variables_map vm;
@@ -48,8 +48,8 @@ int RunImport(const std::vector<std::string>& args) {
   options.import.asf_path = vm["asf"].as<std::string>();
   options.import.amc_fps = vm["amc-fps"].as<double>();
   options.import.bvh_fps = vm["bvh-fps"].as<double>();
-  if (Status status = ParseFirstFrame(vm["first-frame"].as<std::string>(),
-                                      &options.import.first_frame);
+  if (Status status =
+          ParseFirstFrame(vm["first-frame"].as<std::string>(), &options.import.first_frame);
       !status.ok()) {
     return ReportError("import", status);
   }
@@ -93,8 +93,8 @@ int RunImport(const std::vector<std::string>& args) {
     std::printf(", %s failed", WithCommas(result->takes_failed).c_str());
   }
   std::printf("; the archive now holds %s clips, %s frames at %g fps\n",
-              WithCommas(result->archive_clips).c_str(),
-              WithCommas(result->archive_frames).c_str(), result->fps);
+              WithCommas(result->archive_clips).c_str(), WithCommas(result->archive_frames).c_str(),
+              result->fps);
   return result->takes_failed ? ExitCodeFor(Status::InvalidArgument("")) : kExitOk;
 }
 

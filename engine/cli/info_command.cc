@@ -15,9 +15,8 @@ int RunInfo(const std::vector<std::string>& args) {
   spec.name = "info";
   spec.usage = "motifmine info ARCHIVE [--json] [--clips N]";
   spec.summary = "Describes an archive: frame rate, skeleton, clips and frames, size on disk.";
-  spec.options.add_options()
-      ("json", "print everything as one JSON object (every clip included)")
-      ("clips", po::value<size_t>()->default_value(20), "clips listed in the text output (0: all)");
+  spec.options.add_options()("json", "print everything as one JSON object (every clip included)")(
+      "clips", po::value<size_t>()->default_value(20), "clips listed in the text output (0: all)");
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
@@ -32,8 +31,8 @@ int RunInfo(const std::vector<std::string>& args) {
   if (vm.count("json")) {
     nlohmann::json out;
     out["archive"] = path;
-    out["format_version"] = std::to_string(summary.format_major) + "." +
-                            std::to_string(summary.format_minor);
+    out["format_version"] =
+        std::to_string(summary.format_major) + "." + std::to_string(summary.format_minor);
     out["generation"] = summary.generation;
     out["fps"] = reader.fps();
     out["frames"] = reader.frame_count();
@@ -83,14 +82,16 @@ int RunInfo(const std::vector<std::string>& args) {
                 WithCommas(raw_bytes).c_str());
   }
   if (summary.uncommitted_bytes > 0) {
-    std::printf("note         %s bytes after the last commit (an interrupted import); the next "
-                "import discards them\n",
-                WithCommas(summary.uncommitted_bytes).c_str());
+    std::printf(
+        "note         %s bytes after the last commit (an interrupted import); the next "
+        "import discards them\n",
+        WithCommas(summary.uncommitted_bytes).c_str());
   }
   if (!summary.fallback_reason.empty()) {
-    std::printf("WARNING      the newest commit did not validate (%s); showing the previous "
-                "version. Run motifmine verify.\n",
-                summary.fallback_reason.c_str());
+    std::printf(
+        "WARNING      the newest commit did not validate (%s); showing the previous "
+        "version. Run motifmine verify.\n",
+        summary.fallback_reason.c_str());
   }
   const size_t limit = vm["clips"].as<size_t>();
   const auto& clips = reader.clips();

@@ -14,11 +14,12 @@ int RunInspectTrellis(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "inspect-trellis";
   spec.usage = "motifmine inspect-trellis ARCHIVE --column T [--trellis PATH]";
-  spec.summary = "Prints the trellis's parameters and column T: each neighbour's global frame, its "
-                 "clip and\nframe within the clip, and its pose distance.";
-  spec.options.add_options()
-      ("column", po::value<uint64_t>()->required(), "global frame index of the column")
-      ("trellis", po::value<std::string>()->default_value(""), "default: ARCHIVE.mtr");
+  spec.summary =
+      "Prints the trellis's parameters and column T: each neighbour's global frame, its "
+      "clip and\nframe within the clip, and its pose distance.";
+  spec.options.add_options()("column", po::value<uint64_t>()->required(),
+                             "global frame index of the column")(
+      "trellis", po::value<std::string>()->default_value(""), "default: ARCHIVE.mtr");
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
@@ -31,11 +32,10 @@ int RunInspectTrellis(const std::vector<std::string>& args) {
   if (!trellis.ok()) return ReportError("inspect-trellis", trellis.status());
   const uint64_t column = vm["column"].as<uint64_t>();
   if (column >= (*trellis)->column_count()) {
-    return ReportError("inspect-trellis",
-                       Status::InvalidArgument("column " + std::to_string(column) +
-                                               " is outside the trellis's " +
-                                               std::to_string((*trellis)->column_count()) +
-                                               " columns"));
+    return ReportError(
+        "inspect-trellis",
+        Status::InvalidArgument("column " + std::to_string(column) + " is outside the trellis's " +
+                                std::to_string((*trellis)->column_count()) + " columns"));
   }
   const TrellisParams& params = (*trellis)->params();
   if (params.archive_identity != (*reader)->summary().identity) {
@@ -50,8 +50,8 @@ int RunInspectTrellis(const std::vector<std::string>& args) {
     const ClipInfo& clip = clips[(*reader)->ClipOfFrame(frame)];
     return clip.name + ":" + std::to_string(frame - clip.first_frame);
   };
-  std::printf("%s: eps %.4f, k_max %u, exclusion %u, %s\n", path.c_str(), params.eps,
-              params.k_max, params.exclusion_frames, params.search_params.c_str());
+  std::printf("%s: eps %.4f, k_max %u, exclusion %u, %s\n", path.c_str(), params.eps, params.k_max,
+              params.exclusion_frames, params.search_params.c_str());
   std::printf("column %llu (%s): %zu neighbours\n", static_cast<unsigned long long>(column),
               describe(column).c_str(), columns[0].size());
   std::printf("  %12s  %-28s %10s\n", "frame", "clip:frame", "distance");

@@ -81,15 +81,15 @@ Status MakeSyntheticArchive(const std::string& archive, const SynthOptions& opti
   *reused = false;
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
                          MotionSynthesizer::Create(options));
-  return WriteSyntheticArchive(archive, *synthesizer, options, FrameFileWriterOptions{}.block_frames,
-                               progress)
+  return WriteSyntheticArchive(archive, *synthesizer, options,
+                               FrameFileWriterOptions{}.block_frames, progress)
       .status();
 }
 
 // The files this command writes in DIR, whose temporary files a killed run may have left.
-const std::vector<std::string> kOwnedFiles = {"archive.mfs", "archive.truth.json", "trellis.mtr",
-                                              "paths.mpa",   "motifs.json",        "mine_state.json",
-                                              "report.html"};
+const std::vector<std::string> kOwnedFiles = {
+    "archive.mfs", "archive.truth.json", "trellis.mtr", "paths.mpa",
+    "motifs.json", "mine_state.json",    "report.html"};
 
 }  // namespace
 
@@ -104,34 +104,33 @@ int RunMine(const std::vector<std::string>& args) {
       "DIR/archive.mfs); with no INPUT a built-in synthetic archive with planted motifs is\n"
       "mined and the planted motifs are scored. Writes DIR/motifs.json, DIR/report.html and a\n"
       "summary. A second run reuses every stage whose inputs and parameters did not change.";
-  spec.options.add_options()
-      ("out", po::value<std::string>(), "output folder (created if missing)")
-      ("eps", po::value<float>()->default_value(0), "pose distance threshold; 0: by --eps-rule")
-      ("kmax", po::value<uint32_t>()->default_value(256), "neighbours kept per frame, nearest")
-      ("exclusion", po::value<uint32_t>()->default_value(0),
-       "same-clip exclusion radius in frames; 0: half the minimum length")
-      ("search", po::value<std::string>()->default_value("auto"),
-       "neighbour search: auto (exact on small archives), lsh or exact")
-      ("tables", po::value<uint32_t>()->default_value(LshOptions{}.tables), "LSH hash tables")
-      ("hashes", po::value<uint32_t>()->default_value(0),
-       "LSH projections per table (0: from the archive's size)")
-      ("width", po::value<float>()->default_value(0), "LSH bucket width (0: from the data)")
-      ("branch", po::value<uint32_t>()->default_value(PathsOptions{}.branch),
-       "branching factor B of the path grower")
-      ("min-length", po::value<std::string>()->default_value("0.5s"),
-       "least motif length: frames (60) or seconds (0.5s)")
-      ("groups", po::value<std::string>()->default_value("auto"), "number of motifs, or auto")
-      ("max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
-       "drop an instance from its motif when its length is more than this factor from the "
-       "motif's median (0 keeps all)")
-      ("seed", po::value<uint64_t>()->default_value(1), "seed of every random choice")
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
-      ("synth-frames", po::value<uint64_t>()->default_value(120000),
-       "no INPUT: frames of the synthetic archive")
-      ("synth-motifs", po::value<uint32_t>()->default_value(12),
-       "no INPUT: planted motifs of the synthetic archive")
-      ("skip-bad", "import: report malformed takes and import the others")
-      ("no-report", "do not write report.html");
+  spec.options.add_options()("out", po::value<std::string>(), "output folder (created if missing)")(
+      "eps", po::value<float>()->default_value(0), "pose distance threshold; 0: by --eps-rule")(
+      "kmax", po::value<uint32_t>()->default_value(256), "neighbours kept per frame, nearest")(
+      "exclusion", po::value<uint32_t>()->default_value(0),
+      "same-clip exclusion radius in frames; 0: half the minimum length")(
+      "search", po::value<std::string>()->default_value("auto"),
+      "neighbour search: auto (exact on small archives), lsh or exact")(
+      "tables", po::value<uint32_t>()->default_value(LshOptions{}.tables), "LSH hash tables")(
+      "hashes", po::value<uint32_t>()->default_value(0),
+      "LSH projections per table (0: from the archive's size)")(
+      "width", po::value<float>()->default_value(0), "LSH bucket width (0: from the data)")(
+      "branch", po::value<uint32_t>()->default_value(PathsOptions{}.branch),
+      "branching factor B of the path grower")("min-length",
+                                               po::value<std::string>()->default_value("0.5s"),
+                                               "least motif length: frames (60) or seconds (0.5s)")(
+      "groups", po::value<std::string>()->default_value("auto"), "number of motifs, or auto")(
+      "max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
+      "drop an instance from its motif when its length is more than this factor from the "
+      "motif's median (0 keeps all)")("seed", po::value<uint64_t>()->default_value(1),
+                                      "seed of every random choice")(
+      "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
+      "synth-frames", po::value<uint64_t>()->default_value(120000),
+      "no INPUT: frames of the synthetic archive")(
+      "synth-motifs", po::value<uint32_t>()->default_value(12),
+      "no INPUT: planted motifs of the synthetic archive")(
+      "skip-bad", "import: report malformed takes and import the others")(
+      "no-report", "do not write report.html");
   AddEpsilonRuleOptions(spec);
   AddProgressOptions(spec);
   spec.positional = {{"input", -1}};
@@ -165,9 +164,9 @@ int RunMine(const std::vector<std::string>& args) {
   trellis_options.lsh.bucket_width = vm["width"].as<float>();
   PathsOptions paths_options;
   paths_options.branch = vm["branch"].as<uint32_t>();
-  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(),
-                                  &paths_options.min_length_frames,
-                                  &paths_options.min_length_seconds);
+  if (Status status =
+          ParseMinLength(vm["min-length"].as<std::string>(), &paths_options.min_length_frames,
+                         &paths_options.min_length_seconds);
       !status.ok()) {
     return fail(status);
   }
@@ -263,7 +262,9 @@ int RunMine(const std::vector<std::string>& args) {
       if (!trellis_stage.empty()) progress.EndStage();
       trellis_stage = stage;
       progress.BeginStage(stage == "trellis" ? "trellis" : "trellis " + stage, total,
-                          stage == "eps" ? "pairs" : stage == "trellis" ? "columns" : "frames");
+                          stage == "eps"       ? "pairs"
+                          : stage == "trellis" ? "columns"
+                                               : "frames");
     }
     progress.Update(done);
   };
@@ -328,10 +329,10 @@ int RunMine(const std::vector<std::string>& args) {
     ReportInfo info;
     info.archive_path = archive;
     std::ostringstream parameters;
-    parameters << "eps " << trellis->params.eps << " (" << trellis->eps_how << "), k_max " << trellis->params.k_max << ", B "
-               << paths->params.branch << ", min length " << paths->params.min_length
-               << " frames, groups " << groups_text << ", seed " << seed << ", search "
-               << TrellisSearchModeName(trellis->search);
+    parameters << "eps " << trellis->params.eps << " (" << trellis->eps_how << "), k_max "
+               << trellis->params.k_max << ", B " << paths->params.branch << ", min length "
+               << paths->params.min_length << " frames, groups " << groups_text << ", seed " << seed
+               << ", search " << TrellisSearchModeName(trellis->search);
     info.parameters_text = parameters.str();
     for (const StageTime& time : times) info.timings.push_back({time.stage, time.seconds});
     info.peak_memory_bytes = PeakResidentBytes();
@@ -354,8 +355,8 @@ int RunMine(const std::vector<std::string>& args) {
   const uint64_t total_frames = (*frames)->frame_count();
   std::printf("motifmine mine: %s\n", archive.c_str());
   std::printf("  archive      %s frames (%.1f min at %g fps) in %s clips\n",
-              WithCommas(total_frames).c_str(), static_cast<double>(total_frames) / fps / 60.0,
-              fps, WithCommas((*frames)->clips().size()).c_str());
+              WithCommas(total_frames).c_str(), static_cast<double>(total_frames) / fps / 60.0, fps,
+              WithCommas((*frames)->clips().size()).c_str());
   std::printf("  radius       eps %.3f: %s (the paper's mu - 2 sigma would be %.3f)\n",
               trellis->params.eps, trellis->eps_how.c_str(), trellis->paper_eps);
   std::printf("  trellis      mean K %.1f of k_max %u, %s search\n", trellis->mean_k,
@@ -381,8 +382,8 @@ int RunMine(const std::vector<std::string>& args) {
   std::string timing;
   for (const StageTime& time : times) {
     char part[96];
-    std::snprintf(part, sizeof part, "%s%s %.1fs%s", timing.empty() ? "" : ", ",
-                  time.stage.c_str(), time.seconds, time.reused ? " (reused)" : "");
+    std::snprintf(part, sizeof part, "%s%s %.1fs%s", timing.empty() ? "" : ", ", time.stage.c_str(),
+                  time.seconds, time.reused ? " (reused)" : "");
     timing += part;
   }
   std::printf("  time         %s; total %.1fs\n", timing.c_str(), SecondsSince(job_start));

@@ -23,13 +23,13 @@ Result<MinedMotifs> OpenMinedMotifs(const std::string& dir, const std::string& a
   // importing tonight's takes) do not change what this motifs.json describes.
   const MotifsArchiveVersion& version = mined.document.archive_version;
   Result<std::unique_ptr<FrameFileReader>> opened =
-      version.known() ? FrameFileReader::OpenCommit(archive, version.generation,
-                                                    version.committed_bytes)
-                      : FrameFileReader::Open(archive);
+      version.known()
+          ? FrameFileReader::OpenCommit(archive, version.generation, version.committed_bytes)
+          : FrameFileReader::Open(archive);
   if (opened.ok() && version.known() && (*opened)->summary().identity != version.identity) {
-    return Status::InvalidArgument(archive + ": its version " +
-                                   std::to_string(version.generation) + " is not the one " +
-                                   mined.motifs_path + " was mined from (another archive?)");
+    return Status::InvalidArgument(archive + ": its version " + std::to_string(version.generation) +
+                                   " is not the one " + mined.motifs_path +
+                                   " was mined from (another archive?)");
   }
   if (!opened.ok()) {
     if (opened.status().IsNotFound() && archive_path.empty()) {
@@ -39,8 +39,7 @@ Result<MinedMotifs> OpenMinedMotifs(const std::string& dir, const std::string& a
     return opened.status();
   }
   mined.archive = std::move(opened).value();
-  MOTIF_RETURN_IF_ERROR(CheckMotifsMatchArchive(mined.document, mined.motifs_path,
-                                                *mined.archive));
+  MOTIF_RETURN_IF_ERROR(CheckMotifsMatchArchive(mined.document, mined.motifs_path, *mined.archive));
   return mined;
 }
 

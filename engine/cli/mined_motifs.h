@@ -14,8 +14,8 @@
 namespace motif::cli {
 
 struct MinedMotifs {
-  std::string dir;           // as given
-  std::string motifs_path;   // DIR/motifs.json
+  std::string dir;          // as given
+  std::string motifs_path;  // DIR/motifs.json
   MotifsDocument document;
   std::unique_ptr<FrameFileReader> archive;
 };

@@ -105,11 +105,10 @@ void ProgressReporter::Draw(uint64_t done, bool final_line) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start_).count();
   const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
-  const double eta =
-      rate > 0 && total_ >= done ? static_cast<double>(total_ - done) / rate : -1.0;
+  const double eta = rate > 0 && total_ >= done ? static_cast<double>(total_ - done) / rate : -1.0;
   if (mode_ == ProgressMode::kJson) {
-    nlohmann::json line = {{"stage", stage_},  {"done", done},       {"total", total_},
-                           {"unit", unit_},    {"rate", rate},       {"eta_s", eta},
+    nlohmann::json line = {{"stage", stage_},      {"done", done},          {"total", total_},
+                           {"unit", unit_},        {"rate", rate},          {"eta_s", eta},
                            {"elapsed_s", elapsed}, {"finished", final_line}};
     std::fprintf(stderr, "%s\n", line.dump().c_str());
     return;

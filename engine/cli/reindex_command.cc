@@ -52,71 +52,70 @@ class StageProgress {
 void PrintSummary(const ReindexReport& report, int exit_code, bool json) {
   const ReindexManifest& manifest = report.manifest;
   if (json) {
-    nlohmann::json line = {
-        {"event", "reindex"},
-        {"exit_code", exit_code},
-        {"up_to_date", report.up_to_date},
-        {"version", manifest.version},
-        {"build", report.up_to_date ? "none" : manifest.build.kind},
-        {"takes_imported", report.takes_imported},
-        {"frames_imported", report.frames_imported},
-        {"takes_known", report.takes_known},
-        {"changed", report.changed},
-        {"failed", report.failed},
-        {"warnings", report.warnings},
-        {"settling", report.settling.size()},
-        {"archive_frames", manifest.archive.frames},
-        {"archive_clips", manifest.archive.clips},
-        {"changed_columns", manifest.build.changed_columns},
-        {"copied_blocks", manifest.build.copied_blocks},
-        {"rewritten_blocks", manifest.build.rewritten_blocks},
-        {"removed_versions", report.removed_versions},
-        {"seconds",
-         {{"import", report.import_seconds},
-          {"trellis", report.trellis_seconds},
-          {"grow", report.grow_seconds},
-          {"cluster", report.cluster_seconds},
-          {"report", report.report_seconds},
-          {"total", report.total_seconds}}},
-        {"motifs", manifest.motifs.path}};
+    nlohmann::json line = {{"event", "reindex"},
+                           {"exit_code", exit_code},
+                           {"up_to_date", report.up_to_date},
+                           {"version", manifest.version},
+                           {"build", report.up_to_date ? "none" : manifest.build.kind},
+                           {"takes_imported", report.takes_imported},
+                           {"frames_imported", report.frames_imported},
+                           {"takes_known", report.takes_known},
+                           {"changed", report.changed},
+                           {"failed", report.failed},
+                           {"warnings", report.warnings},
+                           {"settling", report.settling.size()},
+                           {"archive_frames", manifest.archive.frames},
+                           {"archive_clips", manifest.archive.clips},
+                           {"changed_columns", manifest.build.changed_columns},
+                           {"copied_blocks", manifest.build.copied_blocks},
+                           {"rewritten_blocks", manifest.build.rewritten_blocks},
+                           {"removed_versions", report.removed_versions},
+                           {"seconds",
+                            {{"import", report.import_seconds},
+                             {"trellis", report.trellis_seconds},
+                             {"grow", report.grow_seconds},
+                             {"cluster", report.cluster_seconds},
+                             {"report", report.report_seconds},
+                             {"total", report.total_seconds}}},
+                           {"motifs", manifest.motifs.path}};
     std::printf("%s\n", line.dump().c_str());
     return;
   }
   if (report.up_to_date) {
-    std::printf("motifmine reindex: up to date (version %llu, %s frames in %s clips; %s takes "
-                "already imported)\n",
-                static_cast<unsigned long long>(manifest.version),
-                WithCommas(manifest.archive.frames).c_str(),
-                WithCommas(manifest.archive.clips).c_str(),
-                WithCommas(report.takes_known).c_str());
+    std::printf(
+        "motifmine reindex: up to date (version %llu, %s frames in %s clips; %s takes "
+        "already imported)\n",
+        static_cast<unsigned long long>(manifest.version),
+        WithCommas(manifest.archive.frames).c_str(), WithCommas(manifest.archive.clips).c_str(),
+        WithCommas(report.takes_known).c_str());
   } else {
     std::printf("motifmine reindex: version %llu (%s build)\n",
                 static_cast<unsigned long long>(manifest.version), manifest.build.kind.c_str());
     std::printf("  takes        %s imported (%s frames), %s already in the archive\n",
                 WithCommas(report.takes_imported).c_str(),
-                WithCommas(report.frames_imported).c_str(),
-                WithCommas(report.takes_known).c_str());
+                WithCommas(report.frames_imported).c_str(), WithCommas(report.takes_known).c_str());
     std::printf("  archive      %s frames in %s clips (generation %llu)\n",
                 WithCommas(manifest.archive.frames).c_str(),
                 WithCommas(manifest.archive.clips).c_str(),
                 static_cast<unsigned long long>(manifest.archive.generation));
     if (manifest.build.kind == "incremental") {
-      std::printf("  trellis      %s new frames; %s old columns changed; %s blocks copied, %s "
-                  "rewritten\n",
-                  WithCommas(manifest.build.new_frames).c_str(),
-                  WithCommas(manifest.build.changed_columns).c_str(),
-                  WithCommas(manifest.build.copied_blocks).c_str(),
-                  WithCommas(manifest.build.rewritten_blocks).c_str());
+      std::printf(
+          "  trellis      %s new frames; %s old columns changed; %s blocks copied, %s "
+          "rewritten\n",
+          WithCommas(manifest.build.new_frames).c_str(),
+          WithCommas(manifest.build.changed_columns).c_str(),
+          WithCommas(manifest.build.copied_blocks).c_str(),
+          WithCommas(manifest.build.rewritten_blocks).c_str());
     }
     std::printf("  eps          %.6g (%s), k_max %u, %s search\n", manifest.params.eps,
                 manifest.params.eps_estimated ? "estimated at the first build" : "given",
                 manifest.params.k_max, manifest.params.exact ? "exact" : "lsh");
-    std::printf("  time         import %.1fs, trellis %.1fs, grow %.1fs, cluster %.1fs, report "
-                "%.1fs; total %.1fs\n",
-                report.import_seconds, report.trellis_seconds, report.grow_seconds,
-                report.cluster_seconds, report.report_seconds, report.total_seconds);
-    std::printf("  wrote        %s (current: manifest.json, motifs.json)\n",
-                manifest.dir.c_str());
+    std::printf(
+        "  time         import %.1fs, trellis %.1fs, grow %.1fs, cluster %.1fs, report "
+        "%.1fs; total %.1fs\n",
+        report.import_seconds, report.trellis_seconds, report.grow_seconds, report.cluster_seconds,
+        report.report_seconds, report.total_seconds);
+    std::printf("  wrote        %s (current: manifest.json, motifs.json)\n", manifest.dir.c_str());
   }
   for (const std::string& changed : report.changed) {
     std::fprintf(stderr, "motifmine reindex: warning: %s\n", changed.c_str());
@@ -143,43 +142,48 @@ int RunReindex(const std::vector<std::string>& args) {
       "(OUTDIR/manifest.json; OUTDIR/motifs.json is the current motifs). Parameters are recorded\n"
       "at the first run and reused; changing one rebuilds what depends on it. Exit codes: 0\n"
       "done or up to date, 3 done with files not imported, 17 another run holds OUTDIR.";
-  spec.options.add_options()
-      ("watch", po::value<std::string>(), "folder of BVH / ASF+AMC takes (searched recursively)")
-      ("out", po::value<std::string>(), "output folder (created if missing)")
-      ("eps", po::value<std::string>(), "pose distance threshold, or auto (the joint-angle rule of mine, 12 degrees); "
-       "default: recorded at the first run (auto then)")
-      ("kmax", po::value<uint32_t>(), "neighbours kept per frame (first run: 256)")
-      ("exclusion", po::value<uint32_t>(), "same-clip exclusion radius in frames (0: half the "
-       "minimum length)")
-      ("search", po::value<std::string>(), "auto, lsh or exact (first run: auto)")
-      ("tables", po::value<uint32_t>(), "LSH hash tables")
-      ("hashes", po::value<uint32_t>(), "LSH projections per table (first run: from the size)")
-      ("width", po::value<float>(), "LSH bucket width (first run: from the data)")
-      ("seed", po::value<uint64_t>(), "seed of every random choice (first run: 1)")
-      ("weights", po::value<std::string>(), "per-joint weights file")
-      ("branch", po::value<uint32_t>(), "branching factor B of the path grower (first run: 5)")
-      ("min-length", po::value<std::string>(), "least motif length: frames (60) or seconds "
-       "(0.5s, the first run's default)")
-      ("groups", po::value<std::string>(), "number of motifs, or auto (the first run's)")
-      ("max-ncut", po::value<double>(), "clustering: stop cutting at this Ncut (0.5)")
-      ("min-similarity", po::value<double>(), "clustering: least similarity of an edge (0.1)")
-      ("max-length-ratio", po::value<double>(), "clustering: split by length beyond this (3)")
-      ("min-age", po::value<double>()->default_value(60),
-       "seconds since a take's last change before it is imported (files still being copied "
-       "wait for the next run)")
-      ("fps", po::value<double>()->default_value(0), "frame rate of a NEW archive")
-      ("first-frame", po::value<std::string>()->default_value("auto"),
-       "auto: drop a first frame that is a converter's T-pose; keep; drop")
-      ("skip-bad", "import the good takes and report the bad ones (exit 3) instead of stopping")
-      ("no-report", "do not write report.html")
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)");
+  spec.options.add_options()("watch", po::value<std::string>(),
+                             "folder of BVH / ASF+AMC takes (searched recursively)")(
+      "out", po::value<std::string>(), "output folder (created if missing)")(
+      "eps", po::value<std::string>(),
+      "pose distance threshold, or auto (the joint-angle rule of mine, 12 degrees); "
+      "default: recorded at the first run (auto then)")(
+      "kmax", po::value<uint32_t>(), "neighbours kept per frame (first run: 256)")(
+      "exclusion", po::value<uint32_t>(),
+      "same-clip exclusion radius in frames (0: half the "
+      "minimum length)")("search", po::value<std::string>(),
+                         "auto, lsh or exact (first run: auto)")("tables", po::value<uint32_t>(),
+                                                                 "LSH hash tables")(
+      "hashes", po::value<uint32_t>(), "LSH projections per table (first run: from the size)")(
+      "width", po::value<float>(), "LSH bucket width (first run: from the data)")(
+      "seed", po::value<uint64_t>(), "seed of every random choice (first run: 1)")(
+      "weights", po::value<std::string>(), "per-joint weights file")(
+      "branch", po::value<uint32_t>(), "branching factor B of the path grower (first run: 5)")(
+      "min-length", po::value<std::string>(),
+      "least motif length: frames (60) or seconds "
+      "(0.5s, the first run's default)")("groups", po::value<std::string>(),
+                                         "number of motifs, or auto (the first run's)")(
+      "max-ncut", po::value<double>(), "clustering: stop cutting at this Ncut (0.5)")(
+      "min-similarity", po::value<double>(), "clustering: least similarity of an edge (0.1)")(
+      "max-length-ratio", po::value<double>(), "clustering: split by length beyond this (3)")(
+      "min-age", po::value<double>()->default_value(60),
+      "seconds since a take's last change before it is imported (files still being copied "
+      "wait for the next run)")("fps", po::value<double>()->default_value(0),
+                                "frame rate of a NEW archive")(
+      "first-frame", po::value<std::string>()->default_value("auto"),
+      "auto: drop a first frame that is a converter's T-pose; keep; drop")(
+      "skip-bad", "import the good takes and report the bad ones (exit 3) instead of stopping")(
+      "no-report", "do not write report.html")("threads", po::value<int>()->default_value(0),
+                                               "threads (0: all cores)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
   if (!vm.count("watch") || !vm.count("out")) {
-    std::fprintf(stderr, "motifmine reindex: error: --watch DIR and --out OUTDIR are required\n"
-                         "usage: %s\n", spec.usage.c_str());
+    std::fprintf(stderr,
+                 "motifmine reindex: error: --watch DIR and --out OUTDIR are required\n"
+                 "usage: %s\n",
+                 spec.usage.c_str());
     return kExitUsage;
   }
   const auto fail = [](const Status& status) { return ReportError("reindex", status); };
@@ -245,8 +249,8 @@ int RunReindex(const std::vector<std::string>& args) {
     }
   }
   options.min_age_seconds = vm["min-age"].as<double>();
-  if (Status status = ParseFirstFrame(vm["first-frame"].as<std::string>(),
-                                      &options.import.first_frame);
+  if (Status status =
+          ParseFirstFrame(vm["first-frame"].as<std::string>(), &options.import.first_frame);
       !status.ok()) {
     return fail(status);
   }
@@ -265,9 +269,8 @@ int RunReindex(const std::vector<std::string>& args) {
   if (!report.ok()) {
     const int code = ReportError("reindex", report.status());
     if (mode == ProgressMode::kJson) {
-      nlohmann::json line = {{"event", "reindex"},
-                             {"exit_code", code},
-                             {"error", report.status().message()}};
+      nlohmann::json line = {
+          {"event", "reindex"}, {"exit_code", code}, {"error", report.status().message()}};
       std::printf("%s\n", line.dump().c_str());
     }
     return code;

@@ -16,28 +16,29 @@ namespace po = boost::program_options;
 int RunReport(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "report";
-  spec.usage = "motifmine report DIR [--archive PATH] [--out FILE.html] [--view side|front] "
-               "[--truth FILE.truth.json]";
+  spec.usage =
+      "motifmine report DIR [--archive PATH] [--out FILE.html] [--view side|front] "
+      "[--truth FILE.truth.json]";
   spec.summary =
       "Writes the visual report of DIR/motifs.json (the output of `motifmine cluster`) as one\n"
       "self-contained HTML file (default DIR/report.html): an overview, a timeline of the\n"
       "instances in every clip, and each motif with stick-figure keyframes of its instances.\n"
       "The frames come from the archive named in motifs.json, or --archive if it has moved.";
   ReportOptions defaults;
-  spec.options.add_options()
-      ("archive", po::value<std::string>()->default_value(""),
-       "the archive (default: the one named in motifs.json)")
-      ("out", po::value<std::string>()->default_value(""), "the HTML file (default: DIR/report.html)")
-      ("view", po::value<std::string>()->default_value("side"),
-       "side (the skeleton's Z axis to the right) or front (its X axis)")
-      ("keyframes", po::value<uint32_t>()->default_value(defaults.keyframes),
-       "stick figures per instance")
-      ("instances", po::value<uint32_t>()->default_value(defaults.instances_per_motif),
-       "instances drawn per motif")
-      ("eager", po::value<uint32_t>()->default_value(defaults.eager_motifs),
-       "motifs whose figures are written as SVG; the rest are drawn by the page's script")
-      ("truth", po::value<std::string>()->default_value(""),
-       "a synthetic archive's truth file: add recall, precision and ARI to the overview");
+  spec.options.add_options()("archive", po::value<std::string>()->default_value(""),
+                             "the archive (default: the one named in motifs.json)")(
+      "out", po::value<std::string>()->default_value(""),
+      "the HTML file (default: DIR/report.html)")(
+      "view", po::value<std::string>()->default_value("side"),
+      "side (the skeleton's Z axis to the right) or front (its X axis)")(
+      "keyframes", po::value<uint32_t>()->default_value(defaults.keyframes),
+      "stick figures per instance")(
+      "instances", po::value<uint32_t>()->default_value(defaults.instances_per_motif),
+      "instances drawn per motif")(
+      "eager", po::value<uint32_t>()->default_value(defaults.eager_motifs),
+      "motifs whose figures are written as SVG; the rest are drawn by the page's script")(
+      "truth", po::value<std::string>()->default_value(""),
+      "a synthetic archive's truth file: add recall, precision and ARI to the overview");
   spec.positional = {{"dir", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;

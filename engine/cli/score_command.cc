@@ -63,11 +63,12 @@ void PrintScore(const TruthScore& score, const std::string& motifs_path,
   }
   std::printf("\n  found        %s motifs, %s instances\n", WithCommas(score.motifs).c_str(),
               WithCommas(score.instances).c_str());
-  std::printf("  all motifs   recall %.3f (%s of %s occurrences hit), precision %.3f (%s of %s "
-              "instances hit one)\n",
-              score.recall, WithCommas(score.occurrences_hit).c_str(),
-              WithCommas(score.occurrences).c_str(), score.precision,
-              WithCommas(score.instances_hitting).c_str(), WithCommas(score.instances).c_str());
+  std::printf(
+      "  all motifs   recall %.3f (%s of %s occurrences hit), precision %.3f (%s of %s "
+      "instances hit one)\n",
+      score.recall, WithCommas(score.occurrences_hit).c_str(),
+      WithCommas(score.occurrences).c_str(), score.precision,
+      WithCommas(score.instances_hitting).c_str(), WithCommas(score.instances).c_str());
   const MotifMovementMatch& top = score.top1;
   std::printf("  top motif    %s (%s instances) ~ %s: precision %.3f recall %.3f\n",
               MotifName(top).c_str(), WithCommas(top.instances).c_str(),
@@ -102,9 +103,8 @@ int RunScore(const std::vector<std::string>& args) {
       "instance hits an occurrence when both are in the same clip with IoU >= 0.5. Prints recall\n"
       "and precision over all motifs, the top motif against the movement it matches best, the\n"
       "best motif of every movement and the first motifs against theirs.";
-  spec.options.add_options()
-      ("json", "print the figures as one JSON object instead")
-      ("motifs", po::value<uint32_t>()->default_value(10), "motifs listed in the text output");
+  spec.options.add_options()("json", "print the figures as one JSON object instead")(
+      "motifs", po::value<uint32_t>()->default_value(10), "motifs listed in the text output");
   spec.positional = {{"motifs-json", 1}, {"truth", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;

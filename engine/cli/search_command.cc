@@ -26,7 +26,8 @@ namespace {
 
 // The motifs of the words of a motion file: imported, fitted to the archive's skeleton and rate,
 // cut into words, embedded with the archive's embedding and assigned to its motifs.
-Result<std::vector<uint32_t>> QueryFileMotifs(const std::string& path, const FrameFileReader& reader,
+Result<std::vector<uint32_t>> QueryFileMotifs(const std::string& path,
+                                              const FrameFileReader& reader,
                                               const LoadedWords& words,
                                               const std::vector<float>& weights, int threads) {
   ImportOptions import_options;
@@ -105,23 +106,24 @@ nlohmann::json SearchJson(const SearchResult& result, const FrameFileReader& rea
 int RunSearch(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "search";
-  spec.usage = "motifmine search ARCHIVE (--clip NAME [--start S --end E] | --query FILE.bvh) "
-               "[--top K] [--out DIR]";
+  spec.usage =
+      "motifmine search ARCHIVE (--clip NAME [--start S --end E] | --query FILE.bvh) "
+      "[--top K] [--out DIR]";
   spec.summary =
       "Finds the motions of ARCHIVE most like a query, by the Earth Mover's Distance between\n"
       "motion signatures (run `motifmine words` first). With a frame range of a clip, or a\n"
       "BVH/AMC file, a window of as many words as the query slides along every take and each\n"
       "take's best window is ranked; with a whole clip (no range), whole takes are ranked.\n"
       "Writes DIR/search.json and DIR/search.html.";
-  spec.options.add_options()
-      ("clip", po::value<std::string>()->default_value(""), "query: a clip of the archive")
-      ("start", po::value<uint64_t>(), "first frame of the query range (clip-relative)")
-      ("end", po::value<uint64_t>(), "end of the query range (exclusive)")
-      ("query", po::value<std::string>()->default_value(""),
-       "query: a BVH (or ASF/AMC) file, embedded with the archive's embedding")
-      ("top", po::value<uint32_t>()->default_value(10), "matches to keep")
-      ("weights", po::value<std::string>()->default_value(""),
-       "per-joint weights file (as given to `motifmine words`)");
+  spec.options.add_options()("clip", po::value<std::string>()->default_value(""),
+                             "query: a clip of the archive")(
+      "start", po::value<uint64_t>(), "first frame of the query range (clip-relative)")(
+      "end", po::value<uint64_t>(), "end of the query range (exclusive)")(
+      "query", po::value<std::string>()->default_value(""),
+      "query: a BVH (or ASF/AMC) file, embedded with the archive's embedding")(
+      "top", po::value<uint32_t>()->default_value(10), "matches to keep")(
+      "weights", po::value<std::string>()->default_value(""),
+      "per-joint weights file (as given to `motifmine words`)");
   AddWordsReaderOptions(spec, "PREFIX.mwe, .mwm, .mws", "search");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
@@ -139,8 +141,10 @@ int RunSearch(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   if (vm.count("start") != vm.count("end") || (!query_file.empty() && vm.count("start"))) {
-    std::fprintf(stderr, "motifmine search: --start and --end go together, with --clip\n"
-                 "usage: %s\n", spec.usage.c_str());
+    std::fprintf(stderr,
+                 "motifmine search: --start and --end go together, with --clip\n"
+                 "usage: %s\n",
+                 spec.usage.c_str());
     return kExitUsage;
   }
   if (top == 0) return fail(Status::InvalidArgument("--top must be at least 1"));
@@ -176,10 +180,10 @@ int RunSearch(const std::vector<std::string>& args) {
       const uint64_t start = vm["start"].as<uint64_t>();
       const uint64_t end = vm["end"].as<uint64_t>();
       if (start >= end || end > info_clip.frame_count) {
-        return fail(Status::InvalidArgument(
-            "--start " + std::to_string(start) + " --end " + std::to_string(end) +
-            " is not a range within clip " + clip_name + "'s " +
-            std::to_string(info_clip.frame_count) + " frames"));
+        return fail(Status::InvalidArgument("--start " + std::to_string(start) + " --end " +
+                                            std::to_string(end) + " is not a range within clip " +
+                                            clip_name + "'s " +
+                                            std::to_string(info_clip.frame_count) + " frames"));
       }
       Result<std::pair<uint64_t, uint64_t>> range = WordsWithin(frames, *words, clip, start, end);
       if (!range.ok()) return fail(range.status());
@@ -193,8 +197,8 @@ int RunSearch(const std::vector<std::string>& args) {
       info.query_start = start;
       info.query_end = end;
       info.query_words = query.motifs.size();
-      info.query_text = "clip " + clip_name + " frames " + std::to_string(start) + "\u2013" +
-                        std::to_string(end);
+      info.query_text =
+          "clip " + clip_name + " frames " + std::to_string(start) + "\u2013" + std::to_string(end);
       query_kind = "clip-range";
       result = SlidingWindowSearch(frames, *words, query, top, threads);
     } else {
@@ -209,7 +213,8 @@ int RunSearch(const std::vector<std::string>& args) {
     Result<std::vector<float>> weights =
         LoadDistanceWeights(frames.skeleton(), vm["weights"].as<std::string>());
     if (!weights.ok()) return fail(weights.status());
-    Result<std::vector<uint32_t>> motifs = QueryFileMotifs(query_file, frames, *words, *weights, threads);
+    Result<std::vector<uint32_t>> motifs =
+        QueryFileMotifs(query_file, frames, *words, *weights, threads);
     if (!motifs.ok()) return fail(motifs.status());
     WindowQuery query;
     query.motifs = std::move(motifs.value());
@@ -219,7 +224,8 @@ int RunSearch(const std::vector<std::string>& args) {
     result = SlidingWindowSearch(frames, *words, query, top, threads);
   }
   if (!result.ok()) return fail(result.status());
-  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  info.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
 
   const std::string& json_path = output->json_path;
   const std::string& html_path = output->html_path;

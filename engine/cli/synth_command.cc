@@ -5,8 +5,8 @@
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
 #include "engine/cli/synthetic_archive.h"
-#include "engine/synth/truth_json_reader.h"
 #include "engine/synth/motion_synthesizer.h"
+#include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
 #include "formats/import/take_importer.h"
 #include "formats/motion/canonical_skeleton.h"
@@ -54,34 +54,32 @@ int RunSynth(const std::vector<std::string>& args) {
       "OUT.truth.json listing every planted instance. Streams: any number of frames in bounded\n"
       "memory. With --from, re-sequences real takes instead (realistic neighbour density).";
   SynthOptions defaults;
-  spec.options.add_options()
-      ("frames", po::value<uint64_t>()->required(), "total frames")
-      ("motifs", po::value<uint32_t>()->default_value(defaults.motifs), "planted motifs")
-      ("seed", po::value<uint64_t>()->default_value(defaults.seed), "random seed")
-      ("fps", po::value<double>()->default_value(defaults.fps), "frame rate")
-      ("from", po::value<std::vector<std::string>>()->multitoken(),
-       "re-sequence these real takes (BVH/ASF/AMC files or folders)")
-      ("clip-seconds-min", po::value<double>()->default_value(defaults.clip_seconds_min), "")
-      ("clip-seconds-max", po::value<double>()->default_value(defaults.clip_seconds_max),
-       "clip lengths are drawn from [min, max] seconds")
-      ("motif-seconds-min", po::value<double>()->default_value(defaults.motif_seconds_min), "")
-      ("motif-seconds-max", po::value<double>()->default_value(defaults.motif_seconds_max),
-       "motif lengths are drawn from [min, max] seconds")
-      ("instances-min", po::value<uint32_t>()->default_value(defaults.instances_min), "")
-      ("instances-max", po::value<uint32_t>()->default_value(defaults.instances_max),
-       "planted instances per motif")
-      ("noise-degrees", po::value<double>()->default_value(defaults.noise_degrees),
-       "noise added to each planted instance (degrees, std dev)")
-      ("background-variation",
-       po::value<double>()->default_value(kRecommendedBackgroundVariation),
-       "procedural: smooth variation of each background segment (degrees, std dev), so the "
-       "background does not repeat")
-      ("gap-seconds", po::value<double>()->default_value(defaults.gap_seconds),
-       "least untouched background between planted instances")
-      ("threads", po::value<uint32_t>()->default_value(0),
-       "generator threads (0: all cores); the output is the same for any count")
-      ("block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")
-      ("force", "replace OUT.mfs if it exists");
+  spec.options.add_options()("frames", po::value<uint64_t>()->required(), "total frames")(
+      "motifs", po::value<uint32_t>()->default_value(defaults.motifs), "planted motifs")(
+      "seed", po::value<uint64_t>()->default_value(defaults.seed), "random seed")(
+      "fps", po::value<double>()->default_value(defaults.fps), "frame rate")(
+      "from", po::value<std::vector<std::string>>()->multitoken(),
+      "re-sequence these real takes (BVH/ASF/AMC files or folders)")(
+      "clip-seconds-min", po::value<double>()->default_value(defaults.clip_seconds_min), "")(
+      "clip-seconds-max", po::value<double>()->default_value(defaults.clip_seconds_max),
+      "clip lengths are drawn from [min, max] seconds")(
+      "motif-seconds-min", po::value<double>()->default_value(defaults.motif_seconds_min), "")(
+      "motif-seconds-max", po::value<double>()->default_value(defaults.motif_seconds_max),
+      "motif lengths are drawn from [min, max] seconds")(
+      "instances-min", po::value<uint32_t>()->default_value(defaults.instances_min), "")(
+      "instances-max", po::value<uint32_t>()->default_value(defaults.instances_max),
+      "planted instances per motif")("noise-degrees",
+                                     po::value<double>()->default_value(defaults.noise_degrees),
+                                     "noise added to each planted instance (degrees, std dev)")(
+      "background-variation", po::value<double>()->default_value(kRecommendedBackgroundVariation),
+      "procedural: smooth variation of each background segment (degrees, std dev), so the "
+      "background does not repeat")("gap-seconds",
+                                    po::value<double>()->default_value(defaults.gap_seconds),
+                                    "least untouched background between planted instances")(
+      "threads", po::value<uint32_t>()->default_value(0),
+      "generator threads (0: all cores); the output is the same for any count")(
+      "block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")(
+      "force", "replace OUT.mfs if it exists");
   AddProgressOptions(spec);
   spec.positional = {{"out", 1}};
   po::variables_map vm;

@@ -15,9 +15,9 @@ Result<uint64_t> WriteSyntheticArchive(const std::string& out, MotionSynthesizer
   const std::string staging = TemporaryPathFor(out);
   FrameFileWriterOptions writer_options;
   writer_options.block_frames = block_frames;
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
-                         FrameFileWriter::Create(staging, synthesizer.skeleton(), options.fps,
-                                                 writer_options));
+  MOTIF_ASSIGN_OR_RETURN(
+      std::unique_ptr<FrameFileWriter> writer,
+      FrameFileWriter::Create(staging, synthesizer.skeleton(), options.fps, writer_options));
   progress->BeginStage("synth", options.frames, "frames");
   uint64_t frames_done = 0;
   Status status = synthesizer.Run([&](const ClipFrames& clip) {

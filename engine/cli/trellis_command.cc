@@ -45,15 +45,16 @@ int RunAudit(const po::variables_map& vm, const std::string& archive, const std:
               share(report->uncapped_found_entries, report->uncapped_exact_entries),
               WithCommas(report->uncapped_found_entries).c_str(),
               WithCommas(report->uncapped_exact_entries).c_str());
-  std::printf("  recall, capped        %.4f  (%s of %s: the k_max nearest; %s of %s trellis "
-              "columns full, with k_max verified frames within eps)\n",
-              share(report->capped_found_entries, report->capped_exact_entries),
-              WithCommas(report->capped_found_entries).c_str(),
-              WithCommas(report->capped_exact_entries).c_str(),
-              WithCommas(report->capped_columns_full).c_str(),
-              WithCommas(report->capped_exact_columns).c_str());
-  std::printf("  distance evaluations  %.0f per query (exact: %.0f)", report->lsh_evaluations_per_query,
-              report->exact_evaluations_per_query);
+  std::printf(
+      "  recall, capped        %.4f  (%s of %s: the k_max nearest; %s of %s trellis "
+      "columns full, with k_max verified frames within eps)\n",
+      share(report->capped_found_entries, report->capped_exact_entries),
+      WithCommas(report->capped_found_entries).c_str(),
+      WithCommas(report->capped_exact_entries).c_str(),
+      WithCommas(report->capped_columns_full).c_str(),
+      WithCommas(report->capped_exact_columns).c_str());
+  std::printf("  distance evaluations  %.0f per query (exact: %.0f)",
+              report->lsh_evaluations_per_query, report->exact_evaluations_per_query);
   if (report->lsh_timed_columns > 0) {
     std::printf("  [LSH: over the %s columns of the chains of 16 sampled columns]",
                 WithCommas(report->lsh_timed_columns).c_str());
@@ -72,66 +73,67 @@ int RunAudit(const po::variables_map& vm, const std::string& archive, const std:
 int RunTrellis(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "trellis";
-  spec.usage = "motifmine trellis ARCHIVE [--eps X|auto] [--kmax K] [--exclusion F] "
-               "[--search auto|lsh|exact] [--threads T] [--seed S] | --audit [--sample Q]";
+  spec.usage =
+      "motifmine trellis ARCHIVE [--eps X|auto] [--kmax K] [--exclusion F] "
+      "[--search auto|lsh|exact] [--threads T] [--seed S] | --audit [--sample Q]";
   spec.summary =
       "Builds the matching trellis of ARCHIVE beside it (ARCHIVE.mtr): for every frame, the\n"
       "frames whose weighted pose distance is at most eps (at most K_max, the nearest), found\n"
-      "with LSH (by exact brute force on archives below " + std::to_string(kAutoExactMaxFrames) +
+      "with LSH (by exact brute force on archives below " +
+      std::to_string(kAutoExactMaxFrames) +
       " frames, where it is faster),\n"
       "and written to disk block by block. A finished trellis with the same parameters is\n"
       "reused; an interrupted build resumes. --audit compares the trellis with exact eps-NN on\n"
       "sampled columns and prints the recall.";
   LshOptions lsh_defaults;
-  spec.options.add_options()
-      ("eps", po::value<std::string>()->default_value("auto"),
-       "neighbour radius: a number, or auto (chosen by --eps-rule)")
-      ("kmax", po::value<uint32_t>()->default_value(256), "at most this many neighbours a column")
-      ("exclusion", po::value<uint32_t>()->default_value(0),
-       "frames of the same clip closer than this are never neighbours (0: half of --min-length)")
-      ("min-length", po::value<double>()->default_value(0.5),
-       "minimum motif length in seconds (its half is the default exclusion radius)")
-      ("search", po::value<std::string>()->default_value("auto"),
-       ("how columns are found: lsh, exact (blocked brute force, O(N^2)), or auto (exact below " +
-        std::to_string(kAutoExactMaxFrames) + " frames, lsh from there on)").c_str())
-      ("exact", "the same as --search exact")
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
-      ("seed", po::value<uint64_t>()->default_value(1), "seed of the eps sample and the LSH tables")
-      ("weights", po::value<std::string>()->default_value(""),
-       "per-joint weights file (\"joint weight\" lines) overriding the defaults")
-      ("out", po::value<std::string>()->default_value(""), "trellis path (default ARCHIVE.mtr)")
-      ("tables", po::value<uint32_t>()->default_value(lsh_defaults.tables), "LSH hash tables")
-      ("hashes", po::value<uint32_t>()->default_value(lsh_defaults.hashes_per_table),
-       "LSH projections per table")
-      ("width", po::value<float>()->default_value(0), "LSH bucket width (0: from the data)")
-      ("probes", po::value<uint32_t>()->default_value(lsh_defaults.probes_per_table),
-       "LSH buckets visited per table (multi-probe)")
-      ("width-per-hash", po::value<float>()->default_value(lsh_defaults.width_per_hash),
-       "LSH cell width per projection, relative to the measured neighbour distance (the width "
-       "is this x projections per table x the 90th percentile of a column's neighbours' "
-       "embedding distance)")
-      ("max-candidates", po::value<uint32_t>()->default_value(lsh_defaults.max_candidates),
-       "LSH: at most this many exact distance evaluations a column")
-      ("chain", po::value<uint32_t>()->default_value(lsh_defaults.chain_columns),
-       "LSH: columns searched as chains of this many, each seeded with its predecessor's "
-       "neighbours (0: every column alone)")
-      ("chained-max-candidates",
-       po::value<uint32_t>()->default_value(lsh_defaults.chained_max_candidates),
-       "LSH: evaluations a probing chained column spends on the probed buckets after its seeds")
-      ("chain-probe-every", po::value<uint32_t>()->default_value(lsh_defaults.chain_probe_every),
-       "LSH: only every this-many-th column of a chain probes the buckets (with "
-       "--chained-max-candidates); the columns between keep their seeds and what the chain "
-       "sweeps carry over (1: every column probes)")
-      ("chain-sweeps", po::value<uint32_t>()->default_value(lsh_defaults.chain_sweeps),
-       "LSH: passes over each finished chain, backward then forward, in which every column "
-       "verifies its neighbour column's neighbours moved by up to 2 frames (0: none)")
-      ("ranking", po::value<std::string>()->default_value("sort"),
-       "LSH candidate order: sort (fastest) or code (ranks gathered entries by position code: "
-       "better recall on low-contrast archives, ~1.5-2.5x the time)")
-      ("max-entries", po::value<uint32_t>()->default_value(lsh_defaults.max_entries),
-       "LSH, --ranking code: bucket entries gathered and ranked per column")
-      ("audit", "compare the existing trellis with exact eps-NN on sampled columns")
-      ("sample", po::value<uint64_t>()->default_value(1000), "columns sampled by --audit");
+  spec.options.add_options()("eps", po::value<std::string>()->default_value("auto"),
+                             "neighbour radius: a number, or auto (chosen by --eps-rule)")(
+      "kmax", po::value<uint32_t>()->default_value(256), "at most this many neighbours a column")(
+      "exclusion", po::value<uint32_t>()->default_value(0),
+      "frames of the same clip closer than this are never neighbours (0: half of --min-length)")(
+      "min-length", po::value<double>()->default_value(0.5),
+      "minimum motif length in seconds (its half is the default exclusion radius)")(
+      "search", po::value<std::string>()->default_value("auto"),
+      ("how columns are found: lsh, exact (blocked brute force, O(N^2)), or auto (exact below " +
+       std::to_string(kAutoExactMaxFrames) + " frames, lsh from there on)")
+          .c_str())("exact", "the same as --search exact")(
+      "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
+      "seed", po::value<uint64_t>()->default_value(1), "seed of the eps sample and the LSH tables")(
+      "weights", po::value<std::string>()->default_value(""),
+      "per-joint weights file (\"joint weight\" lines) overriding the defaults")(
+      "out", po::value<std::string>()->default_value(""), "trellis path (default ARCHIVE.mtr)")(
+      "tables", po::value<uint32_t>()->default_value(lsh_defaults.tables), "LSH hash tables")(
+      "hashes", po::value<uint32_t>()->default_value(lsh_defaults.hashes_per_table),
+      "LSH projections per table")("width", po::value<float>()->default_value(0),
+                                   "LSH bucket width (0: from the data)")(
+      "probes", po::value<uint32_t>()->default_value(lsh_defaults.probes_per_table),
+      "LSH buckets visited per table (multi-probe)")(
+      "width-per-hash", po::value<float>()->default_value(lsh_defaults.width_per_hash),
+      "LSH cell width per projection, relative to the measured neighbour distance (the width "
+      "is this x projections per table x the 90th percentile of a column's neighbours' "
+      "embedding distance)")("max-candidates",
+                             po::value<uint32_t>()->default_value(lsh_defaults.max_candidates),
+                             "LSH: at most this many exact distance evaluations a column")(
+      "chain", po::value<uint32_t>()->default_value(lsh_defaults.chain_columns),
+      "LSH: columns searched as chains of this many, each seeded with its predecessor's "
+      "neighbours (0: every column alone)")(
+      "chained-max-candidates",
+      po::value<uint32_t>()->default_value(lsh_defaults.chained_max_candidates),
+      "LSH: evaluations a probing chained column spends on the probed buckets after its seeds")(
+      "chain-probe-every", po::value<uint32_t>()->default_value(lsh_defaults.chain_probe_every),
+      "LSH: only every this-many-th column of a chain probes the buckets (with "
+      "--chained-max-candidates); the columns between keep their seeds and what the chain "
+      "sweeps carry over (1: every column probes)")(
+      "chain-sweeps", po::value<uint32_t>()->default_value(lsh_defaults.chain_sweeps),
+      "LSH: passes over each finished chain, backward then forward, in which every column "
+      "verifies its neighbour column's neighbours moved by up to 2 frames (0: none)")(
+      "ranking", po::value<std::string>()->default_value("sort"),
+      "LSH candidate order: sort (fastest) or code (ranks gathered entries by position code: "
+      "better recall on low-contrast archives, ~1.5-2.5x the time)")(
+      "max-entries", po::value<uint32_t>()->default_value(lsh_defaults.max_entries),
+      "LSH, --ranking code: bucket entries gathered and ranked per column")(
+      "audit", "compare the existing trellis with exact eps-NN on sampled columns")(
+      "sample", po::value<uint64_t>()->default_value(1000), "columns sampled by --audit");
   AddEpsilonRuleOptions(spec);
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
@@ -167,7 +169,8 @@ int RunTrellis(const std::vector<std::string>& args) {
     options.eps = std::strtof(eps.c_str(), &end);
     if (end == eps.c_str() || *end != '\0' || !(options.eps > 0)) {
       return ReportError("trellis", Status::InvalidArgument("--eps must be a positive number or "
-                                                            "auto, not '" + eps + "'"));
+                                                            "auto, not '" +
+                                                            eps + "'"));
     }
   }
   if (Status status = EpsilonRuleFrom(vm, &options); !status.ok()) {
@@ -225,14 +228,15 @@ int RunTrellis(const std::vector<std::string>& args) {
     std::printf("  capped       %s columns had more than k_max neighbours within eps\n",
                 WithCommas(report->capped_columns).c_str());
     std::printf("  evaluations  %.0f exact distances per column\n",
-                report->columns ? static_cast<double>(report->distance_evaluations) /
-                                      std::max<uint64_t>(1, report->columns -
-                                                                report->resumed_from_column)
-                                : 0.0);
-    std::printf("  time         features %.1fs, eps %.1fs, index %.1fs, columns %.1fs (writes "
-                "%.1fs beside the search, %.1fs waited for)\n",
-                report->features_seconds, report->eps_seconds, report->index_seconds,
-                report->search_seconds, report->write_seconds, report->write_wait_seconds);
+                report->columns
+                    ? static_cast<double>(report->distance_evaluations) /
+                          std::max<uint64_t>(1, report->columns - report->resumed_from_column)
+                    : 0.0);
+    std::printf(
+        "  time         features %.1fs, eps %.1fs, index %.1fs, columns %.1fs (writes "
+        "%.1fs beside the search, %.1fs waited for)\n",
+        report->features_seconds, report->eps_seconds, report->index_seconds,
+        report->search_seconds, report->write_seconds, report->write_wait_seconds);
   }
   return kExitOk;
 }

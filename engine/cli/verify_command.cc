@@ -58,12 +58,12 @@ int VerifyOutput(const std::string& dir) {
   Result<ReindexManifest> manifest = ReadManifest(dir);
   if (!manifest.ok()) return ReportError("verify", manifest.status());
   for (const std::string& note : notes) std::printf("note: %s\n", note.c_str());
-  std::printf("OK: %s: version %llu (%s): archive %s generation %llu (%s frames), trellis, "
-              "paths, motifs verified\n",
-              dir.c_str(), static_cast<unsigned long long>(manifest->version),
-              manifest->dir.c_str(), manifest->archive.path.c_str(),
-              static_cast<unsigned long long>(manifest->archive.generation),
-              WithCommas(manifest->archive.frames).c_str());
+  std::printf(
+      "OK: %s: version %llu (%s): archive %s generation %llu (%s frames), trellis, "
+      "paths, motifs verified\n",
+      dir.c_str(), static_cast<unsigned long long>(manifest->version), manifest->dir.c_str(),
+      manifest->archive.path.c_str(), static_cast<unsigned long long>(manifest->archive.generation),
+      WithCommas(manifest->archive.frames).c_str());
   return kExitOk;
 }
 

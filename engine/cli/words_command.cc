@@ -39,9 +39,9 @@ nlohmann::json ReportJson(const std::string& archive, const WordsReport& report)
                       {"accuracy_untrained", report.accuracy.untrained},
                       {"accuracy_trained", report.accuracy.trained}};
   json["kmeans"] = {{"inertia", report.kmeans_inertia}, {"iterations", report.kmeans_iterations}};
-  json["seconds"] = {{"pool", report.seconds_pool},       {"neighbours", report.seconds_neighbours},
-                     {"train", report.seconds_train},     {"embed", report.seconds_embed},
-                     {"kmeans", report.seconds_kmeans},   {"signatures", report.seconds_signatures}};
+  json["seconds"] = {{"pool", report.seconds_pool},     {"neighbours", report.seconds_neighbours},
+                     {"train", report.seconds_train},   {"embed", report.seconds_embed},
+                     {"kmeans", report.seconds_kmeans}, {"signatures", report.seconds_signatures}};
   return json;
 }
 
@@ -50,8 +50,9 @@ nlohmann::json ReportJson(const std::string& archive, const WordsReport& report)
 int RunWords(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "words";
-  spec.usage = "motifmine words ARCHIVE [--motifs K] [--embedding FILE.mwe] [--epochs E] "
-               "[--seed S] [--threads T] [options]";
+  spec.usage =
+      "motifmine words ARCHIVE [--motifs K] [--embedding FILE.mwe] [--epochs E] "
+      "[--seed S] [--threads T] [options]";
   spec.summary =
       "Cuts ARCHIVE into motion words (16 frames at 24 Hz every 4 frames), trains their\n"
       "embedding with a triplet loss (temporal and DTW neighbours as positives, time-warped\n"
@@ -61,39 +62,39 @@ int RunWords(const std::vector<std::string>& args) {
       "reused when its inputs did not change; interrupted training resumes from its last epoch.\n"
       "--embedding loads an embedding trained elsewhere instead of training one.";
   WordsOptions defaults;
-  spec.options.add_options()
-      ("motifs", po::value<uint32_t>()->default_value(defaults.motifs), "number of motifs K")
-      ("embedding", po::value<std::string>()->default_value(""),
-       "use this trained embedding (.mwe) instead of training one")
-      ("prefix", po::value<std::string>()->default_value(""),
-       "write PREFIX.mwe, PREFIX.mwm, PREFIX.mws (default: ARCHIVE without .mfs)")
-      ("seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of every random choice")
-      ("threads", po::value<int>()->default_value(0), "threads (0: all cores)")
-      ("weights", po::value<std::string>()->default_value(""),
-       "per-joint weights file (default: the skeleton's)")
-      ("word-frames", po::value<uint32_t>()->default_value(defaults.words.word_frames),
-       "frames per word")
-      ("stride", po::value<uint32_t>()->default_value(defaults.words.stride_frames),
-       "frames between word starts")
-      ("word-fps", po::value<double>()->default_value(defaults.words.word_fps),
-       "rate the words are sampled at")
-      ("epochs", po::value<uint32_t>()->default_value(defaults.train.epochs), "training epochs")
-      ("pool-words", po::value<uint64_t>()->default_value(defaults.pool.max_words),
-       "at most this many words are trained on (whole clips, seeded)")
-      ("warp-copies", po::value<uint32_t>()->default_value(defaults.pool.warp_copies),
-       "time-warped copies per training word")
-      ("held-out", po::value<double>()->default_value(defaults.pool.held_out_fraction),
-       "fraction of the training clips held out to measure the embedding")
-      ("batch", po::value<uint32_t>()->default_value(defaults.train.batch_triplets),
-       "triplets per training batch")
-      ("learning-rate", po::value<double>()->default_value(defaults.train.learning_rate),
-       "Adam's learning rate")
-      ("margin", po::value<double>()->default_value(defaults.train.margin), "triplet margin")
-      ("dims", po::value<uint32_t>()->default_value(defaults.train.shape.embedding_dims),
-       "embedding dimensions")
-      ("channels", po::value<uint32_t>()->default_value(defaults.train.shape.conv1_channels),
-       "channels of both convolutions")
-      ("json", po::value<std::string>()->default_value(""), "also write this summary as JSON");
+  spec.options.add_options()("motifs", po::value<uint32_t>()->default_value(defaults.motifs),
+                             "number of motifs K")(
+      "embedding", po::value<std::string>()->default_value(""),
+      "use this trained embedding (.mwe) instead of training one")(
+      "prefix", po::value<std::string>()->default_value(""),
+      "write PREFIX.mwe, PREFIX.mwm, PREFIX.mws (default: ARCHIVE without .mfs)")(
+      "seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of every random choice")(
+      "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
+      "weights", po::value<std::string>()->default_value(""),
+      "per-joint weights file (default: the skeleton's)")(
+      "word-frames", po::value<uint32_t>()->default_value(defaults.words.word_frames),
+      "frames per word")("stride",
+                         po::value<uint32_t>()->default_value(defaults.words.stride_frames),
+                         "frames between word starts")(
+      "word-fps", po::value<double>()->default_value(defaults.words.word_fps),
+      "rate the words are sampled at")(
+      "epochs", po::value<uint32_t>()->default_value(defaults.train.epochs), "training epochs")(
+      "pool-words", po::value<uint64_t>()->default_value(defaults.pool.max_words),
+      "at most this many words are trained on (whole clips, seeded)")(
+      "warp-copies", po::value<uint32_t>()->default_value(defaults.pool.warp_copies),
+      "time-warped copies per training word")(
+      "held-out", po::value<double>()->default_value(defaults.pool.held_out_fraction),
+      "fraction of the training clips held out to measure the embedding")(
+      "batch", po::value<uint32_t>()->default_value(defaults.train.batch_triplets),
+      "triplets per training batch")(
+      "learning-rate", po::value<double>()->default_value(defaults.train.learning_rate),
+      "Adam's learning rate")("margin", po::value<double>()->default_value(defaults.train.margin),
+                              "triplet margin")(
+      "dims", po::value<uint32_t>()->default_value(defaults.train.shape.embedding_dims),
+      "embedding dimensions")(
+      "channels", po::value<uint32_t>()->default_value(defaults.train.shape.conv1_channels),
+      "channels of both convolutions")("json", po::value<std::string>()->default_value(""),
+                                       "also write this summary as JSON");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -145,31 +146,34 @@ int RunWords(const std::vector<std::string>& args) {
     std::printf("  embedding    loaded from %s (%u dimensions)\n", options.embedding_in.c_str(),
                 r.dims);
   } else {
-    std::printf("  embedding    %s%s: %u dimensions, %s training words, %zu epochs",
-                r.embedding_reused ? "reused" : "trained",
-                r.resumed_from_epoch ? (" (resumed after epoch " +
-                                        std::to_string(r.resumed_from_epoch) + ")").c_str()
-                                     : "",
-                r.dims, WithCommas(r.pool_words).c_str(), r.epoch_loss.size());
+    std::printf(
+        "  embedding    %s%s: %u dimensions, %s training words, %zu epochs",
+        r.embedding_reused ? "reused" : "trained",
+        r.resumed_from_epoch
+            ? (" (resumed after epoch " + std::to_string(r.resumed_from_epoch) + ")").c_str()
+            : "",
+        r.dims, WithCommas(r.pool_words).c_str(), r.epoch_loss.size());
     if (!r.epoch_loss.empty()) {
       std::printf(", loss %.4f -> %.4f", r.epoch_loss.front(), r.epoch_loss.back());
     }
     std::printf("\n");
   }
   if (r.accuracy.triplets > 0) {
-    std::printf("  held out     triplet accuracy %.3f trained, %.3f untrained, %.3f raw "
-                "features (%s triplets)\n",
-                r.accuracy.trained, r.accuracy.untrained, r.accuracy.raw,
-                WithCommas(r.accuracy.triplets).c_str());
+    std::printf(
+        "  held out     triplet accuracy %.3f trained, %.3f untrained, %.3f raw "
+        "features (%s triplets)\n",
+        r.accuracy.trained, r.accuracy.untrained, r.accuracy.raw,
+        WithCommas(r.accuracy.triplets).c_str());
   }
   std::printf("  motifs       %u%s (k-means inertia %.4g, %u iterations)\n", r.motifs,
               r.motifs_reused ? ", reused" : "", r.kmeans_inertia, r.kmeans_iterations);
   std::printf("  signatures   %s takes%s\n", WithCommas(r.takes).c_str(),
               r.signatures_reused ? ", reused" : "");
-  std::printf("  time         pool %.1fs, neighbours %.1fs, train %.1fs, embed %.1fs, k-means "
-              "%.1fs, signatures %.1fs\n",
-              r.seconds_pool, r.seconds_neighbours, r.seconds_train, r.seconds_embed,
-              r.seconds_kmeans, r.seconds_signatures);
+  std::printf(
+      "  time         pool %.1fs, neighbours %.1fs, train %.1fs, embed %.1fs, k-means "
+      "%.1fs, signatures %.1fs\n",
+      r.seconds_pool, r.seconds_neighbours, r.seconds_train, r.seconds_embed, r.seconds_kmeans,
+      r.seconds_signatures);
   std::printf("  memory       peak resident %s\n", FormatBytes(PeakResidentBytes()).c_str());
   std::printf("  wrote        %s, %s, %s\n", r.paths.embedding.c_str(), r.paths.motifs.c_str(),
               r.paths.signatures.c_str());

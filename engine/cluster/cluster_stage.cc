@@ -20,11 +20,9 @@ std::string ClusterKey(const ClusterStageInput& input, const ClusterOptions& opt
   // rules: the version of the clustering's own rules (periodic paths, merging, near-copies,
   // ranking), so that a result of older rules is not reused.
   key << "rules=" << kClusterRulesVersion << " trellis=" << input.paths_params.trellis_identity
-      << " branch=" << input.paths_params.branch
-      << " min_length=" << input.paths_params.min_length
-      << " all_branches=" << input.paths_params.all_branches
-      << " candidates=" << input.candidates << " groups=" << options.cut.groups
-      << " max_ncut=" << options.cut.max_ncut
+      << " branch=" << input.paths_params.branch << " min_length=" << input.paths_params.min_length
+      << " all_branches=" << input.paths_params.all_branches << " candidates=" << input.candidates
+      << " groups=" << options.cut.groups << " max_ncut=" << options.cut.max_ncut
       << " min_similarity=" << options.similarity.min_similarity
       << " max_length_ratio=" << options.max_length_ratio << " seed=" << options.seed;
   return key.str();

@@ -18,14 +18,14 @@
 namespace motif {
 
 struct ClusterStageInput {
-  std::string archive_path;          // as motifs.json records it
+  std::string archive_path;                  // as motifs.json records it
   const FrameFileReader* archive = nullptr;  // the version the trellis was built over
   std::string trellis_path;
   std::string paths_path;
-  PathsParams paths_params;          // of the paths file (its trellis identity and grow options)
-  uint64_t candidates = 0;           // in the paths file
-  std::string motifs_path;           // written
-  std::string state_path;            // written: {"version": 1, "cluster_key": ...}
+  PathsParams paths_params;  // of the paths file (its trellis identity and grow options)
+  uint64_t candidates = 0;   // in the paths file
+  std::string motifs_path;   // written
+  std::string state_path;    // written: {"version": 1, "cluster_key": ...}
 };
 
 struct ClusterStageResult {

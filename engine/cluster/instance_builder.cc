@@ -162,8 +162,7 @@ InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
             [](const MotifInstance& a, const MotifInstance& b) {
               return std::tie(a.start, a.end) < std::tie(b.start, b.end);
             });
-  set.instances.erase(std::unique(set.instances.begin(), set.instances.end()),
-                      set.instances.end());
+  set.instances.erase(std::unique(set.instances.begin(), set.instances.end()), set.instances.end());
   set.stats.instances = set.instances.size();
 
   auto id_of = [&](size_t raw_idx) {

@@ -30,7 +30,8 @@ InstanceIntervalIndex::InstanceIntervalIndex(const std::vector<MotifInstance>& i
     }
   }
   offsets_.assign(segment_count + 1, 0);
-  for (size_t seg = 0; seg < segment_count; ++seg) offsets_[seg + 1] = offsets_[seg] + coverage[seg];
+  for (size_t seg = 0; seg < segment_count; ++seg)
+    offsets_[seg + 1] = offsets_[seg] + coverage[seg];
   ids_.resize(offsets_.empty() ? 0 : offsets_.back());
   std::vector<uint64_t> fill(offsets_.begin(), offsets_.end());
   for (size_t id = 0; id < instances.size(); ++id) {  // ascending ids within each segment

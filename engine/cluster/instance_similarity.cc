@@ -31,7 +31,8 @@ struct OpenInstance {
 // Per-thread dense counters over all instances (O(instances) memory a thread): the hot loop
 // touches an array, not a hash map. `touched` lists the entries to report and clear.
 struct CountScratch {
-  explicit CountScratch(size_t instances) : shared(instances, 0), last_column(instances, UINT64_MAX) {}
+  explicit CountScratch(size_t instances)
+      : shared(instances, 0), last_column(instances, UINT64_MAX) {}
   std::vector<uint32_t> shared;
   std::vector<uint64_t> last_column;
   std::vector<uint32_t> touched;
@@ -109,8 +110,8 @@ Result<SimilarityGraph> BuildSimilarityGraph(const TrellisFileReader& trellis,
   std::vector<std::unique_ptr<OpenInstance>> open(instance_count);
   tbb::enumerable_thread_specific<CountScratch> scratches(
       [instance_count] { return CountScratch(instance_count); });
-  std::vector<uint32_t> active;     // instances intersecting the current block, ascending
-  std::vector<uint64_t> scanned;    // per active slot
+  std::vector<uint32_t> active;   // instances intersecting the current block, ascending
+  std::vector<uint64_t> scanned;  // per active slot
   std::vector<DirectedCount> directed;
   uint32_t next_instance = 0;
   uint64_t columns_done = 0;

@@ -42,13 +42,13 @@ struct SimilarityOptions {
 };
 
 struct SimilarityStats {
-  uint64_t columns_read = 0;     // instance columns scanned (overlapping instances count twice)
+  uint64_t columns_read = 0;  // instance columns scanned (overlapping instances count twice)
   uint64_t blocks_decoded = 0;
   uint64_t neighbours_scanned = 0;
-  uint64_t directed_pairs = 0;   // kept (a -> b) counts
-  uint64_t similar_pairs = 0;    // pairs with s >= min_similarity
+  uint64_t directed_pairs = 0;  // kept (a -> b) counts
+  uint64_t similar_pairs = 0;   // pairs with s >= min_similarity
   uint64_t linked_pairs = 0;
-  uint64_t edges = 0;            // in the graph
+  uint64_t edges = 0;  // in the graph
   double seconds = 0;
 };
 

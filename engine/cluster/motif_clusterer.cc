@@ -76,8 +76,9 @@ constexpr size_t kMinSplitOffInstances = 3;
 // Appends to `out` the length classes of `group` (ascending): the instances within
 // max_length_ratio of its typical length form one class; the others are split off, and among
 // them only the instances joined by path links to one another stand as classes of their own
-// (each link component of at least kMinSplitOffInstances, split the same way in turn). An instance that shares frames with the
-// group but is linked only to the longer instances is a fragment of them and is dropped.
+// (each link component of at least kMinSplitOffInstances, split the same way in turn). An instance
+// that shares frames with the group but is linked only to the longer instances is a fragment of
+// them and is dropped.
 void SplitByLength(const std::vector<uint32_t>& group, const std::vector<MotifInstance>& instances,
                    const std::vector<std::vector<uint32_t>>& linked, double max_length_ratio,
                    std::vector<std::vector<uint32_t>>* out, uint64_t* dropped) {
@@ -90,8 +91,8 @@ void SplitByLength(const std::vector<uint32_t>& group, const std::vector<MotifIn
   std::vector<uint32_t> split_off;
   for (uint32_t id : group) {
     const double length = static_cast<double>(instances[id].length());
-    const bool typical_length = length * max_length_ratio >= typical &&
-                                length <= typical * max_length_ratio;
+    const bool typical_length =
+        length * max_length_ratio >= typical && length <= typical * max_length_ratio;
     (typical_length ? kept : split_off).push_back(id);
   }
   out->push_back(std::move(kept));
@@ -249,9 +250,8 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
     result.report.clustered_instances += motif.instances.size();
     for (uint32_t id : motif.instances) clustered.push_back(set.instances[id]);
   }
-  std::sort(clustered.begin(), clustered.end(), [](const MotifInstance& a, const MotifInstance& b) {
-    return a.start < b.start;
-  });
+  std::sort(clustered.begin(), clustered.end(),
+            [](const MotifInstance& a, const MotifInstance& b) { return a.start < b.start; });
   uint64_t covered_until = 0;
   for (const MotifInstance& instance : clustered) {
     const uint64_t from = std::max(instance.start, covered_until);

@@ -35,8 +35,8 @@ namespace motif {
 
 struct ClusterOptions {
   InstanceOptions instances;
-  SimilarityOptions similarity;   // its threads and progress are set from the fields below
-  NormalizedCutOptions cut;       // its threads and seed are set from the fields below
+  SimilarityOptions similarity;  // its threads and progress are set from the fields below
+  NormalizedCutOptions cut;      // its threads and seed are set from the fields below
   // Keep an instance in its motif only when typical / r <= length <= typical * r, typical being
   // the length-weighted median of the group's lengths; 0 keeps every instance. Warps of 0.7-1.4x
   // differ by 2x at most; 3 leaves room for a typical length pulled down by split instances
@@ -44,7 +44,7 @@ struct ClusterOptions {
   // shorter than their motif (60-90 frames against 300-800).
   double max_length_ratio = 3.0;
   uint64_t seed = 1;
-  int threads = 0;                // 0: all cores
+  int threads = 0;  // 0: all cores
   // The archive the trellis was built from: when set, instances that are held poses
   // (held_pose.h, at the trellis's eps) are kept out of the motifs.
   const FrameFileReader* archive = nullptr;
@@ -59,15 +59,15 @@ struct Motif {
   // first instance. A movement repeated often and at length comes first; among the scales of
   // one repeated movement (one repetition a instance, or two, ...) the finest.
   double score() const {
-    return instances.empty() ? 0.0
-                             : static_cast<double>(total_frames) *
-                                   static_cast<double>(instances.size() - 1) /
-                                   static_cast<double>(instances.size());
+    return instances.empty()
+               ? 0.0
+               : static_cast<double>(total_frames) * static_cast<double>(instances.size() - 1) /
+                     static_cast<double>(instances.size());
   }
   double mean_length() const {
-    return instances.empty() ? 0.0
-                             : static_cast<double>(total_frames) /
-                                   static_cast<double>(instances.size());
+    return instances.empty()
+               ? 0.0
+               : static_cast<double>(total_frames) / static_cast<double>(instances.size());
   }
 };
 
@@ -86,7 +86,7 @@ struct ClusterReport {
 struct ClusterResult {
   std::vector<MotifInstance> instances;  // every merged instance, by start
   std::vector<InstanceLink> links;
-  std::vector<Motif> motifs;             // most important first
+  std::vector<Motif> motifs;  // most important first
   ClusterReport report;
 };
 

@@ -29,7 +29,8 @@ Status Get(const Json& object, const char* key, const std::string& where, T* out
   } else if constexpr (std::is_floating_point_v<T>) {
     type_ok = it->is_number();
   } else {
-    type_ok = it->is_number_unsigned() || (it->is_number_integer() && it->template get<int64_t>() >= 0);
+    type_ok =
+        it->is_number_unsigned() || (it->is_number_integer() && it->template get<int64_t>() >= 0);
   }
   if (!type_ok) return Status::InvalidArgument(where + ": \"" + key + "\" has the wrong type");
   *out = it->template get<T>();
@@ -39,8 +40,7 @@ Status Get(const Json& object, const char* key, const std::string& where, T* out
 }  // namespace
 
 Result<MotifsDocument> MakeMotifsDocument(const ClusterResult& result,
-                                          const std::string& archive_path,
-                                          uint64_t archive_frames,
+                                          const std::string& archive_path, uint64_t archive_frames,
                                           const std::vector<ClipInfo>& clips,
                                           const MotifsJsonParams& params) {
   MotifsDocument document;
@@ -198,7 +198,8 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
     char* end = nullptr;
     out.identity = std::strtoull(identity.c_str(), &end, 16);
     if (identity.size() != 16 || *end != '\0' || out.generation == 0) {
-      return Status::InvalidArgument(where + ": \"identity\" must be 16 hex digits and "
+      return Status::InvalidArgument(where +
+                                     ": \"identity\" must be 16 hex digits and "
                                      "\"generation\" at least 1");
     }
   }
@@ -234,8 +235,8 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
   if (params.contains("groups") && params["groups"].is_string() && params["groups"] == "auto") {
     document.params.groups = 0;
   } else {
-    MOTIF_RETURN_IF_ERROR(Get(params, "groups", params_where + " (a number or \"auto\")",
-                              &document.params.groups));
+    MOTIF_RETURN_IF_ERROR(
+        Get(params, "groups", params_where + " (a number or \"auto\")", &document.params.groups));
   }
   if (root.contains("summary") && root["summary"].is_object() &&
       root["summary"].contains("covered_frames") &&

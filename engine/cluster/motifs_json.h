@@ -46,7 +46,7 @@ struct MotifsJsonParams {
   uint32_t kmax = 0;
   uint32_t branch = 0;
   uint64_t min_length = 0;  // lambda, frames
-  uint32_t groups = 0;    // 0: "auto"
+  uint32_t groups = 0;      // 0: "auto"
   uint64_t seed = 0;
   bool operator==(const MotifsJsonParams&) const = default;
 };
@@ -95,8 +95,7 @@ struct MotifsDocument {
 // The document of a clustering result over an archive with `clips` (in archive order).
 // InvalidArgument if an instance is not inside one clip.
 Result<MotifsDocument> MakeMotifsDocument(const ClusterResult& result,
-                                          const std::string& archive_path,
-                                          uint64_t archive_frames,
+                                          const std::string& archive_path, uint64_t archive_frames,
                                           const std::vector<ClipInfo>& clips,
                                           const MotifsJsonParams& params);
 

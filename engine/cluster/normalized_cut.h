@@ -33,20 +33,20 @@
 namespace motif {
 
 struct NormalizedCutOptions {
-  uint32_t groups = 0;          // 0: automatic
-  double max_ncut = 0.5;        // automatic: cut while the best cut's Ncut is below this
+  uint32_t groups = 0;    // 0: automatic
+  double max_ncut = 0.5;  // automatic: cut while the best cut's Ncut is below this
   uint32_t min_group_size = 2;
   SpectralOptions spectral;
-  int threads = 0;              // 0: all cores
+  int threads = 0;  // 0: all cores
 };
 
 struct NormalizedCutStats {
-  uint64_t components = 0;      // connected components of the whole graph
-  uint64_t spectral_cuts = 0;   // two-way cuts applied
+  uint64_t components = 0;     // connected components of the whole graph
+  uint64_t spectral_cuts = 0;  // two-way cuts applied
   uint64_t eigen_solves = 0;
-  uint64_t sparse_solves = 0;   // of which Lanczos
-  uint64_t unconverged = 0;     // Lanczos gave up: that group was left whole
-  uint64_t dropped_nodes = 0;   // in groups smaller than min_group_size
+  uint64_t sparse_solves = 0;  // of which Lanczos
+  uint64_t unconverged = 0;    // Lanczos gave up: that group was left whole
+  uint64_t dropped_nodes = 0;  // in groups smaller than min_group_size
 };
 
 // The groups (each ascending), ordered by smallest node.

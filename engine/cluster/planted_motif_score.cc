@@ -64,8 +64,9 @@ PlantedMotifScore ScorePlantedMotifs(const std::vector<FoundInstance>& found,
     const std::vector<size_t>& ids = clip->second;
     const uint64_t reach = longest_in_clip[target.clip];
     const uint64_t from = target.start > reach ? target.start - reach : 0;
-    auto it = std::lower_bound(ids.begin(), ids.end(), from,
-                               [&](size_t idx, uint64_t start) { return found[idx].start < start; });
+    auto it = std::lower_bound(ids.begin(), ids.end(), from, [&](size_t idx, uint64_t start) {
+      return found[idx].start < start;
+    });
     bool hit = false;
     // Best: the largest overlap, then the lowest motif id, then the earliest start.
     std::tuple<uint64_t, int64_t, int64_t> best{0, 0, 0};
@@ -88,13 +89,14 @@ PlantedMotifScore ScorePlantedMotifs(const std::vector<FoundInstance>& found,
     planted_labels.push_back(target.motif);
     found_labels.push_back(best_motif);
   }
-  score.found_hitting = static_cast<uint64_t>(std::count(found_hits.begin(), found_hits.end(), true));
-  score.recall = score.planted ? static_cast<double>(score.planted_hit) /
-                                     static_cast<double>(score.planted)
-                               : 0.0;
-  score.precision = score.found ? static_cast<double>(score.found_hitting) /
-                                      static_cast<double>(score.found)
-                                : 0.0;
+  score.found_hitting =
+      static_cast<uint64_t>(std::count(found_hits.begin(), found_hits.end(), true));
+  score.recall = score.planted
+                     ? static_cast<double>(score.planted_hit) / static_cast<double>(score.planted)
+                     : 0.0;
+  score.precision =
+      score.found ? static_cast<double>(score.found_hitting) / static_cast<double>(score.found)
+                  : 0.0;
   score.adjusted_rand_index = AdjustedRandIndex(planted_labels, found_labels);
   return score;
 }

@@ -37,8 +37,8 @@ struct PlantedMotifScore {
   double recall = 0;
   double precision = 0;
   double adjusted_rand_index = 0;
-  uint32_t planted_motifs = 0;   // distinct planted motif ids
-  uint32_t found_motifs = 0;     // distinct found motif ids
+  uint32_t planted_motifs = 0;  // distinct planted motif ids
+  uint32_t found_motifs = 0;    // distinct found motif ids
 };
 
 // True if a and b (same clip) overlap by at least half of the shorter.

@@ -19,9 +19,10 @@ SimilarityGraph SimilarityGraph::FromEdges(uint32_t node_count, std::vector<Weig
   edges.clear();
   edges.shrink_to_fit();
   // Stable: duplicates are then summed in input order, whatever the sort does.
-  std::stable_sort(directed.begin(), directed.end(), [](const WeightedEdge& x, const WeightedEdge& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
+  std::stable_sort(directed.begin(), directed.end(),
+                   [](const WeightedEdge& x, const WeightedEdge& y) {
+                     return x.a != y.a ? x.a < y.a : x.b < y.b;
+                   });
   SimilarityGraph graph;
   graph.offsets_.assign(static_cast<size_t>(node_count) + 1, 0);
   graph.degrees_.assign(node_count, 0.0);

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include <Eigen/Dense>
 #include <Spectra/SymEigsSolver.h>
+#include <Eigen/Dense>
 
 #include "common/status.h"
 
@@ -97,8 +97,8 @@ FiedlerVector SparseFiedler(const SimilarityGraph& graph, const std::vector<doub
   // enough; graphs with a tiny spectral gap (long chains of groups) converge slowly, and a
   // loose second attempt with a wider basis still gives a good cut.
   for (const auto& [ncv, tolerance] : {std::pair<int, double>{32, 1e-6}, {64, 1e-4}}) {
-    Spectra::SymEigsSolver<DeflatedNormalizedAdjacency> solver(
-        op, 1, std::min<Eigen::Index>(ncv, n));
+    Spectra::SymEigsSolver<DeflatedNormalizedAdjacency> solver(op, 1,
+                                                               std::min<Eigen::Index>(ncv, n));
     solver.init(start.data());
     solver.compute(Spectra::SortRule::LargestAlge, 300, tolerance);
     if (solver.info() != Spectra::CompInfo::Successful) continue;

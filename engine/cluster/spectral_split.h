@@ -23,7 +23,7 @@ namespace motif {
 
 struct SpectralOptions {
   uint32_t dense_max_nodes = 96;  // above: the sparse Lanczos solver (dense is O(n^3))
-  uint64_t seed = 1;               // the Lanczos starting vector
+  uint64_t seed = 1;              // the Lanczos starting vector
 };
 
 struct FiedlerVector {
@@ -37,8 +37,8 @@ FiedlerVector ComputeFiedlerVector(const SimilarityGraph& graph, const SpectralO
 
 struct TwoWayCut {
   double ncut = std::numeric_limits<double>::infinity();  // infinity: no admissible cut
-  std::vector<uint32_t> side_a;  // ascending
-  std::vector<uint32_t> side_b;  // ascending
+  std::vector<uint32_t> side_a;                           // ascending
+  std::vector<uint32_t> side_b;                           // ascending
 };
 
 // The threshold cut along `values` (nodes ordered by value, then id) with the smallest Ncut and

@@ -41,7 +41,7 @@ struct MotifMovementMatch {
 };
 
 struct TruthScore {
-  uint64_t occurrences = 0;          // in the document's clips
+  uint64_t occurrences = 0;            // in the document's clips
   uint64_t occurrences_elsewhere = 0;  // in clips the document does not have (left out)
   uint64_t movements = 0;
   uint64_t motifs = 0;

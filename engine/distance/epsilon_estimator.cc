@@ -174,9 +174,8 @@ EpsilonEstimate EpsilonEstimator::SampleStatistics(const std::vector<float>& dis
     for (float distance : distances) {
       squares += (distance - estimate.mu) * (distance - estimate.mu);
     }
-    estimate.sigma = distances.size() > 1
-                         ? std::sqrt(squares / static_cast<double>(distances.size() - 1))
-                         : 0.0;
+    estimate.sigma =
+        distances.size() > 1 ? std::sqrt(squares / static_cast<double>(distances.size() - 1)) : 0.0;
   }
   estimate.paper_eps = estimate.mu - 2.0 * estimate.sigma;
   return estimate;
@@ -184,8 +183,8 @@ EpsilonEstimate EpsilonEstimator::SampleStatistics(const std::vector<float>& dis
 
 void EpsilonEstimator::ApplyPaperRule(std::vector<float> distances, EpsilonEstimate* estimate) {
   const double estimated = estimate->paper_eps;
-  estimate->how = "paper rule: mu - 2 sigma of " + std::to_string(distances.size()) +
-                  " sampled pair distances";
+  estimate->how =
+      "paper rule: mu - 2 sigma of " + std::to_string(distances.size()) + " sampled pair distances";
   if (estimated > 0) {
     estimate->eps = static_cast<float>(estimated);
     return;

@@ -73,7 +73,7 @@ struct EpsilonEstimate {
   bool explicit_eps = false;
   EpsilonRule rule = EpsilonRule::kJointAngle;
   double paper_eps = 0;  // mu - 2 sigma, whatever the rule
-  std::string how;   // one line on how eps was chosen, for the user
+  std::string how;       // one line on how eps was chosen, for the user
   std::string note;  // a warning about the choice (the paper's rule falling back); empty otherwise
 };
 

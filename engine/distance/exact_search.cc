@@ -151,8 +151,7 @@ Status ExactSearch::SearchColumnsAndReverse(uint64_t first_column, uint64_t coun
 
 Status ExactSearch::Search(uint64_t first_column, uint64_t count, const ReverseQuery* query,
                            std::vector<std::vector<Neighbour>>* columns,
-                           std::vector<std::vector<Neighbour>>* reverse,
-                           SearchStats* stats) const {
+                           std::vector<std::vector<Neighbour>>* reverse, SearchStats* stats) const {
   const uint64_t frame_count = features_.frame_count();
   if (first_column > frame_count || count > frame_count - first_column) {
     return Status::InvalidArgument("exact search: columns [" + std::to_string(first_column) + ", " +

@@ -20,9 +20,9 @@
 namespace motif {
 
 struct NeighbourRules {
-  float eps = 0;                           // include D <= eps
-  uint32_t k_max = 256;                    // at most this many per column, the nearest kept
-  uint32_t exclusion_frames = 30;          // same clip and |t - j| < this: excluded
+  float eps = 0;                            // include D <= eps
+  uint32_t k_max = 256;                     // at most this many per column, the nearest kept
+  uint32_t exclusion_frames = 30;           // same clip and |t - j| < this: excluded
   std::vector<uint64_t> clip_first_frames;  // ascending, starts with 0
 
   // True if j may never be a neighbour of t (t itself, or too close in the same clip).

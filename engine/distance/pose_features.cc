@@ -22,9 +22,9 @@ Result<PoseFeatures> PoseFeatures::FromArchive(
     const std::function<void(uint64_t, uint64_t)>& progress) {
   const FrameLayout layout = reader.layout();
   if (joint_weights.size() != layout.joint_count) {
-    return Status::InvalidArgument("pose distance weights: " +
-                                   std::to_string(joint_weights.size()) + " weights for " +
-                                   std::to_string(layout.joint_count) + " joints");
+    return Status::InvalidArgument(
+        "pose distance weights: " + std::to_string(joint_weights.size()) + " weights for " +
+        std::to_string(layout.joint_count) + " joints");
   }
   PoseFeatures features;
   for (uint32_t joint_idx = 0; joint_idx < layout.joint_count; ++joint_idx) {
@@ -36,7 +36,8 @@ Result<PoseFeatures> PoseFeatures::FromArchive(
   if (features.weights_.empty()) {
     return Status::InvalidArgument("pose distance weights: no joint has a positive weight");
   }
-  for (const ClipInfo& clip : reader.clips()) features.clip_first_frames_.push_back(clip.first_frame);
+  for (const ClipInfo& clip : reader.clips())
+    features.clip_first_frames_.push_back(clip.first_frame);
   if (features.clip_first_frames_.empty()) features.clip_first_frames_.push_back(0);
   const uint64_t frame_count = reader.frame_count();
   features.frame_count_ = frame_count;
@@ -193,8 +194,7 @@ Result<std::vector<float>> LoadDistanceWeights(const Skeleton& skeleton,
     char* end = nullptr;
     const double weight = std::strtod(value.c_str(), &end);
     if (end == value.c_str() || *end != '\0' || !std::isfinite(weight) || weight < 0) {
-      return Status::InvalidArgument(where + "weight '" + value +
-                                     "' is not a non-negative number");
+      return Status::InvalidArgument(where + "weight '" + value + "' is not a non-negative number");
     }
     weights[joint_idx] = static_cast<float>(weight);
   }

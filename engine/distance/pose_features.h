@@ -44,8 +44,8 @@ class PoseFeatures {
       const std::function<void(uint64_t, uint64_t)>& progress = nullptr);
 
   // From saved parts (a cache of an earlier run): frame_count * 4 * weights.size() values
-  // (copied; `values` need not be aligned), joints the archive joint of each weight, clip starts ascending from 0. InvalidArgument if
-  // the sizes do not match.
+  // (copied; `values` need not be aligned), joints the archive joint of each weight, clip starts
+  // ascending from 0. InvalidArgument if the sizes do not match.
   static Result<PoseFeatures> FromParts(uint64_t frame_count, std::vector<float> weights,
                                         std::vector<uint32_t> joints,
                                         std::vector<uint64_t> clip_first_frames,
@@ -60,7 +60,9 @@ class PoseFeatures {
   uint64_t frame_count() const { return frame_count_; }
   // Number of weighted joints kept (J_w); a frame is 4 * J_w int16 values (w, x, y, z each).
   uint32_t weighted_joint_count() const { return static_cast<uint32_t>(weights_.size()); }
-  const int16_t* frame(uint64_t frame_idx) const { return &values_[frame_idx * 4 * weights_.size()]; }
+  const int16_t* frame(uint64_t frame_idx) const {
+    return &values_[frame_idx * 4 * weights_.size()];
+  }
   // Weight of each kept joint, and which archive joint it is.
   const std::vector<float>& weights() const { return weights_; }
   const std::vector<uint32_t>& joints() const { return joints_; }

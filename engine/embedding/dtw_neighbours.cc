@@ -41,7 +41,8 @@ RowMatrixXf Descriptors(const WordPool& pool, tbb::task_arena& arena) {
                           for (uint32_t f = 0; f < frames; ++f) {
                             const uint32_t run = f * runs / frames;
                             family.Embed(features + f * feature_values, frame.data());
-                            for (uint32_t dim = 0; dim < dims; ++dim) out[run * dims + dim] += frame[dim];
+                            for (uint32_t dim = 0; dim < dims; ++dim)
+                              out[run * dims + dim] += frame[dim];
                             ++counts[run];
                           }
                           for (uint32_t run = 0; run < runs; ++run) {
@@ -63,14 +64,15 @@ Result<RowMatrixXf> FitLists(const RowMatrixXf& descriptors, uint32_t lists, uin
   const uint64_t sample_size = std::min<uint64_t>(n, uint64_t{kSamplePerList} * lists);
   std::vector<uint64_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  SplitMix64 random(seed ^ 0x6976666c69737473ull);  // "ivflists"
+  SplitMix64 random(seed ^ 0x6976666c69737473ull);    // "ivflists"
   for (uint64_t idx = 0; idx < sample_size; ++idx) {  // partial Fisher-Yates
     std::swap(order[idx], order[idx + random.Below(n - idx)]);
   }
   std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(sample_size));
   RowMatrixXf sample(static_cast<Eigen::Index>(sample_size), descriptors.cols());
   for (uint64_t idx = 0; idx < sample_size; ++idx) {
-    sample.row(static_cast<Eigen::Index>(idx)) = descriptors.row(static_cast<Eigen::Index>(order[idx]));
+    sample.row(static_cast<Eigen::Index>(idx)) =
+        descriptors.row(static_cast<Eigen::Index>(order[idx]));
   }
   for (uint32_t k = std::min<uint64_t>(lists, sample_size); k >= 1; k = k / 2) {
     KMeansOptions options;
@@ -107,16 +109,17 @@ Result<std::vector<std::vector<WordNeighbour>>> FindDtwNeighbours(
   // Inverted lists: the words of each list, in index order.
   std::vector<uint32_t> list_of(n);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 1024),
-                      [&](const tbb::blocked_range<uint64_t>& range) {
-                        for (uint64_t word = range.begin(); word != range.end(); ++word) {
-                          list_of[word] = NearestCentroid(
-                              centroids, descriptors.row(static_cast<Eigen::Index>(word)).data());
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<uint64_t>(0, n, 1024), [&](const tbb::blocked_range<uint64_t>& range) {
+          for (uint64_t word = range.begin(); word != range.end(); ++word) {
+            list_of[word] =
+                NearestCentroid(centroids, descriptors.row(static_cast<Eigen::Index>(word)).data());
+          }
+        });
   });
   std::vector<std::vector<uint32_t>> members(lists);
-  for (uint64_t word = 0; word < n; ++word) members[list_of[word]].push_back(static_cast<uint32_t>(word));
+  for (uint64_t word = 0; word < n; ++word)
+    members[list_of[word]].push_back(static_cast<uint32_t>(word));
 
   // Every word prepared for the DTW once.
   const WordDistance distance(pool.joint_weights(), pool.word_frames(), options.band_frames);
@@ -153,17 +156,18 @@ Result<std::vector<std::vector<WordNeighbour>>> FindDtwNeighbours(
               for (uint32_t other : members[list_distances[probe].second]) {
                 if (pool.clip_of(other) == clip) {
                   const uint64_t other_index = pool.index_in_clip(other);
-                  const uint64_t gap = other_index > index ? other_index - index : index - other_index;
+                  const uint64_t gap =
+                      other_index > index ? other_index - index : index - other_index;
                   if (gap < overlap) continue;  // itself and the words overlapping it
                 }
-                candidates.push_back(
-                    {(descriptors.row(other) - query).squaredNorm(), other});
+                candidates.push_back({(descriptors.row(other) - query).squaredNorm(), other});
               }
             }
             size_t verify = candidates.size();
             if (options.max_verified > 0 && verify > options.max_verified) {
               verify = options.max_verified;
-              std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(verify),
+              std::partial_sort(candidates.begin(),
+                                candidates.begin() + static_cast<std::ptrdiff_t>(verify),
                                 candidates.end());
             }
             std::vector<WordNeighbour>& best = neighbours[word];
@@ -176,7 +180,8 @@ Result<std::vector<std::vector<WordNeighbour>>> FindDtwNeighbours(
               if (!(dtw <= threshold)) continue;
               const WordNeighbour found{other, static_cast<float>(dtw)};
               auto position = std::upper_bound(
-                  best.begin(), best.end(), found, [](const WordNeighbour& a, const WordNeighbour& b) {
+                  best.begin(), best.end(), found,
+                  [](const WordNeighbour& a, const WordNeighbour& b) {
                     return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);
                   });
               best.insert(position, found);

@@ -32,24 +32,24 @@ namespace motif {
 
 struct DtwNeighbourOptions {
   uint32_t k = 5;
-  uint32_t band_frames = 2;      // the Sakoe-Chiba radius (word_distance.h)
-  uint32_t lists = 0;            // L; 0: round(sqrt(n)), at most 4096
-  uint32_t probes = 8;           // lists searched per word
-  uint32_t max_verified = 128;   // candidates compared with the DTW per word; 0: all
+  uint32_t band_frames = 2;     // the Sakoe-Chiba radius (word_distance.h)
+  uint32_t lists = 0;           // L; 0: round(sqrt(n)), at most 4096
+  uint32_t probes = 8;          // lists searched per word
+  uint32_t max_verified = 128;  // candidates compared with the DTW per word; 0: all
   uint64_t seed = 1;
   int threads = 0;
   std::function<void(uint64_t, uint64_t)> progress;  // (words done, words)
 };
 
 struct WordNeighbour {
-  uint32_t word = 0;    // pool index
-  float distance = 0;   // DTW
+  uint32_t word = 0;   // pool index
+  float distance = 0;  // DTW
   bool operator==(const WordNeighbour&) const = default;
 };
 
 // For each word of `pool` (version 0, the words themselves), its up to k nearest words, nearest
 // first. InvalidArgument: k = 0, probes = 0, an empty pool.
-Result<std::vector<std::vector<WordNeighbour>>> FindDtwNeighbours(const WordPool& pool,
-                                                                  const DtwNeighbourOptions& options);
+Result<std::vector<std::vector<WordNeighbour>>> FindDtwNeighbours(
+    const WordPool& pool, const DtwNeighbourOptions& options);
 
 }  // namespace motif

@@ -7,8 +7,9 @@ namespace {
 
 void AddModel(const EmbeddingModel& model, TensorFile* file) {
   const EmbeddingNetShape& s = model.net.shape();
-  const uint32_t shape[8] = {s.frames,         s.input_channels, s.conv1_channels, s.conv1_kernel,
-                             s.conv2_channels, s.conv2_kernel,   s.conv2_stride,   s.embedding_dims};
+  const uint32_t shape[8] = {s.frames,       s.input_channels, s.conv1_channels,
+                             s.conv1_kernel, s.conv2_channels, s.conv2_kernel,
+                             s.conv2_stride, s.embedding_dims};
   file->AddU32("net.shape", shape);
   const uint32_t geometry[2] = {model.words.word_frames, model.words.stride_frames};
   file->AddU32("word.geometry", geometry);
@@ -100,8 +101,8 @@ Result<EmbeddingModel> ReadModel(const TensorFile& file) {
   MOTIF_RETURN_IF_ERROR(block("conv2.weight", s.conv2_weight_offset(), 0,
                               uint64_t{s.conv2_kernel} * s.conv1_channels, s.conv2_channels));
   MOTIF_RETURN_IF_ERROR(block("conv2.bias", s.conv2_bias_offset(), 0, s.conv2_channels, 1));
-  MOTIF_RETURN_IF_ERROR(block("linear.weight", s.linear_weight_offset(), 0, s.flat_size(),
-                              s.embedding_dims));
+  MOTIF_RETURN_IF_ERROR(
+      block("linear.weight", s.linear_weight_offset(), 0, s.flat_size(), s.embedding_dims));
   MOTIF_RETURN_IF_ERROR(block("linear.bias", s.linear_bias_offset(), 0, s.embedding_dims, 1));
   MOTIF_ASSIGN_OR_RETURN(std::vector<uint64_t> identity, file.U64("training.identity", 3));
   model.archive_identity = identity[0];

@@ -24,15 +24,15 @@ inline constexpr char kCheckpointKind[] = "checkpoint";
 struct EmbeddingModel {
   EmbeddingNet net;
   WordOptions words;
-  std::vector<uint32_t> joints;        // archive index of each weighted joint, ascending
-  std::vector<float> joint_weights;    // their weights
-  uint64_t archive_identity = 0;       // the archive trained on
-  uint64_t training_key = 0;           // TrainingKey of the options it was trained with
+  std::vector<uint32_t> joints;      // archive index of each weighted joint, ascending
+  std::vector<float> joint_weights;  // their weights
+  uint64_t archive_identity = 0;     // the archive trained on
+  uint64_t training_key = 0;         // TrainingKey of the options it was trained with
   uint64_t seed = 0;
-  uint64_t pool_words = 0;             // words trained on (and held out)
+  uint64_t pool_words = 0;  // words trained on (and held out)
   std::vector<double> epoch_loss;
   std::vector<double> epoch_active;
-  TripletAccuracy accuracy;            // held out (triplets 0: none)
+  TripletAccuracy accuracy;  // held out (triplets 0: none)
 };
 
 // The tensors of an embedding file, and the model from them. Corruption naming the tensor when

@@ -51,11 +51,15 @@ struct Blocks {
 }  // namespace
 
 size_t EmbeddingNetShape::conv1_bias_offset() const {
-  return conv1_weight_offset() + static_cast<size_t>(conv1_kernel) * input_channels * conv1_channels;
+  return conv1_weight_offset() +
+         static_cast<size_t>(conv1_kernel) * input_channels * conv1_channels;
 }
-size_t EmbeddingNetShape::conv2_weight_offset() const { return conv1_bias_offset() + conv1_channels; }
+size_t EmbeddingNetShape::conv2_weight_offset() const {
+  return conv1_bias_offset() + conv1_channels;
+}
 size_t EmbeddingNetShape::conv2_bias_offset() const {
-  return conv2_weight_offset() + static_cast<size_t>(conv2_kernel) * conv1_channels * conv2_channels;
+  return conv2_weight_offset() +
+         static_cast<size_t>(conv2_kernel) * conv1_channels * conv2_channels;
 }
 size_t EmbeddingNetShape::linear_weight_offset() const {
   return conv2_bias_offset() + conv2_channels;
@@ -66,15 +70,14 @@ size_t EmbeddingNetShape::linear_bias_offset() const {
 size_t EmbeddingNetShape::parameter_count() const { return linear_bias_offset() + embedding_dims; }
 
 Status ValidateEmbeddingNetShape(const EmbeddingNetShape& shape) {
-  const std::pair<const char*, uint32_t> sizes[] = {
-      {"frames", shape.frames},
-      {"input_channels", shape.input_channels},
-      {"conv1_channels", shape.conv1_channels},
-      {"conv1_kernel", shape.conv1_kernel},
-      {"conv2_channels", shape.conv2_channels},
-      {"conv2_kernel", shape.conv2_kernel},
-      {"conv2_stride", shape.conv2_stride},
-      {"embedding_dims", shape.embedding_dims}};
+  const std::pair<const char*, uint32_t> sizes[] = {{"frames", shape.frames},
+                                                    {"input_channels", shape.input_channels},
+                                                    {"conv1_channels", shape.conv1_channels},
+                                                    {"conv1_kernel", shape.conv1_kernel},
+                                                    {"conv2_channels", shape.conv2_channels},
+                                                    {"conv2_kernel", shape.conv2_kernel},
+                                                    {"conv2_stride", shape.conv2_stride},
+                                                    {"embedding_dims", shape.embedding_dims}};
   for (const auto& [name, value] : sizes) {
     if (value == 0 || value > 4096) {
       return Status::InvalidArgument(std::string("embedding network: ") + name + " " +
@@ -119,8 +122,8 @@ void EmbeddingNetT<Scalar>::Initialize(uint64_t seed) {
   const double fan2 = static_cast<double>(s.conv2_kernel) * s.conv1_channels;
   fill(s.conv1_weight_offset(), s.conv1_bias_offset() - s.conv1_weight_offset(), fan1, 2.0);
   fill(s.conv2_weight_offset(), s.conv2_bias_offset() - s.conv2_weight_offset(), fan2, 2.0);
-  fill(s.linear_weight_offset(), s.linear_bias_offset() - s.linear_weight_offset(),
-       s.flat_size(), 1.0);
+  fill(s.linear_weight_offset(), s.linear_bias_offset() - s.linear_weight_offset(), s.flat_size(),
+       1.0);
 }
 
 template <typename Scalar>

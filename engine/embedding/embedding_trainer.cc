@@ -35,7 +35,8 @@ void ForEachChunk(tbb::task_arena& arena, size_t chunks, const Body& body) {
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1),
                       [&](const tbb::blocked_range<size_t>& range) {
-                        for (size_t chunk = range.begin(); chunk != range.end(); ++chunk) body(chunk);
+                        for (size_t chunk = range.begin(); chunk != range.end(); ++chunk)
+                          body(chunk);
                       });
   });
 }
@@ -43,7 +44,8 @@ void ForEachChunk(tbb::task_arena& arena, size_t chunks, const Body& body) {
 }  // namespace
 
 Status ValidateEmbeddingTrainOptions(const EmbeddingTrainOptions& options) {
-  if (options.batch_triplets == 0) return Status::InvalidArgument("training: batch_triplets must be >= 1");
+  if (options.batch_triplets == 0)
+    return Status::InvalidArgument("training: batch_triplets must be >= 1");
   if (!(options.learning_rate > 0) || !std::isfinite(options.learning_rate)) {
     return Status::InvalidArgument("training: learning_rate must be positive");
   }
@@ -102,7 +104,8 @@ Result<EmbeddingTrainer> EmbeddingTrainer::Create(
   for (uint32_t channel = 0; channel < channels; ++channel) {
     const double m = sum[channel] / count;
     mean[channel] = static_cast<float>(m);
-    deviation[channel] = static_cast<float>(std::sqrt(std::max(0.0, sum2[channel] / count - m * m)));
+    deviation[channel] =
+        static_cast<float>(std::sqrt(std::max(0.0, sum2[channel] / count - m * m)));
   }
   trainer.initial_ = EmbeddingNet(resolved.shape);
   trainer.initial_.Initialize(resolved.seed);
@@ -157,14 +160,16 @@ uint32_t EmbeddingTrainer::DrawNegative(uint64_t anchor, bool train, SplitMix64*
   const bool same_clip = (below + above > 0) && (random->Next() & 1);
   if (same_clip) {
     const uint64_t pick = random->Below(below + above);
-    return static_cast<uint32_t>(clip.first_word + (pick < below ? pick : index + far + (pick - below)));
+    return static_cast<uint32_t>(clip.first_word +
+                                 (pick < below ? pick : index + far + (pick - below)));
   }
-  const bool other_clips = train ? train_words_.size() > clip.word_count
-                                 : pool.size() > clip.word_count;
+  const bool other_clips =
+      train ? train_words_.size() > clip.word_count : pool.size() > clip.word_count;
   if (!other_clips) {  // a pool of one clip: a far word of it if any, else any other word
     if (below + above > 0) {
       const uint64_t pick = random->Below(below + above);
-      return static_cast<uint32_t>(clip.first_word + (pick < below ? pick : index + far + (pick - below)));
+      return static_cast<uint32_t>(clip.first_word +
+                                   (pick < below ? pick : index + far + (pick - below)));
     }
     return static_cast<uint32_t>(anchor == 0 ? std::min<uint64_t>(1, pool.size() - 1) : 0);
   }
@@ -189,15 +194,14 @@ EmbeddingNet EmbeddingTrainer::NetOf(const TrainingState& state) const {
   return net;
 }
 
-Status EmbeddingTrainer::Train(TrainingState* state,
-                               const std::function<Status(const TrainingState&)>& checkpoint) const {
+Status EmbeddingTrainer::Train(
+    TrainingState* state, const std::function<Status(const TrainingState&)>& checkpoint) const {
   const size_t parameter_count = options_.shape.parameter_count();
   if (state->parameters.size() != parameter_count || state->adam_m.size() != parameter_count ||
       state->adam_v.size() != parameter_count) {
-    return Status::InvalidArgument("training: a state of " +
-                                   std::to_string(state->parameters.size()) +
-                                   " parameters for a network of " +
-                                   std::to_string(parameter_count));
+    return Status::InvalidArgument(
+        "training: a state of " + std::to_string(state->parameters.size()) +
+        " parameters for a network of " + std::to_string(parameter_count));
   }
   const WordPool& pool = *pool_;
   const uint32_t batch_size = options_.batch_triplets;
@@ -258,11 +262,14 @@ Status EmbeddingTrainer::Train(TrainingState* state,
         const size_t begin = chunk * kChunkRows;
         const size_t end = std::min(row_count, begin + kChunkRows);
         for (size_t row = begin; row < end; ++row) {
-          pool.EncodeInput(rows[row].word, rows[row].version, input.row(static_cast<Eigen::Index>(row)).data());
+          pool.EncodeInput(rows[row].word, rows[row].version,
+                           input.row(static_cast<Eigen::Index>(row)).data());
         }
-        net.Forward(input.middleRows(static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end - begin)),
+        net.Forward(input.middleRows(static_cast<Eigen::Index>(begin),
+                                     static_cast<Eigen::Index>(end - begin)),
                     &workspaces[chunk]);
-        embeddings.middleRows(static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end - begin)) =
+        embeddings.middleRows(static_cast<Eigen::Index>(begin),
+                              static_cast<Eigen::Index>(end - begin)) =
             workspaces[chunk].embeddings;
       });
 
@@ -274,13 +281,15 @@ Status EmbeddingTrainer::Train(TrainingState* state,
         const auto p = embeddings.row(static_cast<Eigen::Index>(count + idx));
         const float positive = (a - p).squaredNorm();
         size_t negative_row = 2 * count + idx;
-        float negative = (a - embeddings.row(static_cast<Eigen::Index>(negative_row))).squaredNorm();
+        float negative =
+            (a - embeddings.row(static_cast<Eigen::Index>(negative_row))).squaredNorm();
         if (options_.mine_semi_hard) {
           float best = std::numeric_limits<float>::infinity();
           for (size_t other = 0; other < count; ++other) {
             const size_t row = 2 * count + other;
             if (!ValidNegative(rows[idx].word, rows[row].word)) continue;
-            const float candidate = (a - embeddings.row(static_cast<Eigen::Index>(row))).squaredNorm();
+            const float candidate =
+                (a - embeddings.row(static_cast<Eigen::Index>(row))).squaredNorm();
             if (candidate > positive && candidate < positive + margin && candidate < best) {
               best = candidate;
               negative_row = row;
@@ -310,7 +319,8 @@ Status EmbeddingTrainer::Train(TrainingState* state,
       });
       std::fill(gradient.begin(), gradient.end(), 0.0f);
       for (size_t chunk = 0; chunk < chunks; ++chunk) {
-        for (size_t idx = 0; idx < parameter_count; ++idx) gradient[idx] += chunk_gradients[chunk][idx];
+        for (size_t idx = 0; idx < parameter_count; ++idx)
+          gradient[idx] += chunk_gradients[chunk][idx];
       }
 
       // Adam.
@@ -321,18 +331,22 @@ Status EmbeddingTrainer::Train(TrainingState* state,
       std::vector<float>& parameters = net.mutable_parameters();
       for (size_t idx = 0; idx < parameter_count; ++idx) {
         const float g = gradient[idx];
-        state->adam_m[idx] = static_cast<float>(kAdamBeta1 * state->adam_m[idx] + (1 - kAdamBeta1) * g);
+        state->adam_m[idx] =
+            static_cast<float>(kAdamBeta1 * state->adam_m[idx] + (1 - kAdamBeta1) * g);
         state->adam_v[idx] =
             static_cast<float>(kAdamBeta2 * state->adam_v[idx] + (1 - kAdamBeta2) * g * g);
-        parameters[idx] -= static_cast<float>(
-            step * state->adam_m[idx] / (std::sqrt(static_cast<double>(state->adam_v[idx])) + kAdamEpsilon));
+        parameters[idx] -=
+            static_cast<float>(step * state->adam_m[idx] /
+                               (std::sqrt(static_cast<double>(state->adam_v[idx])) + kAdamEpsilon));
       }
-      if (options_.progress) options_.progress(epoch * batches_per_epoch + batch + 1, total_batches);
+      if (options_.progress)
+        options_.progress(epoch * batches_per_epoch + batch + 1, total_batches);
     }
     state->parameters = net.parameters();
     state->epochs_done = epoch + 1;
     state->epoch_loss.push_back(loss_sum / static_cast<double>(anchors.size()));
-    state->epoch_active.push_back(static_cast<double>(active) / static_cast<double>(anchors.size()));
+    state->epoch_active.push_back(static_cast<double>(active) /
+                                  static_cast<double>(anchors.size()));
     if (checkpoint) MOTIF_RETURN_IF_ERROR(checkpoint(*state));
   }
   return Status::Ok();
@@ -354,8 +368,8 @@ RowMatrixXf EmbeddingTrainer::EmbedPool(const EmbeddingNet& net) const {
     }
     EmbeddingNet::Workspace workspace;
     net.Forward(input, &workspace);
-    embeddings.middleRows(static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end - begin)) =
-        workspace.embeddings;
+    embeddings.middleRows(static_cast<Eigen::Index>(begin),
+                          static_cast<Eigen::Index>(end - begin)) = workspace.embeddings;
   });
   return embeddings;
 }
@@ -370,8 +384,8 @@ TripletAccuracy EmbeddingTrainer::HeldOutAccuracy(const EmbeddingNet& trained) c
   for (uint64_t word = 0; word < pool.size(); ++word) {
     if (!pool.held_out(word)) continue;
     for (uint32_t positive : Positives(word, /*train=*/false)) {
-      triplets.push_back({static_cast<uint32_t>(word), positive,
-                          DrawNegative(word, /*train=*/false, &random)});
+      triplets.push_back(
+          {static_cast<uint32_t>(word), positive, DrawNegative(word, /*train=*/false, &random)});
     }
   }
   TripletAccuracy accuracy;

@@ -16,10 +16,10 @@ void RootMotionFromRows(const FrameLayout& layout, const float* rows, uint32_t w
     // Forward difference; the last frame repeats the one before (a one-frame word turns at 0).
     const uint32_t from = frame + 1 < word_frames ? frame : (frame > 0 ? frame - 1 : frame);
     const uint32_t to = from + 1 < word_frames ? from + 1 : from;
-    channels[3] = static_cast<float>(
-        (static_cast<double>(rows[to * stride + layout.heading_offset()]) -
-         rows[from * stride + layout.heading_offset()]) *
-        word_fps);
+    channels[3] =
+        static_cast<float>((static_cast<double>(rows[to * stride + layout.heading_offset()]) -
+                            rows[from * stride + layout.heading_offset()]) *
+                           word_fps);
   }
 }
 

@@ -19,7 +19,7 @@ namespace motif {
 
 struct WordPool::ClipData {
   uint64_t words = 0;
-  std::vector<int16_t> features;  // words x versions x W x 4 J_w
+  std::vector<int16_t> features;   // words x versions x W x 4 J_w
   std::vector<float> root_motion;  // words x versions x W x 4
 };
 
@@ -69,10 +69,9 @@ WordPool::ClipData WordPool::MakeClipData(const ClipWords& clip, uint64_t word_c
     RootMotionFromRows(resampler.layout(), batch.rows(word), frames, word_fps, 1.0,
                        &data.root_motion[slot * root_values]);
     for (uint32_t copy = 1; copy < versions; ++copy) {
-      const double speed =
-          clip.RandomWarpedWord(word, WarpSeed(options.seed, batch.info(word).word_id, copy),
-                                options.warp, &data.features[(slot + copy) * feature_values],
-                                rows.data());
+      const double speed = clip.RandomWarpedWord(
+          word, WarpSeed(options.seed, batch.info(word).word_id, copy), options.warp,
+          &data.features[(slot + copy) * feature_values], rows.data());
       RootMotionFromRows(resampler.layout(), rows.data(), frames, word_fps, speed,
                          &data.root_motion[(slot + copy) * root_values]);
     }
@@ -88,8 +87,8 @@ Result<WordPool> WordPool::Assemble(std::vector<PoolClip> clips, std::vector<Cli
   pool.word_frames_ = options.words.word_frames;
   pool.weighted_joints_ = resampler.weighted_joint_count();
   pool.weights_ = resampler.weights();
-  pool.overlap_words_ = (options.words.word_frames + options.words.stride_frames - 1) /
-                        options.words.stride_frames;
+  pool.overlap_words_ =
+      (options.words.word_frames + options.words.stride_frames - 1) / options.words.stride_frames;
   // Held-out clips: the first round(fraction * clips) of a seeded permutation, at least one and
   // leaving at least one for training when the fraction is positive and there are two clips.
   if (options.held_out_fraction > 0 && clips.size() >= 2) {
@@ -204,8 +203,8 @@ Result<WordPool> WordPool::Build(const FrameFileReader& reader,
     tbb::parallel_for(tbb::blocked_range<size_t>(0, clips.size(), 1),
                       [&](const tbb::blocked_range<size_t>& range) {
                         for (size_t idx = range.begin(); idx != range.end(); ++idx) {
-                          Result<ClipWords> clip = ClipWords::Read(
-                              reader, clips[idx].archive_clip, joint_weights, options.words);
+                          Result<ClipWords> clip = ClipWords::Read(reader, clips[idx].archive_clip,
+                                                                   joint_weights, options.words);
                           if (!clip.ok()) {
                             status[idx] = clip.status();
                             continue;

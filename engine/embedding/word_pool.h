@@ -34,7 +34,7 @@ struct WordPoolOptions {
   TimeWarpOptions warp;
   double held_out_fraction = 0.1;  // of the pool's clips, in [0, 1)
   uint64_t seed = 1;
-  int threads = 0;  // 0: all cores
+  int threads = 0;                                   // 0: all cores
   std::function<void(uint64_t, uint64_t)> progress;  // (clips done, clips)
 };
 
@@ -42,10 +42,10 @@ struct WordPoolOptions {
 Status ValidateWordPoolOptions(const WordPoolOptions& options);
 
 struct PoolClip {
-  uint32_t archive_clip = 0;    // index in the archive's clip table (or the caller's numbering)
-  uint64_t first_word = 0;      // the pool index of its first word
-  uint64_t word_count = 0;      // words of the clip in the pool (its first ones)
-  uint64_t first_word_id = 0;   // archive word id of its first word
+  uint32_t archive_clip = 0;   // index in the archive's clip table (or the caller's numbering)
+  uint64_t first_word = 0;     // the pool index of its first word
+  uint64_t word_count = 0;     // words of the clip in the pool (its first ones)
+  uint64_t first_word_id = 0;  // archive word id of its first word
   bool held_out = false;
 };
 
@@ -87,8 +87,7 @@ class WordPool {
  private:
   struct ClipData;
   static Result<WordPool> Assemble(std::vector<PoolClip> clips, std::vector<ClipData> data,
-                                   const FrameResampler& resampler,
-                                   const WordPoolOptions& options);
+                                   const FrameResampler& resampler, const WordPoolOptions& options);
   static ClipData MakeClipData(const ClipWords& clip, uint64_t word_count,
                                const WordPoolOptions& options);
 

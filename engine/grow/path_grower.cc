@@ -101,8 +101,8 @@ class PathGrower::Impl {
   }
 
   static PathCandidate MakeCandidate(const Leaf& leaf, uint64_t top_end, uint64_t match_end) {
-    return {leaf.root_column, top_end, leaf.root_frame, match_end, leaf.root_column,
-            leaf.root_frame};
+    return {leaf.root_column, top_end,          leaf.root_frame,
+            match_end,        leaf.root_column, leaf.root_frame};
   }
 
   // The leaf of column `column` could not grow: its path is a candidate if it is long enough
@@ -126,8 +126,8 @@ class PathGrower::Impl {
       }
     }
     if (--tree.live_leaves == 0) {
-      if (tree.has_best) candidates.push_back(MakeCandidate(leaf, tree.best_top_end,
-                                                            tree.best_match_end));
+      if (tree.has_best)
+        candidates.push_back(MakeCandidate(leaf, tree.best_top_end, tree.best_match_end));
       free_trees.push_back(leaf.tree);
     }
   }
@@ -238,9 +238,8 @@ Status PathGrower::AddColumn(const Neighbour* nodes, size_t count) {
         (slot > 0 && nodes[slot].frame <= nodes[slot - 1].frame)) {
       return Status::InvalidArgument(
           "column " + std::to_string(column) + ", node " + std::to_string(slot) + ": frame " +
-          std::to_string(nodes[slot].frame) +
-          " (frames must increase strictly and stay below " + std::to_string(impl.frame_count) +
-          ")");
+          std::to_string(nodes[slot].frame) + " (frames must increase strictly and stay below " +
+          std::to_string(impl.frame_count) + ")");
     }
   }
   impl.Step(nodes, count);

@@ -14,9 +14,7 @@
 
 namespace motif {
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 std::string DefaultPathsPath(const std::string& archive_path) {
   std::filesystem::path path(archive_path);
@@ -42,9 +40,10 @@ Result<PathsReport> BuildPaths(const std::string& archive_path, const std::strin
   const TrellisParams& trellis_params = trellis->params();
   if (trellis_params.archive_identity != archive->summary().identity ||
       trellis_params.frame_count != archive->frame_count()) {
-    return Status::InvalidArgument(trellis_path + " was built from another archive or another "
-                                   "version of " + archive_path +
-                                   " (run `motifmine trellis` again)");
+    return Status::InvalidArgument(trellis_path +
+                                   " was built from another archive or another "
+                                   "version of " +
+                                   archive_path + " (run `motifmine trellis` again)");
   }
 
   GrowOptions grow;

@@ -32,12 +32,12 @@ struct PathsOptions {
 
 struct PathsReport {
   std::string paths_path;
-  bool reused = false;       // an existing paths file had the same trellis and parameters
-  PathsParams params;        // branch, min_length in frames, trellis and archive identity
+  bool reused = false;  // an existing paths file had the same trellis and parameters
+  PathsParams params;   // branch, min_length in frames, trellis and archive identity
   uint64_t candidates = 0;
   uint64_t trellis_entries = 0;
-  GrowStats stats;           // of this run (zero when reused)
-  double grow_seconds = 0;   // streaming the trellis and growing
+  GrowStats stats;          // of this run (zero when reused)
+  double grow_seconds = 0;  // streaming the trellis and growing
   double write_seconds = 0;
 };
 

@@ -81,8 +81,8 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
     if (!first_take.ok()) return first_take.status();
     const Take& first = *first_take;
     const double fps = options.fps > 0 ? options.fps : first.fps;
-    MOTIF_ASSIGN_OR_RETURN(writer, FrameFileWriter::Create(archive_path, first.skeleton, fps,
-                                                           writer_options));
+    MOTIF_ASSIGN_OR_RETURN(
+        writer, FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options));
     result.created = true;
     note("creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
          std::to_string(first.skeleton.joint_count()) + " joints), " + std::to_string(fps) +
@@ -103,21 +103,19 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
   std::atomic<bool> stop{false};
   size_t next_source = 0;
   uint64_t done = 0;
-  tbb::task_arena arena(options.threads > 0 ? options.threads
-                                            : tbb::task_arena::automatic);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   const size_t max_in_flight = 2 * static_cast<size_t>(arena.max_concurrency());
   arena.execute([&] {
     tbb::parallel_pipeline(
         max_in_flight,
-        tbb::make_filter<void, size_t>(
-            tbb::filter_mode::serial_in_order,
-            [&](tbb::flow_control& control) -> size_t {
-              if (next_source >= sources.size() || stop.load()) {
-                control.stop();
-                return 0;
-              }
-              return next_source++;
-            }) &
+        tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order,
+                                       [&](tbb::flow_control& control) -> size_t {
+                                         if (next_source >= sources.size() || stop.load()) {
+                                           control.stop();
+                                           return 0;
+                                         }
+                                         return next_source++;
+                                       }) &
             tbb::make_filter<size_t, TakeInFlight>(
                 tbb::filter_mode::parallel,
                 [&](size_t index) {

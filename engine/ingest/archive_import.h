@@ -24,13 +24,13 @@ namespace motif {
 
 struct ArchiveImportOptions {
   ImportOptions import;
-  double fps = 0;             // archive rate when creating it; 0: the first take's rate
-  bool skip_bad = false;      // report failing takes and import the others
+  double fps = 0;         // archive rate when creating it; 0: the first take's rate
+  bool skip_bad = false;  // report failing takes and import the others
   uint32_t block_frames = 4096;
-  int threads = 0;            // 0: all cores
+  int threads = 0;  // 0: all cores
   FileSystem* file_system = PosixFileSystem();
-  std::function<void(const std::string&)> note;              // messages for the user
-  std::function<void(uint64_t, uint64_t)> progress;          // (takes done, takes total)
+  std::function<void(const std::string&)> note;      // messages for the user
+  std::function<void(uint64_t, uint64_t)> progress;  // (takes done, takes total)
 };
 
 struct ArchiveImportResult {

@@ -79,8 +79,8 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
   return index;
 }
 
-Result<LshIndex> LshIndex::FromTables(uint64_t frame_count,
-                                      std::vector<LshTableEntries> tables, bool position_codes) {
+Result<LshIndex> LshIndex::FromTables(uint64_t frame_count, std::vector<LshTableEntries> tables,
+                                      bool position_codes) {
   if (frame_count >= (uint64_t{1} << 32)) {
     return Status::InvalidArgument("lsh index: frame ids are 32-bit");
   }
@@ -93,12 +93,11 @@ Result<LshIndex> LshIndex::FromTables(uint64_t frame_count,
                                      std::to_string(frame_count) + " entries");
     }
     for (uint64_t idx = 1; idx < frame_count; ++idx) {
-      const bool ordered =
-          table.keys[idx - 1] != table.keys[idx]
-              ? table.keys[idx - 1] < table.keys[idx]
-              : (table.sort_values[idx - 1] != table.sort_values[idx]
-                     ? table.sort_values[idx - 1] < table.sort_values[idx]
-                     : table.frames[idx - 1] < table.frames[idx]);
+      const bool ordered = table.keys[idx - 1] != table.keys[idx]
+                               ? table.keys[idx - 1] < table.keys[idx]
+                               : (table.sort_values[idx - 1] != table.sort_values[idx]
+                                      ? table.sort_values[idx - 1] < table.sort_values[idx]
+                                      : table.frames[idx - 1] < table.frames[idx]);
       if (!ordered) return Status::InvalidArgument("lsh index: a saved table is not sorted");
     }
   }

@@ -502,8 +502,8 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
             const float limit = bound + kBoundSlack;
             uint32_t position = 0;
             float gap = 0;
-            const Step step = NextEntry(&cursor, probe.score, sort_values, sort_step,
-                                        limit * limit, &position, &gap);
+            const Step step = NextEntry(&cursor, probe.score, sort_values, sort_step, limit * limit,
+                                        &position, &gap);
             if (step == Step::kDone) break;
             ++local.entries_examined;
             if (step == Step::kSkipped) continue;
@@ -547,8 +547,7 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
     bool entries_spent = false;
     while (!entries_spent) {
       bool more = false;  // some bucket still has entries within reach
-      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !entries_spent;
-           ++probe_idx) {
+      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !entries_spent; ++probe_idx) {
         const Probe& probe = probes_[probe_idx];
         if (probe.score > limit_squared) {
           probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
@@ -617,7 +616,7 @@ void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previo
       }
       const float radius = bound + kBoundSlack;
       if (candidate.lower_squared > radius * radius) continue;  // cannot enter the column
-      if (!visited_.Insert(candidate.frame)) continue;            // seen in another table
+      if (!visited_.Insert(candidate.frame)) continue;          // seen in another table
       distance_.Prefetch(candidate.frame);
       batch[batch_size++] = candidate.frame;
       if (batch_size == kBatch) flush();
@@ -716,9 +715,9 @@ void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from
     for (int64_t candidate = low; candidate <= high; ++candidate) {
       while (held < out->size() && (*out)[held].frame < candidate) ++held;
       if (held < out->size() && (*out)[held].frame == candidate) continue;
-      const uint64_t gap = static_cast<uint64_t>(
-          candidate > static_cast<int64_t>(column) ? candidate - static_cast<int64_t>(column)
-                                                   : static_cast<int64_t>(column) - candidate);
+      const uint64_t gap = static_cast<uint64_t>(candidate > static_cast<int64_t>(column)
+                                                     ? candidate - static_cast<int64_t>(column)
+                                                     : static_cast<int64_t>(column) - candidate);
       if (gap < std::max(rules.exclusion_frames, 1u) &&
           rules.Excluded(column, static_cast<uint64_t>(candidate), clip_of_column,
                          features.ClipOf(static_cast<uint64_t>(candidate)))) {
@@ -753,7 +752,8 @@ void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from
     distance_.ToBatch(&sweep_candidates_[first], batch, bound, distances);
     for (uint32_t idx = 0; idx < batch; ++idx) {
       if (distances[idx] <= eps) ++within_eps;
-      if (distances[idx] <= bound) best_.push_back({sweep_candidates_[first + idx], distances[idx]});
+      if (distances[idx] <= bound)
+        best_.push_back({sweep_candidates_[first + idx], distances[idx]});
     }
   }
   work->evaluations += count;
@@ -904,18 +904,17 @@ Result<std::unique_ptr<LshSearch>> LshSearch::CreateWithIndex(const PoseFeatures
     return Status::InvalidArgument("lsh search: a given index needs the hash family's sizes");
   }
   if (index.frame_count() != features.frame_count() || index.table_count() != options.tables) {
-    return Status::InvalidArgument("lsh search: the given index holds " +
-                                   std::to_string(index.frame_count()) + " frames in " +
-                                   std::to_string(index.table_count()) + " tables, not " +
-                                   std::to_string(features.frame_count()) + " in " +
-                                   std::to_string(options.tables));
+    return Status::InvalidArgument(
+        "lsh search: the given index holds " + std::to_string(index.frame_count()) + " frames in " +
+        std::to_string(index.table_count()) + " tables, not " +
+        std::to_string(features.frame_count()) + " in " + std::to_string(options.tables));
   }
   return Make(features, std::move(rules), options, &index);
 }
 
 Result<std::unique_ptr<LshSearch>> LshSearch::Make(const PoseFeatures& features,
-                                                   NeighbourRules rules,
-                                                   const LshOptions& options, LshIndex* given) {
+                                                   NeighbourRules rules, const LshOptions& options,
+                                                   LshIndex* given) {
   auto invalid = [](const std::string& what) {
     return Status::InvalidArgument("lsh search: " + what);
   };
@@ -1016,8 +1015,8 @@ Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQue
   // and counted; without sweeps, it stops at the range's end): a column is the same whichever
   // range asked for it.
   const uint64_t chain = options_.chain_columns > 1 ? options_.chain_columns : 0;
-  const uint32_t reverse_chained_budget = std::max<uint32_t>(
-      1, options_.chained_max_candidates / options_.chain_probe_every);
+  const uint32_t reverse_chained_budget =
+      std::max<uint32_t>(1, options_.chained_max_candidates / options_.chain_probe_every);
   const uint64_t grain = chain ? chain : 64;
   const uint32_t sweeps = chain ? options_.chain_sweeps : 0;
   const uint64_t end_column = first_column + count;
@@ -1037,8 +1036,8 @@ Status LshSearch::Search(uint64_t first_column, uint64_t count, const ReverseQue
           for (uint64_t task = range.begin(); task != range.end(); ++task) {
             const uint64_t task_first = (first_task + task) * grain;
             const uint64_t begin = chain ? task_first : std::max(task_first, first_column);
-            const uint64_t end = std::min(task_first + grain,
-                                          sweeps ? features_.frame_count() : end_column);
+            const uint64_t end =
+                std::min(task_first + grain, sweeps ? features_.frame_count() : end_column);
             const size_t size = end - begin;
             chain_columns.resize(std::max(chain_columns.size(), size));
             work.assign(size, ColumnWork{});

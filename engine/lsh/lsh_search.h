@@ -130,9 +130,8 @@ class LshSearch final : public NeighbourSearch {
   LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
             HashFamily family, LshIndex index, float extension_radius);
   // Create's work; with `index` null the index is built.
-  static Result<std::unique_ptr<LshSearch>> Make(const PoseFeatures& features,
-                                                 NeighbourRules rules, const LshOptions& options,
-                                                 LshIndex* index);
+  static Result<std::unique_ptr<LshSearch>> Make(const PoseFeatures& features, NeighbourRules rules,
+                                                 const LshOptions& options, LshIndex* index);
   class Query;
   // Every search; `reverse_query` and `reverse` null for the columns alone.
   Status Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,

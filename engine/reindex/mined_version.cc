@@ -39,15 +39,14 @@ Result<MinedVersion> OpenOnce(const std::string& out_dir) {
     return Status::Corruption(trellis_path + ": not the trellis the manifest names");
   }
   MOTIF_ASSIGN_OR_RETURN(std::string paths_bytes, ReadChecked(out_dir, manifest.paths));
-  MOTIF_ASSIGN_OR_RETURN(version.paths,
-                         PathsFileReader::FromBytes(paths_bytes, InOutDir(out_dir, manifest.paths.path)));
+  MOTIF_ASSIGN_OR_RETURN(version.paths, PathsFileReader::FromBytes(
+                                            paths_bytes, InOutDir(out_dir, manifest.paths.path)));
   MOTIF_ASSIGN_OR_RETURN(std::string motifs_text, ReadChecked(out_dir, manifest.motifs));
   MOTIF_ASSIGN_OR_RETURN(version.motifs,
                          ParseMotifsJson(motifs_text, InOutDir(out_dir, manifest.motifs.path)));
-  MOTIF_ASSIGN_OR_RETURN(version.archive,
-                         FrameFileReader::OpenCommit(manifest.archive.path,
-                                                     manifest.archive.generation,
-                                                     manifest.archive.committed_bytes));
+  MOTIF_ASSIGN_OR_RETURN(version.archive, FrameFileReader::OpenCommit(
+                                              manifest.archive.path, manifest.archive.generation,
+                                              manifest.archive.committed_bytes));
   if (version.archive->summary().identity != manifest.archive.identity) {
     return Status::Corruption(manifest.archive.path + ": version " +
                               std::to_string(manifest.archive.generation) +
@@ -76,7 +75,8 @@ Status VerifyMinedVersion(const std::string& out_dir, std::vector<std::string>* 
   const TrellisParams& params = version.trellis->params();
   if (params.archive_identity != manifest.archive.identity ||
       params.frame_count != manifest.archive.frames) {
-    return Status::Corruption(version.trellis->path() + ": built over another archive version "
+    return Status::Corruption(version.trellis->path() +
+                              ": built over another archive version "
                               "than the manifest names");
   }
   if (version.paths->params().trellis_identity != version.trellis->identity()) {
@@ -97,8 +97,9 @@ Status VerifyMinedVersion(const std::string& out_dir, std::vector<std::string>* 
       Checksum64(top_text.data(), top_text.size()) != manifest.motifs.checksum) {
     MOTIF_RETURN_IF_ERROR(ParseMotifsJson(top_text, top).status());
     if (notes) {
-      notes->push_back(top + " is an earlier version's (a run ended between the switch and its "
-                             "publication; the next run replaces it)");
+      notes->push_back(top +
+                       " is an earlier version's (a run ended between the switch and its "
+                       "publication; the next run replaces it)");
     }
   }
   return Status::Ok();

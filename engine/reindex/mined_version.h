@@ -25,7 +25,7 @@ namespace motif {
 struct MinedVersion {
   std::string out_dir;
   ReindexManifest manifest;
-  std::unique_ptr<FrameFileReader> archive;   // the version mined (manifest.archive)
+  std::unique_ptr<FrameFileReader> archive;  // the version mined (manifest.archive)
   std::unique_ptr<TrellisFileReader> trellis;
   std::unique_ptr<PathsFileReader> paths;
   MotifsDocument motifs;

@@ -172,11 +172,9 @@ bool SameLshFamily(const LshOptions& a, const LshOptions& b) {
          a.max_entries == b.max_entries && a.first_round_scan == b.first_round_scan &&
          a.extension_stages == b.extension_stages &&
          a.sparse_radius_factor == b.sparse_radius_factor && a.chain_columns == b.chain_columns &&
-         a.chain_advance == b.chain_advance &&
-         a.chain_probe_every == b.chain_probe_every &&
-         a.chained_max_candidates == b.chained_max_candidates &&
-         a.chain_sweeps == b.chain_sweeps && a.seed == b.seed &&
-         a.shard_frames == b.shard_frames;
+         a.chain_advance == b.chain_advance && a.chain_probe_every == b.chain_probe_every &&
+         a.chained_max_candidates == b.chained_max_candidates && a.chain_sweeps == b.chain_sweeps &&
+         a.seed == b.seed && a.shard_frames == b.shard_frames;
 }
 
 bool MiningParams::operator==(const MiningParams& other) const {
@@ -186,9 +184,8 @@ bool MiningParams::operator==(const MiningParams& other) const {
          (exact || SameLshFamily(lsh, other.lsh)) && seed == other.seed &&
          weights_path == other.weights_path && weights_hash == other.weights_hash &&
          block_columns == other.block_columns && branch == other.branch &&
-         min_length == other.min_length && groups == other.groups &&
-         max_ncut == other.max_ncut && min_similarity == other.min_similarity &&
-         max_length_ratio == other.max_length_ratio;
+         min_length == other.min_length && groups == other.groups && max_ncut == other.max_ncut &&
+         min_similarity == other.min_similarity && max_length_ratio == other.max_length_ratio;
 }
 
 std::string VersionDirName(uint64_t version) {
@@ -203,52 +200,51 @@ std::string ManifestPath(const std::string& out_dir) {
 
 std::string ManifestText(const ReindexManifest& manifest) {
   const MiningParams& params = manifest.params;
-  json document = {
-      {"format", kFormatName},
-      {"format_version", kFormatVersion},
-      {"version", manifest.version},
-      {"dir", manifest.dir},
-      {"written", manifest.written},
-      {"archive",
-       {{"path", manifest.archive.path},
-        {"generation", manifest.archive.generation},
-        {"committed_bytes", manifest.archive.committed_bytes},
-        {"identity", Hex64(manifest.archive.identity)},
-        {"frames", manifest.archive.frames},
-        {"clips", manifest.archive.clips}}},
-      {"params",
-       {{"eps", params.eps},
-        {"eps_estimated", params.eps_estimated},
-        {"mu", params.mu},
-        {"sigma", params.sigma},
-        {"kmax", params.k_max},
-        {"exclusion", params.exclusion_frames},
-        {"search", params.exact ? "exact" : "lsh"},
-        {"lsh", LshJson(params.lsh)},
-        {"seed", params.seed},
-        {"weights", params.weights_path},
-        {"weights_hash", Hex64(params.weights_hash)},
-        {"block_columns", params.block_columns},
-        {"branch", params.branch},
-        {"min_length", params.min_length},
-        {"groups", params.groups},
-        {"max_ncut", params.max_ncut},
-        {"min_similarity", params.min_similarity},
-        {"max_length_ratio", params.max_length_ratio}}},
-      {"files",
-       {{"trellis", FileJson(manifest.trellis)},
-        {"paths", FileJson(manifest.paths)},
-        {"motifs", FileJson(manifest.motifs)},
-        {"report", FileJson(manifest.report)}}},
-      {"build",
-       {{"kind", manifest.build.kind},
-        {"previous_version", manifest.build.previous_version},
-        {"new_takes", manifest.build.new_takes},
-        {"new_frames", manifest.build.new_frames},
-        {"changed_columns", manifest.build.changed_columns},
-        {"copied_blocks", manifest.build.copied_blocks},
-        {"rewritten_blocks", manifest.build.rewritten_blocks},
-        {"seconds", manifest.build.seconds}}}};
+  json document = {{"format", kFormatName},
+                   {"format_version", kFormatVersion},
+                   {"version", manifest.version},
+                   {"dir", manifest.dir},
+                   {"written", manifest.written},
+                   {"archive",
+                    {{"path", manifest.archive.path},
+                     {"generation", manifest.archive.generation},
+                     {"committed_bytes", manifest.archive.committed_bytes},
+                     {"identity", Hex64(manifest.archive.identity)},
+                     {"frames", manifest.archive.frames},
+                     {"clips", manifest.archive.clips}}},
+                   {"params",
+                    {{"eps", params.eps},
+                     {"eps_estimated", params.eps_estimated},
+                     {"mu", params.mu},
+                     {"sigma", params.sigma},
+                     {"kmax", params.k_max},
+                     {"exclusion", params.exclusion_frames},
+                     {"search", params.exact ? "exact" : "lsh"},
+                     {"lsh", LshJson(params.lsh)},
+                     {"seed", params.seed},
+                     {"weights", params.weights_path},
+                     {"weights_hash", Hex64(params.weights_hash)},
+                     {"block_columns", params.block_columns},
+                     {"branch", params.branch},
+                     {"min_length", params.min_length},
+                     {"groups", params.groups},
+                     {"max_ncut", params.max_ncut},
+                     {"min_similarity", params.min_similarity},
+                     {"max_length_ratio", params.max_length_ratio}}},
+                   {"files",
+                    {{"trellis", FileJson(manifest.trellis)},
+                     {"paths", FileJson(manifest.paths)},
+                     {"motifs", FileJson(manifest.motifs)},
+                     {"report", FileJson(manifest.report)}}},
+                   {"build",
+                    {{"kind", manifest.build.kind},
+                     {"previous_version", manifest.build.previous_version},
+                     {"new_takes", manifest.build.new_takes},
+                     {"new_frames", manifest.build.new_frames},
+                     {"changed_columns", manifest.build.changed_columns},
+                     {"copied_blocks", manifest.build.copied_blocks},
+                     {"rewritten_blocks", manifest.build.rewritten_blocks},
+                     {"seconds", manifest.build.seconds}}}};
   return document.dump(2) + "\n";
 }
 

@@ -21,10 +21,10 @@ namespace motif {
 
 // The archive version a result was mined from (FrameFileSummary of a reader of it).
 struct ArchiveVersion {
-  std::string path;            // absolute
-  uint64_t generation = 0;     // the commit
+  std::string path;         // absolute
+  uint64_t generation = 0;  // the commit
   uint64_t committed_bytes = 0;
-  uint64_t identity = 0;       // the metadata checksum
+  uint64_t identity = 0;  // the metadata checksum
   uint64_t frames = 0;
   uint64_t clips = 0;
   bool operator==(const ArchiveVersion&) const = default;
@@ -32,10 +32,10 @@ struct ArchiveVersion {
 
 // One output file of a version, relative to OUTDIR, with what identifies its content.
 struct VersionFile {
-  std::string path;        // e.g. "v000003/motifs.json"; empty: not written
+  std::string path;  // e.g. "v000003/motifs.json"; empty: not written
   uint64_t bytes = 0;
-  uint64_t checksum = 0;   // XXH3-64 of the whole file (motifs.json, paths.mpa, report.html), or
-                           // the trellis file's identity (its footer checksum)
+  uint64_t checksum = 0;  // XXH3-64 of the whole file (motifs.json, paths.mpa, report.html), or
+                          // the trellis file's identity (its footer checksum)
   bool operator==(const VersionFile&) const = default;
 };
 
@@ -48,15 +48,15 @@ struct MiningParams {
   float sigma = 0;
   uint32_t k_max = 0;
   uint32_t exclusion_frames = 0;
-  bool exact = false;          // the search: exact, or LSH with the family below
-  LshOptions lsh;              // resolved (hashes_per_table and bucket_width as drawn)
+  bool exact = false;  // the search: exact, or LSH with the family below
+  LshOptions lsh;      // resolved (hashes_per_table and bucket_width as drawn)
   uint64_t seed = 0;
-  std::string weights_path;    // empty: the skeleton's defaults
+  std::string weights_path;  // empty: the skeleton's defaults
   uint64_t weights_hash = 0;
   uint32_t block_columns = 0;
   uint32_t branch = 0;
-  uint64_t min_length = 0;     // lambda in frames
-  uint32_t groups = 0;         // 0: auto
+  uint64_t min_length = 0;  // lambda in frames
+  uint32_t groups = 0;      // 0: auto
   double max_ncut = 0;
   double min_similarity = 0;
   double max_length_ratio = 0;
@@ -80,15 +80,15 @@ struct BuildRecord {
 };
 
 struct ReindexManifest {
-  uint64_t version = 0;          // 1 for the first build, then +1 per switch
-  std::string dir;               // the version's folder, relative to OUTDIR: "v000003"
-  std::string written;           // UTC, ISO 8601
+  uint64_t version = 0;  // 1 for the first build, then +1 per switch
+  std::string dir;       // the version's folder, relative to OUTDIR: "v000003"
+  std::string written;   // UTC, ISO 8601
   ArchiveVersion archive;
   MiningParams params;
   VersionFile trellis;
   VersionFile paths;
   VersionFile motifs;
-  VersionFile report;            // path empty without a report
+  VersionFile report;  // path empty without a report
   BuildRecord build;
 };
 

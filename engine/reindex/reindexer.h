@@ -43,27 +43,27 @@ struct ReindexOptions {
   std::string archive_path;
   std::string watch_dir;
   std::string out_dir;
-  std::optional<float> eps;              // 0: the default rule of mine (joint angle 12 degrees)
-  std::optional<uint32_t> k_max;         // default 256
-  std::optional<uint32_t> exclusion;     // default 0: half the minimum length
+  std::optional<float> eps;                 // 0: the default rule of mine (joint angle 12 degrees)
+  std::optional<uint32_t> k_max;            // default 256
+  std::optional<uint32_t> exclusion;        // default 0: half the minimum length
   std::optional<TrellisSearchMode> search;  // default auto at the first run
-  std::optional<uint32_t> lsh_tables;    // LSH family overrides
+  std::optional<uint32_t> lsh_tables;       // LSH family overrides
   std::optional<uint32_t> lsh_hashes;
   std::optional<float> lsh_width;
-  std::optional<uint64_t> seed;          // default 1
+  std::optional<uint64_t> seed;  // default 1
   std::optional<std::string> weights_path;
-  std::optional<uint32_t> branch;        // default 5
+  std::optional<uint32_t> branch;  // default 5
   // lambda: frames if min_length_frames > 0, else seconds (default 0.5 s).
   std::optional<uint64_t> min_length_frames;
   std::optional<double> min_length_seconds;
-  std::optional<uint32_t> groups;        // 0: auto
+  std::optional<uint32_t> groups;  // 0: auto
   std::optional<double> max_ncut;
   std::optional<double> min_similarity;
   std::optional<double> max_length_ratio;
-  bool skip_bad = false;                 // import the good takes, report the bad ones
-  double min_age_seconds = 60;           // files modified more recently wait for the next run
+  bool skip_bad = false;        // import the good takes, report the bad ones
+  double min_age_seconds = 60;  // files modified more recently wait for the next run
   ImportOptions import;
-  bool report = true;                    // write report.html
+  bool report = true;  // write report.html
   int threads = 0;
   FileSystem* file_system = PosixFileSystem();  // manifest, trellis, archive writes
   // Progress: (stage, done, total, unit); a new stage name begins a stage.
@@ -74,8 +74,8 @@ struct ReindexOptions {
 };
 
 struct ReindexReport {
-  bool up_to_date = false;       // nothing new: no version made
-  ReindexManifest manifest;      // the current one after the run
+  bool up_to_date = false;   // nothing new: no version made
+  ReindexManifest manifest;  // the current one after the run
   uint64_t takes_scanned = 0;
   uint64_t takes_known = 0;
   uint64_t takes_imported = 0;

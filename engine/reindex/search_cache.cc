@@ -157,8 +157,8 @@ Result<SearchCache> ReadSearchCache(const std::string& path) {
   }
   const bool codes = (flags & kFlagCodes) != 0;
   const bool thresholds = (flags & kFlagThresholds) != 0;
-  if (frames >= (uint64_t{1} << 32) || joints == 0 || joints > 1024 || tables > 64 ||
-      clips == 0 || clips > frames + 1 || family_bytes > (1u << 16)) {
+  if (frames >= (uint64_t{1} << 32) || joints == 0 || joints > 1024 || tables > 64 || clips == 0 ||
+      clips > frames + 1 || family_bytes > (1u << 16)) {
     return corrupt("has impossible sizes");
   }
   const uint64_t header_bytes = kHeaderFixedBytes + family_bytes;
@@ -171,10 +171,9 @@ Result<SearchCache> ReadSearchCache(const std::string& path) {
   std::vector<float> weights = sections.Array<float>(joints);
   std::vector<uint32_t> joint_ids = sections.Array<uint32_t>(joints);
   std::vector<uint64_t> clip_starts = sections.Array<uint64_t>(clips);
-  Result<PoseFeatures> features =
-      PoseFeatures::FromParts(frames, std::move(weights), std::move(joint_ids),
-                              std::move(clip_starts),
-                              reinterpret_cast<const int16_t*>(sections.Here()));  // copied bytewise
+  Result<PoseFeatures> features = PoseFeatures::FromParts(
+      frames, std::move(weights), std::move(joint_ids), std::move(clip_starts),
+      reinterpret_cast<const int16_t*>(sections.Here()));  // copied bytewise
   if (!features.ok()) return corrupt(features.status().message());
   cache.features = std::move(features.value());
   sections.Skip(frames * 4 * joints * sizeof(int16_t));

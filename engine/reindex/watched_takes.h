@@ -23,11 +23,11 @@
 namespace motif {
 
 struct WatchScan {
-  std::vector<TakeSource> new_takes;      // absolute paths, in path order
+  std::vector<TakeSource> new_takes;  // absolute paths, in path order
   uint64_t known_takes = 0;
-  std::vector<std::string> changed;       // one message per changed file
-  std::vector<std::string> settling;      // files left for the next run
-  uint64_t scanned_bytes = 0;             // read to hash
+  std::vector<std::string> changed;   // one message per changed file
+  std::vector<std::string> settling;  // files left for the next run
+  uint64_t scanned_bytes = 0;         // read to hash
 };
 
 // The absolute, normalised form of `path` under which the importer stores a watched take.

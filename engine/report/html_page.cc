@@ -38,12 +38,23 @@ std::string HtmlEscape(const std::string& text) {
   escaped.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&#39;"; break;
-      default: escaped += c;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&#39;";
+        break;
+      default:
+        escaped += c;
     }
   }
   return escaped;
@@ -52,8 +63,8 @@ std::string HtmlEscape(const std::string& text) {
 std::string HtmlPageStart(const std::string& title, const std::string& extra_css) {
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
          "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">\n"
-         "<title>" + HtmlEscape(title) + "</title>\n<style>" + kStyle + extra_css +
-         "</style></head><body>\n";
+         "<title>" +
+         HtmlEscape(title) + "</title>\n<style>" + kStyle + extra_css + "</style></head><body>\n";
 }
 
 std::string HtmlPageEnd() { return "</body></html>\n"; }

@@ -16,8 +16,7 @@ constexpr uint64_t kChunkFrames = 4096;
 
 }  // namespace
 
-KeyframeFigures::KeyframeFigures(const FrameFileReader& reader, FigureView view,
-                                 uint32_t keyframes)
+KeyframeFigures::KeyframeFigures(const FrameFileReader& reader, FigureView view, uint32_t keyframes)
     : reader_(reader),
       keyframes_(std::max<uint32_t>(1, keyframes)),
       layout_(MakeStickFigureLayout(reader.skeleton())),
@@ -28,8 +27,8 @@ KeyframeFigures::KeyframeFigures(const FrameFileReader& reader, FigureView view,
 }
 
 Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const ClipInfo& clip,
-                                                                      uint64_t start,
-                                                                      uint64_t end) {
+                                                                       uint64_t start,
+                                                                       uint64_t end) {
   const uint32_t keyframes = keyframes_;
   const uint64_t global_start = clip.first_frame + start;
   const uint64_t global_end = clip.first_frame + end;
@@ -67,7 +66,8 @@ Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const Cli
 }
 
 Result<std::string> KeyframeFigures::Svg(const ClipInfo& clip, uint64_t start, uint64_t end) {
-  MOTIF_ASSIGN_OR_RETURN(std::vector<std::vector<FigurePoint>> keyframes, Project(clip, start, end));
+  MOTIF_ASSIGN_OR_RETURN(std::vector<std::vector<FigurePoint>> keyframes,
+                         Project(clip, start, end));
   std::string svg;
   for (const std::vector<FigurePoint>& points : keyframes) {
     svg += StickFigureSvg(layout_, points, projection_.width_px, projection_.height_px);

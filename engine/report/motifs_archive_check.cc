@@ -14,12 +14,11 @@ const ClipInfo* FindClip(const FrameFileReader& reader, const std::string& name)
 
 Status CheckMotifsMatchArchive(const MotifsDocument& document, const std::string& motifs_path,
                                const FrameFileReader& reader) {
-  const std::string other = motifs_path + " was mined from another archive than " +
-                            reader.path() + " (or another version of it): ";
+  const std::string other = motifs_path + " was mined from another archive than " + reader.path() +
+                            " (or another version of it): ";
   if (document.frames != reader.frame_count()) {
     return Status::InvalidArgument(other + "it has " + std::to_string(document.frames) +
-                                   " frames, the archive " +
-                                   std::to_string(reader.frame_count()));
+                                   " frames, the archive " + std::to_string(reader.frame_count()));
   }
   // Archives can hold many thousands of clips: look names up in a map, not a scan per instance.
   std::unordered_map<std::string, const ClipInfo*> clips_by_name;

@@ -47,8 +47,6 @@ struct FigureJob {
   uint64_t end = 0;
 };
 
-
-
 // A click on a timeline instance goes to its motif. The lazy motifs' figures are drawn from the
 // JSON block (format: EncodeFigurePoints) when they come near the viewport; the SVG it writes is
 // the same as StickFigureSvg's.
@@ -74,8 +72,8 @@ var all=document.getElementById('draw-all');if(all)all.onclick=function(){boxes.
 std::string ViewName(FigureView view) { return view == FigureView::kSide ? "side" : "front"; }
 
 void AppendOverview(const MotifsDocument& document, const FrameFileReader& reader,
-                    const ReportInfo& info, const ReportOptions& options,
-                    uint64_t instance_count, uint64_t covered_frames, std::string* html) {
+                    const ReportInfo& info, const ReportOptions& options, uint64_t instance_count,
+                    uint64_t covered_frames, std::string* html) {
   const double fps = reader.fps();
   const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
   std::string& out = *html;
@@ -90,16 +88,16 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
                     " clips, skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
                     std::to_string(reader.skeleton().joint_count()) + " joints)");
   const MotifsJsonParams& params = document.params;
-  row("parameters",
-      "&epsilon; " + HtmlNumber("%.4g", params.eps) + ", K<sub>max</sub> " +
-          std::to_string(params.kmax) + ", branching B " + std::to_string(params.branch) +
-          ", minimum length &lambda; " + HtmlCommas(params.min_length) + " frames (" +
-          HtmlSeconds(params.min_length, fps) + "), groups " +
-          (params.groups ? std::to_string(params.groups) : std::string("auto")) + ", seed " +
-          std::to_string(params.seed) +
-          (info.parameters_text.empty()
-               ? std::string()
-               : "<br><code>" + HtmlEscape(info.parameters_text) + "</code>"));
+  row("parameters", "&epsilon; " + HtmlNumber("%.4g", params.eps) + ", K<sub>max</sub> " +
+                        std::to_string(params.kmax) + ", branching B " +
+                        std::to_string(params.branch) + ", minimum length &lambda; " +
+                        HtmlCommas(params.min_length) + " frames (" +
+                        HtmlSeconds(params.min_length, fps) + "), groups " +
+                        (params.groups ? std::to_string(params.groups) : std::string("auto")) +
+                        ", seed " + std::to_string(params.seed) +
+                        (info.parameters_text.empty()
+                             ? std::string()
+                             : "<br><code>" + HtmlEscape(info.parameters_text) + "</code>"));
   if (!info.timings.empty()) {
     std::string table = "<table class=\"t\">";
     double total = 0;
@@ -112,24 +110,24 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
     row("timings", table + "</table>");
   }
   if (info.peak_memory_bytes > 0) row("peak memory", HtmlBytes(info.peak_memory_bytes));
-  row("motifs", HtmlCommas(document.motifs.size()) + " motifs, " + HtmlCommas(instance_count) +
-                    " instances");
+  row("motifs",
+      HtmlCommas(document.motifs.size()) + " motifs, " + HtmlCommas(instance_count) + " instances");
   row("coverage",
       HtmlCommas(covered_frames) + " frames in some instance (" +
-          HtmlNumber("%.1f%%", reader.frame_count()
-                               ? 100.0 * static_cast<double>(covered_frames) / reader.frame_count()
-                               : 0.0) +
+          HtmlNumber("%.1f%%", reader.frame_count() ? 100.0 * static_cast<double>(covered_frames) /
+                                                          reader.frame_count()
+                                                    : 0.0) +
           " of the archive)");
   if (info.planted_score) {
     const PlantedMotifScore& score = *info.planted_score;
     row("planted motifs",
-        (info.truth_path.empty() ? std::string() : "<code>" + HtmlEscape(info.truth_path) +
-                                                        "</code>: ") +
+        (info.truth_path.empty() ? std::string()
+                                 : "<code>" + HtmlEscape(info.truth_path) + "</code>: ") +
             std::to_string(score.planted_motifs) + " motifs, " + HtmlCommas(score.planted) +
             " instances; recall " + HtmlNumber("%.3f", score.recall) + " (" +
-            HtmlCommas(score.planted_hit) + " hit), precision " + HtmlNumber("%.3f", score.precision) +
-            " (" + HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
-            " found instances), adjusted Rand index " +
+            HtmlCommas(score.planted_hit) + " hit), precision " +
+            HtmlNumber("%.3f", score.precision) + " (" + HtmlCommas(score.found_hitting) + " of " +
+            HtmlCommas(score.found) + " found instances), adjusted Rand index " +
             HtmlNumber("%.3f", score.adjusted_rand_index));
   }
   row("figures", ViewName(options.view) + " view, heading removed; " +
@@ -137,9 +135,10 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
                      " keyframes per instance, evenly spaced from its first frame to its last; "
                      "up to " +
                      std::to_string(options.instances_per_motif) + " instances per motif");
-  out += "</table>\n<p class=\"note\">Frame ranges are 0-based within their clip, the end "
-         "excluded (as in motifs.json). Write a motif's instances as BVH files with "
-         "<code>motifmine export-motif DIR --motif ID --out FOLDER</code>.</p></section>\n";
+  out +=
+      "</table>\n<p class=\"note\">Frame ranges are 0-based within their clip, the end "
+      "excluded (as in motifs.json). Write a motif's instances as BVH files with "
+      "<code>motifmine export-motif DIR --motif ID --out FOLDER</code>.</p></section>\n";
 }
 
 void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reader,
@@ -159,9 +158,10 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
   uint64_t longest = 1;
   for (const ClipInfo& clip : reader.clips()) longest = std::max(longest, clip.frame_count);
   std::string& out = *html;
-  out += "<section id=\"timeline\"><h2>Timeline</h2><p class=\"note\">One bar per clip that "
-         "holds instances, its length to scale; each rectangle is an instance, coloured by "
-         "motif. Hover for its frames, click to go to its motif.</p>\n";
+  out +=
+      "<section id=\"timeline\"><h2>Timeline</h2><p class=\"note\">One bar per clip that "
+      "holds instances, its length to scale; each rectangle is an instance, coloured by "
+      "motif. Hover for its frames, click to go to its motif.</p>\n";
   std::vector<const ClipInfo*> empty_clips;
   for (const ClipInfo& clip : reader.clips()) {
     auto found = marks.find(clip.name);
@@ -186,8 +186,8 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
       // keep the thousands of rectangles of a large archive short.
       out += "<rect class=\"c" + id + "\" x=\"" + std::to_string(mark.start) + "\" width=\"" +
              std::to_string(mark.end - mark.start) + "\" height=\"1\"><title>motif " + id +
-             ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) +
-             " (" + HtmlSeconds(mark.end - mark.start, fps) + ")</title></rect>";
+             ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) + " (" +
+             HtmlSeconds(mark.end - mark.start, fps) + ")</title></rect>";
     }
     out += "</svg></span></div>\n";
   }
@@ -227,8 +227,8 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     chosen[motif_idx] = ChooseInstances(motif, options.instances_per_motif);
     for (size_t slot = 0; slot < chosen[motif_idx].size(); ++slot) {
       const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
-      jobs.push_back({motif_idx, slot, clips_by_name.at(instance.clip), instance.start,
-                      instance.end});
+      jobs.push_back(
+          {motif_idx, slot, clips_by_name.at(instance.clip), instance.start, instance.end});
     }
   }
   std::sort(ranges.begin(), ranges.end(),
@@ -274,8 +274,9 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     motif_css += ".c" + std::to_string(motif.id) + "{color:" + HtmlColour(motif.id) + "}\n";
   }
   html += HtmlPageStart("motifmine report: " + archive, motif_css);
-  html += "<h1>motifmine report</h1>\n<nav><a href=\"#overview\">"
-          "overview</a><a href=\"#timeline\">timeline</a><a href=\"#motifs\">motifs</a></nav>\n";
+  html +=
+      "<h1>motifmine report</h1>\n<nav><a href=\"#overview\">"
+      "overview</a><a href=\"#timeline\">timeline</a><a href=\"#motifs\">motifs</a></nav>\n";
   AppendOverview(document, reader, info, options, instance_count, covered_frames, &html);
   AppendTimeline(document, reader, &html);
 
@@ -306,9 +307,9 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     const size_t count = motif.instances.size();
     const uint64_t mean = count ? (total_frames + count / 2) / count : 0;
     html += "<section class=\"motif\" id=\"m" + id + "\"><h3><span class=\"sw c" + id +
-            "\"></span>motif " + id + "</h3><p class=\"meta\">" +
-            HtmlCommas(count) + (count == 1 ? " instance" : " instances") + " &middot; " +
-            HtmlCommas(mean) + " frames (" + HtmlSeconds(mean, fps) + ") on average";
+            "\"></span>motif " + id + "</h3><p class=\"meta\">" + HtmlCommas(count) +
+            (count == 1 ? " instance" : " instances") + " &middot; " + HtmlCommas(mean) +
+            " frames (" + HtmlSeconds(mean, fps) + ") on average";
     if (count > 1 && shortest != longest) {
       html += ", " + HtmlCommas(shortest) + "\u2013" + HtmlCommas(longest);
     }

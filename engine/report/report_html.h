@@ -35,21 +35,21 @@ struct ReportStageTiming {
 
 // Overview data the motifs document does not hold. Everything is optional.
 struct ReportInfo {
-  std::string archive_path;                 // shown; empty: the document's "archive"
-  std::string parameters_text;              // free text shown under the parameters (a command
-                                            // line, extra options), escaped
-  std::vector<ReportStageTiming> timings;   // in pipeline order
-  uint64_t peak_memory_bytes = 0;           // 0: not recorded
+  std::string archive_path;                // shown; empty: the document's "archive"
+  std::string parameters_text;             // free text shown under the parameters (a command
+                                           // line, extra options), escaped
+  std::vector<ReportStageTiming> timings;  // in pipeline order
+  uint64_t peak_memory_bytes = 0;          // 0: not recorded
   std::optional<PlantedMotifScore> planted_score;  // against a synthetic archive's truth
-  std::string truth_path;                   // where the planted motifs came from
+  std::string truth_path;                          // where the planted motifs came from
 };
 
 struct ReportOptions {
   FigureView view = FigureView::kSide;
-  uint32_t keyframes = 5;             // figures per instance, evenly spaced from first to last
-  uint32_t instances_per_motif = 4;   // instances drawn per motif (other clips preferred)
-  uint32_t eager_motifs = 50;         // motifs drawn as SVG in the file; the rest by the script
-  uint32_t clip_names_per_motif = 12; // clip names listed per motif before "+N more"
+  uint32_t keyframes = 5;              // figures per instance, evenly spaced from first to last
+  uint32_t instances_per_motif = 4;    // instances drawn per motif (other clips preferred)
+  uint32_t eager_motifs = 50;          // motifs drawn as SVG in the file; the rest by the script
+  uint32_t clip_names_per_motif = 12;  // clip names listed per motif before "+N more"
 };
 
 // The report's HTML. InvalidArgument if the document does not match the archive

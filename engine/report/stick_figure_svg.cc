@@ -10,8 +10,7 @@ namespace motif {
 
 namespace {
 
-constexpr char kBase64Url[] =
-    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
+constexpr char kBase64Url[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
 
 // Tenths of a pixel: projected coordinates are stored exactly as these integers.
 long ToTenths(double value) {
@@ -72,7 +71,8 @@ StickFigureLayout MakeStickFigureLayout(const Skeleton& skeleton, double min_bon
   for (size_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
     const Joint& joint = skeleton.joint(joint_idx);
     if (!joint.has_end_site) continue;
-    if (Length(joint.end_site) >= min_length) children[drawn_as[joint_idx]].push_back(end_site_point);
+    if (Length(joint.end_site) >= min_length)
+      children[drawn_as[joint_idx]].push_back(end_site_point);
     ++end_site_point;
   }
   // Each chain follows first children down to a leaf; the other children of every point it
@@ -129,8 +129,7 @@ std::vector<FigurePoint> ProjectPose(const std::vector<Eigen::Vector3d>& points,
     local = unturn * local;
     const double across = projection.view == FigureView::kSide ? local.z() : local.x();
     const double x = projection.width_px / 2 + projection.pixels_per_unit * across;
-    const double y =
-        projection.height_px - projection.margin_px - projection.pixels_per_unit * up;
+    const double y = projection.height_px - projection.margin_px - projection.pixels_per_unit * up;
     projected.push_back({ToTenths(x) / 10.0, ToTenths(y) / 10.0});
   }
   return projected;

@@ -49,13 +49,13 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
                              HtmlCommas(reader.clips().size()) + " clips)");
   html += Row("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
                            (info.query_words == 1 ? " word" : " words"));
-  html += Row("search", result.whole_take
-                            ? "whole takes: the EMD between take signatures over " +
-                                  std::to_string(info.motifs) + " motifs"
-                            : "a window of " + HtmlCommas(info.query_words) +
-                                  " words slid along every take, one word at a time (" +
-                                  HtmlCommas(result.windows) + " windows); EMD over " +
-                                  std::to_string(info.motifs) + " motifs");
+  html +=
+      Row("search", result.whole_take ? "whole takes: the EMD between take signatures over " +
+                                            std::to_string(info.motifs) + " motifs"
+                                      : "a window of " + HtmlCommas(info.query_words) +
+                                            " words slid along every take, one word at a time (" +
+                                            HtmlCommas(result.windows) + " windows); EMD over " +
+                                            std::to_string(info.motifs) + " motifs");
   html += Row("time", HtmlNumber("%.2f s", info.seconds));
   html += "</table>\n";
   if (info.query_in_archive) {
@@ -65,10 +65,11 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
             std::to_string(info.query_start) + "\u2013" + std::to_string(info.query_end) +
             "</div><div class=\"figs\">" + svg + "</div></div>\n";
   }
-  html += "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "
-          "one per take (its best window). The strip under each match shows the EMD of every "
-          "window along its take, darker where closer; the box marks the match. Frames are "
-          "0-based within the clip, the end excluded.</p>\n";
+  html +=
+      "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "
+      "one per take (its best window). The strip under each match shows the EMD of every "
+      "window along its take, darker where closer; the box marks the match. Frames are "
+      "0-based within the clip, the end excluded.</p>\n";
   if (result.matches.empty()) html += "<p>No take holds enough words for the query.</p>\n";
   double lo = std::numeric_limits<double>::infinity();
   double hi = 0;
@@ -83,10 +84,9 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
     const WindowMatch& match = result.matches[rank];
     const ClipInfo& clip = reader.clips()[match.clip];
     MOTIF_ASSIGN_OR_RETURN(std::string svg, figures.Svg(clip, match.start_frame, match.end_frame));
-    html += "<div class=\"match\"><h3>" + std::to_string(rank + 1) + ". " +
-            HtmlEscape(clip.name) + " <span class=\"note\">frames " +
-            std::to_string(match.start_frame) + "\u2013" + std::to_string(match.end_frame) +
-            " (" + HtmlSeconds(match.start_frame, fps) + " to " +
+    html += "<div class=\"match\"><h3>" + std::to_string(rank + 1) + ". " + HtmlEscape(clip.name) +
+            " <span class=\"note\">frames " + std::to_string(match.start_frame) + "\u2013" +
+            std::to_string(match.end_frame) + " (" + HtmlSeconds(match.start_frame, fps) + " to " +
             HtmlSeconds(match.end_frame, fps) + "), EMD " + HtmlNumber("%.4f", match.distance) +
             "</span></h3><div class=\"figs\">" + svg + "</div>";
     const std::vector<float>& profile = result.profiles[rank];
@@ -120,13 +120,15 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
   const bool labelled = !r.label_names.empty();
   std::string css = kWordsCss;
   for (uint32_t id = 0; id < std::max<size_t>(r.group_count, r.label_names.size()); ++id) {
-    css += ".c" + std::to_string(id) + "{color:" + HtmlColour(id) + ";fill:" + HtmlColour(id) + "}\n";
+    css +=
+        ".c" + std::to_string(id) + "{color:" + HtmlColour(id) + ";fill:" + HtmlColour(id) + "}\n";
   }
   std::string html = HtmlPageStart("motifmine classify: " + archive, css);
-  html += "<h1>motifmine classify</h1>\n<nav><a href=\"#overview\">overview</a><a "
-          "href=\"#map\">map</a>" +
-          std::string(labelled ? "<a href=\"#confusion\">confusion</a>" : "") +
-          "<a href=\"#matrix\">distances</a><a href=\"#takes\">takes</a></nav>\n";
+  html +=
+      "<h1>motifmine classify</h1>\n<nav><a href=\"#overview\">overview</a><a "
+      "href=\"#map\">map</a>" +
+      std::string(labelled ? "<a href=\"#confusion\">confusion</a>" : "") +
+      "<a href=\"#matrix\">distances</a><a href=\"#takes\">takes</a></nav>\n";
   html += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">";
   html += Row("archive", "<code>" + HtmlEscape(archive) + "</code>");
   const std::string distance_text =
@@ -135,11 +137,10 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
                                : "dynamic time warping over the takes' frames";
   html += Row("distance", HtmlEscape(r.distance) + ": " + distance_text + " (" +
                               HtmlNumber("%.2f s", r.seconds_distances) + ")");
-  html += Row("takes", HtmlCommas(n) + (labelled ? ", " + HtmlCommas(r.knn.labelled) +
-                                                        " labelled with " +
-                                                        std::to_string(r.label_names.size()) +
-                                                        " labels"
-                                                  : std::string()));
+  html += Row("takes",
+              HtmlCommas(n) + (labelled ? ", " + HtmlCommas(r.knn.labelled) + " labelled with " +
+                                              std::to_string(r.label_names.size()) + " labels"
+                                        : std::string()));
   std::string unsupervised = "classical MDS into " + std::to_string(r.mds.coordinates.cols()) +
                              " dimensions, then k-means into " + std::to_string(r.group_count) +
                              " groups";
@@ -150,17 +151,21 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
   }
   html += Row("unsupervised", unsupervised);
   if (labelled) {
-    html += Row("supervised", std::to_string(r.knn.k) + "-nearest-neighbour, leave one out: "
-                                  "accuracy <b>" + HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
-                                  HtmlCommas(r.knn.correct) + " of " + HtmlCommas(r.knn.labelled) + ")");
+    html += Row("supervised", std::to_string(r.knn.k) +
+                                  "-nearest-neighbour, leave one out: "
+                                  "accuracy <b>" +
+                                  HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
+                                  HtmlCommas(r.knn.correct) + " of " + HtmlCommas(r.knn.labelled) +
+                                  ")");
     html += Row("retrieval", "whole-take precision@" + std::to_string(r.top) + " <b>" +
                                  HtmlNumber("%.3f", r.precision_at_top) + "</b>");
   }
   html += "</table></section>\n";
 
   // The MDS map: first two coordinates, by group and by label.
-  html += "<section id=\"map\"><h2>MDS map</h2><p class=\"note\">The takes at their first two "
-          "MDS coordinates; hover for the clip. Left: coloured by unsupervised group";
+  html +=
+      "<section id=\"map\"><h2>MDS map</h2><p class=\"note\">The takes at their first two "
+      "MDS coordinates; hover for the clip. Left: coloured by unsupervised group";
   html += labelled ? "; right: by label.</p>" : ".</p>";
   const Eigen::Index dims = r.mds.coordinates.cols();
   double min_x = 0, max_x = 1, min_y = 0, max_y = 1;
@@ -209,9 +214,11 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
   html += "</section>\n";
 
   if (labelled) {
-    html += "<section id=\"confusion\"><h2>Confusion matrix</h2><p class=\"note\">Rows: the "
-            "label; columns: the " + std::to_string(r.knn.k) +
-            "-NN prediction with the take left out.</p><table class=\"g\"><tr><th></th>";
+    html +=
+        "<section id=\"confusion\"><h2>Confusion matrix</h2><p class=\"note\">Rows: the "
+        "label; columns: the " +
+        std::to_string(r.knn.k) +
+        "-NN prediction with the take left out.</p><table class=\"g\"><tr><th></th>";
     for (const std::string& name : r.label_names) html += "<th>" + HtmlEscape(name) + "</th>";
     html += "</tr>";
     for (size_t truth = 0; truth < r.label_names.size(); ++truth) {
@@ -235,11 +242,14 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
   html += "<section id=\"matrix\"><h2>Distance matrix</h2>";
   if (n <= 400) {
     double hi = 0;
-    for (Eigen::Index idx = 0; idx < r.distances.size(); ++idx) hi = std::max(hi, r.distances.data()[idx]);
-    html += "<p class=\"note\">Takes ordered by label, then group; darker is closer.</p>"
-            "<svg class=\"dm\" width=\"" + std::to_string(std::max<size_t>(n * 4, 200)) +
-            "\" height=\"" + std::to_string(std::max<size_t>(n * 4, 200)) + "\" viewBox=\"0 0 " +
-            std::to_string(n) + " " + std::to_string(n) + "\">";
+    for (Eigen::Index idx = 0; idx < r.distances.size(); ++idx)
+      hi = std::max(hi, r.distances.data()[idx]);
+    html +=
+        "<p class=\"note\">Takes ordered by label, then group; darker is closer.</p>"
+        "<svg class=\"dm\" width=\"" +
+        std::to_string(std::max<size_t>(n * 4, 200)) + "\" height=\"" +
+        std::to_string(std::max<size_t>(n * 4, 200)) + "\" viewBox=\"0 0 " + std::to_string(n) +
+        " " + std::to_string(n) + "\">";
     for (size_t row = 0; row < n; ++row) {
       for (size_t col = 0; col < n; ++col) {
         const double value = r.distances(order[row], order[col]);
@@ -249,23 +259,28 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
     }
     html += "</svg>";
   } else {
-    html += "<p class=\"note\">Not drawn above 400 takes (classify.json has the nearest takes "
-            "of each).</p>";
+    html +=
+        "<p class=\"note\">Not drawn above 400 takes (classify.json has the nearest takes "
+        "of each).</p>";
   }
   html += "</section>\n";
 
-  html += "<section id=\"takes\"><h2>Takes</h2><table class=\"l\"><tr><th>clip</th><th>label"
-          "</th><th>group</th>" + std::string(labelled ? "<th>predicted</th>" : "") +
-          "<th>nearest takes (distance)</th></tr>";
+  html +=
+      "<section id=\"takes\"><h2>Takes</h2><table class=\"l\"><tr><th>clip</th><th>label"
+      "</th><th>group</th>" +
+      std::string(labelled ? "<th>predicted</th>" : "") + "<th>nearest takes (distance)</th></tr>";
   for (uint32_t take : order) {
     const uint32_t label = r.labels[take];
     html += "<tr><td>" + HtmlEscape(r.names[take]) + "</td><td>" +
-            (label == kUnlabelled ? "" : HtmlEscape(r.label_names[label])) + "</td><td><span "
-            "class=\"sw c" + std::to_string(r.groups[take]) + "\"></span>" +
-            std::to_string(r.groups[take]) + "</td>";
+            (label == kUnlabelled ? "" : HtmlEscape(r.label_names[label])) +
+            "</td><td><span "
+            "class=\"sw c" +
+            std::to_string(r.groups[take]) + "\"></span>" + std::to_string(r.groups[take]) +
+            "</td>";
     if (labelled) {
       const uint32_t predicted = r.knn.predicted[take];
-      html += "<td>" + (predicted == kUnlabelled ? std::string() : HtmlEscape(r.label_names[predicted])) +
+      html += "<td>" +
+              (predicted == kUnlabelled ? std::string() : HtmlEscape(r.label_names[predicted])) +
               (predicted != kUnlabelled && predicted != label ? " &#10007;" : "") + "</td>";
     }
     html += "<td>";

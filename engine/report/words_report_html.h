@@ -21,9 +21,9 @@ namespace motif {
 
 struct SearchPageInfo {
   std::string archive;
-  std::string query_text;       // "clip 05_03 frames 100-400", "file move.bvh"
+  std::string query_text;  // "clip 05_03 frames 100-400", "file move.bvh"
   bool query_in_archive = false;
-  uint32_t query_clip = 0;      // when query_in_archive: the clip and frames drawn
+  uint32_t query_clip = 0;  // when query_in_archive: the clip and frames drawn
   uint64_t query_start = 0;
   uint64_t query_end = 0;
   uint64_t query_words = 0;

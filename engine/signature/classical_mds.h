@@ -23,8 +23,8 @@
 namespace motif {
 
 struct MdsResult {
-  Eigen::MatrixXd coordinates;        // n x dims
-  std::vector<double> eigenvalues;    // the dims largest of B, descending (negative ones kept)
+  Eigen::MatrixXd coordinates;      // n x dims
+  std::vector<double> eigenvalues;  // the dims largest of B, descending (negative ones kept)
 };
 
 // InvalidArgument: a matrix that is not square and symmetric with a zero diagonal, non-finite or

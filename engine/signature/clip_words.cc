@@ -29,8 +29,8 @@ Result<ClipWords> ClipWords::Read(const FrameFileReader& reader, size_t clip_idx
                   static_cast<uint32_t>(clip_idx), clip.first_frame, first_word_id);
 }
 
-Result<ClipWords> ClipWords::FromRows(std::vector<float> rows, double clip_fps,
-                                      FrameLayout layout, const std::vector<float>& joint_weights,
+Result<ClipWords> ClipWords::FromRows(std::vector<float> rows, double clip_fps, FrameLayout layout,
+                                      const std::vector<float>& joint_weights,
                                       const WordOptions& options, uint32_t clip_idx,
                                       uint64_t first_frame, uint64_t first_word_id) {
   MOTIF_RETURN_IF_ERROR(ValidateWordOptions(options));
@@ -104,9 +104,8 @@ void ClipWords::WarpedWord(uint64_t word_idx, double speed, int16_t* features, f
   WarpWord(grid_, resampler_, rows_.data(), word_idx, speed, features, rows);
 }
 
-double ClipWords::RandomWarpedWord(uint64_t word_idx, uint64_t seed,
-                                   const TimeWarpOptions& options, int16_t* features,
-                                   float* rows) const {
+double ClipWords::RandomWarpedWord(uint64_t word_idx, uint64_t seed, const TimeWarpOptions& options,
+                                   int16_t* features, float* rows) const {
   const double speed = DrawWarpSpeed(seed, options);
   WarpedWord(word_idx, speed, features, rows);
   return speed;

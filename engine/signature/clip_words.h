@@ -52,8 +52,7 @@ class ClipWords {
 
   // Word `word_idx` played at `speed` (time_warp.h): W * feature_values() int16 into `features`,
   // and W rows into `rows` if not null.
-  void WarpedWord(uint64_t word_idx, double speed, int16_t* features,
-                  float* rows = nullptr) const;
+  void WarpedWord(uint64_t word_idx, double speed, int16_t* features, float* rows = nullptr) const;
   // The same at a speed drawn from `seed` (DrawWarpSpeed); returns the speed.
   double RandomWarpedWord(uint64_t word_idx, uint64_t seed, const TimeWarpOptions& options,
                           int16_t* features, float* rows = nullptr) const;

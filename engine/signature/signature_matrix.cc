@@ -22,28 +22,29 @@ Result<Eigen::MatrixXd> SignatureDistanceMatrix(
                                      std::to_string(ground.rows()) + " motifs");
     }
   }
-  Eigen::MatrixXd distances = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n),
-                                                    static_cast<Eigen::Index>(n));
+  Eigen::MatrixXd distances =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   std::vector<Status> row_status(n);
   std::atomic<uint64_t> done{0};
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1), [&](const tbb::blocked_range<size_t>& range) {
-      EarthMoversDistance emd;
-      for (size_t row = range.begin(); row != range.end(); ++row) {
-        for (size_t col = row + 1; col < n; ++col) {
-          Result<double> distance = emd.Distance(signatures[row], signatures[col], ground);
-          if (!distance.ok()) {
-            row_status[row] = distance.status().WithContext(
-                "signatures " + std::to_string(row) + " and " + std::to_string(col));
-            break;
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, n, 1), [&](const tbb::blocked_range<size_t>& range) {
+          EarthMoversDistance emd;
+          for (size_t row = range.begin(); row != range.end(); ++row) {
+            for (size_t col = row + 1; col < n; ++col) {
+              Result<double> distance = emd.Distance(signatures[row], signatures[col], ground);
+              if (!distance.ok()) {
+                row_status[row] = distance.status().WithContext(
+                    "signatures " + std::to_string(row) + " and " + std::to_string(col));
+                break;
+              }
+              distances(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(col)) = *distance;
+              distances(static_cast<Eigen::Index>(col), static_cast<Eigen::Index>(row)) = *distance;
+            }
+            if (progress) progress(++done, n);
           }
-          distances(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(col)) = *distance;
-          distances(static_cast<Eigen::Index>(col), static_cast<Eigen::Index>(row)) = *distance;
-        }
-        if (progress) progress(++done, n);
-      }
-    });
+        });
   });
   for (const Status& status : row_status) MOTIF_RETURN_IF_ERROR(status);
   return distances;

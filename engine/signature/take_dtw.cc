@@ -18,7 +18,8 @@ constexpr uint32_t kRowBlock = 64;
 
 std::vector<uint64_t> Subsampled(const TakeFrames& take, uint32_t step) {
   std::vector<uint64_t> frames;
-  for (uint64_t frame = take.first_frame; frame < take.end_frame; frame += step) frames.push_back(frame);
+  for (uint64_t frame = take.first_frame; frame < take.end_frame; frame += step)
+    frames.push_back(frame);
   return frames;
 }
 
@@ -75,21 +76,22 @@ Result<Eigen::MatrixXd> TakeDtwMatrix(const PoseFeatures& features,
     }
   }
   const size_t n = takes.size();
-  Eigen::MatrixXd distances = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n),
-                                                    static_cast<Eigen::Index>(n));
+  Eigen::MatrixXd distances =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   std::atomic<uint64_t> done{0};
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t row = range.begin(); row != range.end(); ++row) {
-        for (size_t col = row + 1; col < n; ++col) {
-          const double distance = TakeDtw(features, takes[row], takes[col], step);
-          distances(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(col)) = distance;
-          distances(static_cast<Eigen::Index>(col), static_cast<Eigen::Index>(row)) = distance;
-        }
-        if (progress) progress(++done, n);
-      }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, n, 1), [&](const tbb::blocked_range<size_t>& range) {
+          for (size_t row = range.begin(); row != range.end(); ++row) {
+            for (size_t col = row + 1; col < n; ++col) {
+              const double distance = TakeDtw(features, takes[row], takes[col], step);
+              distances(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(col)) = distance;
+              distances(static_cast<Eigen::Index>(col), static_cast<Eigen::Index>(row)) = distance;
+            }
+            if (progress) progress(++done, n);
+          }
+        });
   });
   return distances;
 }

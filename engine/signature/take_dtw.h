@@ -41,9 +41,8 @@ double TakeDtw(const PoseFeatures& features, const TakeFrames& a, const TakeFram
 
 // Every pair. InvalidArgument: step 0, an empty take or one outside the archive.
 // `progress(done, total)` counts rows.
-Result<Eigen::MatrixXd> TakeDtwMatrix(const PoseFeatures& features,
-                                      const std::vector<TakeFrames>& takes, uint32_t step,
-                                      int threads,
-                                      const std::function<void(uint64_t, uint64_t)>& progress = nullptr);
+Result<Eigen::MatrixXd> TakeDtwMatrix(
+    const PoseFeatures& features, const std::vector<TakeFrames>& takes, uint32_t step, int threads,
+    const std::function<void(uint64_t, uint64_t)>& progress = nullptr);
 
 }  // namespace motif

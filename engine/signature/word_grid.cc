@@ -86,13 +86,19 @@ FrameSpan WordGrid::WordsReading(uint64_t frame_idx) const {
   uint64_t high = word_count_;
   while (low < high) {  // first word whose range ends after frame_idx
     const uint64_t mid = low + (high - low) / 2;
-    if (SourceFrames(mid).end <= frame_idx) low = mid + 1; else high = mid;
+    if (SourceFrames(mid).end <= frame_idx)
+      low = mid + 1;
+    else
+      high = mid;
   }
   const uint64_t first = low;
   high = word_count_;
   while (low < high) {  // first word whose range starts after frame_idx
     const uint64_t mid = low + (high - low) / 2;
-    if (SourceFrames(mid).first <= frame_idx) low = mid + 1; else high = mid;
+    if (SourceFrames(mid).first <= frame_idx)
+      low = mid + 1;
+    else
+      high = mid;
   }
   return FrameSpan{first, low};
 }

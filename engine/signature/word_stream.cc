@@ -60,8 +60,7 @@ bool WordStream::StartNextClip() {
     grid_ = grid;
     clip_first_frame_ = reader_.clips()[clip_idx_].first_frame;
     next_sample_ = 0;
-    sample_end_ =
-        grid_.FirstSample(grid_.word_count() - 1) + options_.words.word_frames;
+    sample_end_ = grid_.FirstSample(grid_.word_count() - 1) + options_.words.word_frames;
     in_clip_ = true;
     return true;
   }

@@ -28,19 +28,19 @@ namespace motif {
 inline constexpr double kRecommendedBackgroundVariation = 12.0;
 
 struct SynthOptions {
-  uint64_t frames = 120 * 600;   // total frames in the archive
-  uint32_t motifs = 8;           // planted motifs
+  uint64_t frames = 120 * 600;  // total frames in the archive
+  uint32_t motifs = 8;          // planted motifs
   uint64_t seed = 1;
   double fps = 120.0;
   double clip_seconds_min = 20;  // clip lengths are drawn uniformly from this range
   double clip_seconds_max = 60;
   double motif_seconds_min = 0.5;
   double motif_seconds_max = 5.0;
-  uint32_t instances_min = 3;    // planted instances per motif
+  uint32_t instances_min = 3;  // planted instances per motif
   uint32_t instances_max = 6;
   double warp_min = 0.7;
   double warp_max = 1.4;
-  double noise_degrees = 1.0;    // std dev of the smooth noise added to each instance
+  double noise_degrees = 1.0;  // std dev of the smooth noise added to each instance
   // Further options (defaults are the intended behaviour):
   double crossfade_seconds = 0.5;   // an instance blends into the background over this, before
                                     // its start and after its end (outside the truth range)
@@ -56,18 +56,18 @@ struct SynthOptions {
   // stage's tests were calibrated on (their LSH recall and density thresholds assume eps near
   // 1, and the variation raises eps = mu - 2 sigma to about 1.7).
   double background_variation_degrees = 0.0;
-  double source_warp_min = 0.8;     // re-sequencing: uniform speed factor of background segments
+  double source_warp_min = 0.8;  // re-sequencing: uniform speed factor of background segments
   double source_warp_max = 1.25;
   // Clips generated in parallel (0: all cores); the output does not depend on it.
   uint32_t threads = 0;
 };
 
 struct PlantedInstance {
-  std::string clip;     // clip name
-  uint64_t start = 0;   // frame within the clip, 0-based
-  uint64_t end = 0;     // exclusive
-  uint32_t motif = 0;   // planted motif id
-  double warp = 1.0;    // mean speed factor (instance length / motif length)
+  std::string clip;    // clip name
+  uint64_t start = 0;  // frame within the clip, 0-based
+  uint64_t end = 0;    // exclusive
+  uint32_t motif = 0;  // planted motif id
+  double warp = 1.0;   // mean speed factor (instance length / motif length)
   bool nonuniform = false;
 };
 
@@ -98,8 +98,7 @@ class MotionSynthesizer {
 
 // Writes OUT.truth.json atomically: {"version": 1, "archive": ..., "frames": N, "seed": S,
 // "motifs": M, "instances": [{"clip", "start", "end", "motif", "warp", "nonuniform"}, ...]}.
-Status WriteTruthJson(const std::string& path, const std::string& archive_path,
-                      uint64_t frames, const SynthOptions& options,
-                      const std::vector<PlantedInstance>& truth);
+Status WriteTruthJson(const std::string& path, const std::string& archive_path, uint64_t frames,
+                      const SynthOptions& options, const std::vector<PlantedInstance>& truth);
 
 }  // namespace motif

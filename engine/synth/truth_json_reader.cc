@@ -37,8 +37,8 @@ Result<TruthFile> ParseTruthJson(const std::string& text, const std::string& nam
   TruthFile truth;
   MOTIF_RETURN_IF_ERROR(Require(root, "archive", root.value("archive", Json()).is_string(), name));
   MOTIF_RETURN_IF_ERROR(Require(root, "frames", IsCount(root.value("frames", Json())), name));
-  MOTIF_RETURN_IF_ERROR(Require(root, "instances", root.value("instances", Json()).is_array(),
-                                name));
+  MOTIF_RETURN_IF_ERROR(
+      Require(root, "instances", root.value("instances", Json()).is_array(), name));
   truth.archive = root["archive"].get<std::string>();
   truth.frames = root["frames"].get<uint64_t>();
   if (root.contains("seed") && IsCount(root["seed"])) truth.seed = root["seed"].get<uint64_t>();

@@ -6,7 +6,6 @@
 #include <random>
 #include <set>
 
-
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_search.h"
@@ -91,7 +90,8 @@ Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::str
     const uint64_t capped_before = exact_stats.capped_columns;
     MOTIF_RETURN_IF_ERROR(exact.SearchColumns(column, 1, &exact_column, &exact_stats));
     const bool capped = exact_stats.capped_columns > capped_before;
-    exact_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    exact_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     MOTIF_RETURN_IF_ERROR(trellis->ReadColumns(column, 1, &stored));
     const std::vector<Neighbour>& truth = exact_column[0];
     const std::vector<Neighbour>& found = stored[0];
@@ -128,20 +128,21 @@ Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::str
     const uint64_t chain = std::max<uint64_t>(1, lsh->options().chain_columns);
     std::set<uint64_t> chains;
     const uint64_t picks = std::min<uint64_t>(kLshTimedChains, sample.size());
-    for (uint64_t idx = 0; idx < picks; ++idx) chains.insert(sample[idx * sample.size() / picks] / chain);
+    for (uint64_t idx = 0; idx < picks; ++idx)
+      chains.insert(sample[idx * sample.size() / picks] / chain);
     std::vector<std::vector<Neighbour>> lsh_columns;
     for (uint64_t chain_idx : chains) {
       const uint64_t first = chain_idx * chain;
       const uint64_t count = std::min(chain, params.frame_count - first);
       const auto start = std::chrono::steady_clock::now();
       MOTIF_RETURN_IF_ERROR(lsh->SearchColumns(first, count, &lsh_columns, &lsh_stats));
-      lsh_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      lsh_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   }
   report.capped_exact_columns = exact_stats.capped_columns;
-  report.recall = report.exact_entries
-                      ? static_cast<double>(report.found_entries) / report.exact_entries
-                      : 1.0;
+  report.recall =
+      report.exact_entries ? static_cast<double>(report.found_entries) / report.exact_entries : 1.0;
   report.mean_column_recall =
       columns_with_neighbours ? column_recall_sum / columns_with_neighbours : 1.0;
   const double sampled = std::max<double>(1.0, static_cast<double>(sample.size()));

@@ -19,18 +19,18 @@ struct AuditOptions {
   uint64_t sample_columns = 1000;
   uint64_t seed = 1;
   int threads = 0;
-  std::string weights_path;   // must be the weights the trellis was built with
-  LshOptions lsh;             // the LSH options the trellis was built with (seed: from the file)
+  std::string weights_path;  // must be the weights the trellis was built with
+  LshOptions lsh;            // the LSH options the trellis was built with (seed: from the file)
   std::function<void(uint64_t, uint64_t)> progress;  // sampled columns done / total
 };
 
 struct AuditReport {
   uint64_t sampled_columns = 0;
-  uint64_t exact_entries = 0;       // entries of the exact sampled columns (after the k_max cap)
-  uint64_t found_entries = 0;       // of those, present in the trellis
-  uint64_t trellis_entries = 0;     // entries of the sampled trellis columns
-  double recall = 0;                // found / exact (1 when there is nothing to find)
-  double mean_column_recall = 0;    // mean over sampled columns with a non-empty exact column
+  uint64_t exact_entries = 0;     // entries of the exact sampled columns (after the k_max cap)
+  uint64_t found_entries = 0;     // of those, present in the trellis
+  uint64_t trellis_entries = 0;   // entries of the sampled trellis columns
+  double recall = 0;              // found / exact (1 when there is nothing to find)
+  double mean_column_recall = 0;  // mean over sampled columns with a non-empty exact column
   double min_column_recall = 1;
   uint64_t capped_exact_columns = 0;  // exact columns that had more than k_max within eps
   // The same split by kind of column. An uncapped exact column holds every frame within eps; a
@@ -49,7 +49,7 @@ struct AuditReport {
   double exact_evaluations_per_query = 0;
   double lsh_seconds_per_query = 0;
   double exact_seconds_per_query = 0;
-  std::string search_params;        // as recorded in the trellis file
+  std::string search_params;  // as recorded in the trellis file
 };
 
 Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::string& trellis_path,

@@ -6,7 +6,6 @@
 #include <future>
 #include <memory>
 
-
 #include "common/byte_coding.h"
 #include "common/seconds_since.h"
 #include "engine/distance/epsilon_estimator.h"
@@ -18,9 +17,7 @@
 #include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 const char* TrellisSearchModeName(TrellisSearchMode mode) {
   switch (mode) {
@@ -52,8 +49,7 @@ std::string DefaultTrellisPath(const std::string& archive_path) {
   return path.string() + ".mtr";
 }
 
-Result<TrellisReport> BuildTrellis(const std::string& archive_path,
-                                   const std::string& trellis_path,
+Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::string& trellis_path,
                                    const TrellisOptions& options) {
   auto note = [&](const std::string& message) {
     if (options.note) options.note(message);
@@ -86,8 +82,8 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path,
   if (search_mode == TrellisSearchMode::kAuto) {
     search_mode = reader->frame_count() < options.auto_exact_max_frames ? TrellisSearchMode::kExact
                                                                         : TrellisSearchMode::kLsh;
-    note(std::string("search: ") + TrellisSearchModeName(search_mode) + " (auto: " +
-         std::to_string(reader->frame_count()) + " frames, exact below " +
+    note(std::string("search: ") + TrellisSearchModeName(search_mode) +
+         " (auto: " + std::to_string(reader->frame_count()) + " frames, exact below " +
          std::to_string(options.auto_exact_max_frames) + ")");
   }
   const bool exact = search_mode == TrellisSearchMode::kExact;

@@ -45,7 +45,7 @@ Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name);
 inline constexpr uint64_t kAutoExactMaxFrames = 90000;
 
 struct TrellisOptions {
-  float eps = 0;                    // > 0: explicit; 0: from eps_rule
+  float eps = 0;                                    // > 0: explicit; 0: from eps_rule
   EpsilonRule eps_rule = EpsilonRule::kJointAngle;  // epsilon_estimator.h
   double eps_joint_angle_degrees = kDefaultJointAngleDegrees;
   uint64_t eps_sample_pairs = 200000;
@@ -55,11 +55,11 @@ struct TrellisOptions {
   double min_length_seconds = 0.5;  // lambda: 60 frames at 120 fps
   TrellisSearchMode search = TrellisSearchMode::kAuto;
   uint64_t auto_exact_max_frames = kAutoExactMaxFrames;  // kAuto: exact when N < this
-  bool exact = false;               // the same as search = kExact (kept for existing callers)
-  int threads = 0;                  // 0: all cores
+  bool exact = false;  // the same as search = kExact (kept for existing callers)
+  int threads = 0;     // 0: all cores
   uint64_t seed = 1;
-  std::string weights_path;         // per-joint weights file; empty: the skeleton's defaults
-  LshOptions lsh;                   // lsh.seed and lsh.threads are set from seed and threads
+  std::string weights_path;  // per-joint weights file; empty: the skeleton's defaults
+  LshOptions lsh;            // lsh.seed and lsh.threads are set from seed and threads
   uint32_t block_columns = 4096;
   // Testing: stop with IOError after writing this many blocks (0: never), leaving the partial
   // file as an interruption would.
@@ -75,27 +75,27 @@ struct TrellisOptions {
 
 struct TrellisReport {
   std::string trellis_path;
-  bool reused = false;              // an existing finished trellis had the same parameters
-  uint64_t resumed_from_column = 0; // > 0 when an interrupted build was continued
-  TrellisParams params;             // eps, mu, sigma, k_max, exclusion, ...
-  std::string eps_how;              // how eps was chosen, one line (EpsilonEstimate::how)
-  double paper_eps = 0;             // mu - 2 sigma of the sample, whatever the rule
+  bool reused = false;               // an existing finished trellis had the same parameters
+  uint64_t resumed_from_column = 0;  // > 0 when an interrupted build was continued
+  TrellisParams params;              // eps, mu, sigma, k_max, exclusion, ...
+  std::string eps_how;               // how eps was chosen, one line (EpsilonEstimate::how)
+  double paper_eps = 0;              // mu - 2 sigma of the sample, whatever the rule
   TrellisSearchMode search = TrellisSearchMode::kLsh;  // the search used: kLsh or kExact
   // With LSH: the options as used, hashes_per_table and bucket_width resolved from the data
   // (LshSearch::options()); also when the trellis is reused. Passing them explicitly builds the
   // same hash family again (an incremental update does).
   LshOptions lsh_resolved;
   uint64_t columns = 0;
-  uint64_t neighbours = 0;          // entries in the trellis
-  double mean_k = 0;                // achieved mean neighbours per column (after the k_max cap)
-  uint64_t capped_columns = 0;      // columns that had more than k_max within eps
+  uint64_t neighbours = 0;            // entries in the trellis
+  double mean_k = 0;                  // achieved mean neighbours per column (after the k_max cap)
+  uint64_t capped_columns = 0;        // columns that had more than k_max within eps
   uint64_t distance_evaluations = 0;  // of the columns built in this run
   double features_seconds = 0;
   double eps_seconds = 0;
   double index_seconds = 0;
-  double search_seconds = 0;        // the column search and the writes (overlapped)
-  double write_seconds = 0;         // compressing and writing (fsync) blocks, on the writer thread
-  double write_wait_seconds = 0;    // time the search waited for the writer
+  double search_seconds = 0;      // the column search and the writes (overlapped)
+  double write_seconds = 0;       // compressing and writing (fsync) blocks, on the writer thread
+  double write_wait_seconds = 0;  // time the search waited for the writer
   uint64_t feature_bytes = 0;
 };
 
@@ -106,8 +106,7 @@ uint64_t WeightsHash(const std::vector<float>& weights);
 std::string DefaultTrellisPath(const std::string& archive_path);
 
 // Builds (or reuses, or resumes) the trellis of `archive_path` at `trellis_path`.
-Result<TrellisReport> BuildTrellis(const std::string& archive_path,
-                                   const std::string& trellis_path,
+Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::string& trellis_path,
                                    const TrellisOptions& options);
 
 }  // namespace motif

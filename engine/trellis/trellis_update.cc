@@ -96,9 +96,9 @@ using Columns = std::vector<std::vector<Neighbour>>;
 
 // Per-thread scratch of MergeColumn.
 struct MergeScratch {
-  std::vector<uint16_t> codes;   // old entries' codes, then the candidates'
-  std::vector<uint16_t> order;   // a copy for nth_element
-  std::vector<uint8_t> keep;     // per entry, in the order of `codes`
+  std::vector<uint16_t> codes;  // old entries' codes, then the candidates'
+  std::vector<uint16_t> order;  // a copy for nth_element
+  std::vector<uint8_t> keep;    // per entry, in the order of `codes`
   struct Tied {
     float distance;
     uint32_t frame;
@@ -171,9 +171,10 @@ bool MergeColumn(const PoseFeatures& features, uint64_t column, float eps, uint3
         tied.push_back({candidate.distance, candidate.new_frame, static_cast<uint32_t>(idx)});
       }
     }
-    std::sort(tied.begin(), tied.end(), [](const MergeScratch::Tied& a, const MergeScratch::Tied& b) {
-      return a.distance != b.distance ? a.distance < b.distance : a.frame < b.frame;
-    });
+    std::sort(tied.begin(), tied.end(),
+              [](const MergeScratch::Tied& a, const MergeScratch::Tied& b) {
+                return a.distance != b.distance ? a.distance < b.distance : a.frame < b.frame;
+              });
     for (size_t idx = 0; idx < room; ++idx) keep[tied[idx].entry] = 1;
   }
   out->clear();
@@ -198,8 +199,8 @@ struct OutputBlock {
   uint64_t size = 0;
   std::unique_ptr<std::string> owned;
   std::unique_ptr<Columns> columns;  // the block's columns, when they were at hand or needed
-  bool copied = false;    // an old block copied unchanged
-  bool rewritten = false; // an old block with changed columns (or the mixed block)
+  bool copied = false;               // an old block copied unchanged
+  bool rewritten = false;            // an old block with changed columns (or the mixed block)
   uint64_t changed_columns = 0;
   uint64_t recomputed = 0;
 };
@@ -216,11 +217,9 @@ float ColumnThreshold(const Neighbour* entries, size_t count, float eps, uint32_
 }
 
 Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
-                                          const PoseFeatures& features,
-                                          const NeighbourRules& rules,
+                                          const PoseFeatures& features, const NeighbourRules& rules,
                                           const NeighbourSearch& search,
-                                          const TrellisParams& params,
-                                          const std::string& out_path,
+                                          const TrellisParams& params, const std::string& out_path,
                                           const TrellisUpdateOptions& options) {
   const TrellisParams& old_params = previous.params();
   const uint64_t old_columns = previous.column_count();
@@ -278,11 +277,10 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
       thresholds = options.thresholds;
     } else {
       progress("thresholds", 0, previous.block_count() - first_out_block);
-      MOTIF_RETURN_IF_ERROR(ComputeThresholds(previous, first_out_block, arena,
-                                              [&](uint64_t done, uint64_t total) {
-                                                progress("thresholds", done, total);
-                                              },
-                                              &computed_thresholds));
+      MOTIF_RETURN_IF_ERROR(ComputeThresholds(
+          previous, first_out_block, arena,
+          [&](uint64_t done, uint64_t total) { progress("thresholds", done, total); },
+          &computed_thresholds));
       thresholds = &computed_thresholds;
     }
   }
@@ -307,7 +305,7 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
   const uint64_t search_first =
       old_blocks_left ? old_columns : std::max(old_columns, writer->next_column());
   std::vector<ReversePair> pairs;
-  Columns mixed_new_columns;                                 // [old_columns, the mixed end)
+  Columns mixed_new_columns;  // [old_columns, the mixed end)
   std::vector<std::unique_ptr<std::string>> new_block_bytes(out_blocks);
   std::vector<std::unique_ptr<Columns>> new_block_columns(out_blocks);
   {
@@ -340,8 +338,8 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
       } else if (block_idx >= first_out_block) {
         trellis_file::BlockHandle handle;
         new_block_bytes[block_idx] = std::make_unique<std::string>();
-        MOTIF_RETURN_IF_ERROR(encoder.Encode(first, columns, params.eps,
-                                             new_block_bytes[block_idx].get(), &handle));
+        MOTIF_RETURN_IF_ERROR(
+            encoder.Encode(first, columns, params.eps, new_block_bytes[block_idx].get(), &handle));
         set_thresholds(first, columns);
         if (options.on_block) {
           new_block_columns[block_idx] = std::make_unique<Columns>(std::move(columns));
@@ -418,7 +416,8 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
     for (uint64_t column = old_columns; column < end_column; ++column) {
       columns[column - first_column] = std::move(mixed_new_columns[column - old_columns]);
     }
-    if (first_column < old_columns || end_column > old_columns) set_thresholds(first_column, columns);
+    if (first_column < old_columns || end_column > old_columns)
+      set_thresholds(first_column, columns);
     trellis_file::BlockHandle handle;
     out->owned = byte_pool.Take();
     out->status =

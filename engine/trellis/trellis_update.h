@@ -68,15 +68,15 @@ struct TrellisUpdateOptions {
 struct TrellisUpdateReport {
   uint64_t old_columns = 0;
   uint64_t new_columns = 0;
-  uint64_t resumed_from_column = 0;  // > 0 when an interrupted update was continued
-  uint64_t reverse_candidates = 0;   // (old column, new frame) pairs within the thresholds
-  uint64_t changed_columns = 0;      // old columns that gained a new neighbour
-  uint64_t copied_blocks = 0;        // old blocks copied unchanged
-  uint64_t rewritten_blocks = 0;     // old blocks decoded, merged and encoded again
-  uint64_t new_blocks = 0;           // blocks holding new columns (the first may hold old ones)
+  uint64_t resumed_from_column = 0;   // > 0 when an interrupted update was continued
+  uint64_t reverse_candidates = 0;    // (old column, new frame) pairs within the thresholds
+  uint64_t changed_columns = 0;       // old columns that gained a new neighbour
+  uint64_t copied_blocks = 0;         // old blocks copied unchanged
+  uint64_t rewritten_blocks = 0;      // old blocks decoded, merged and encoded again
+  uint64_t new_blocks = 0;            // blocks holding new columns (the first may hold old ones)
   uint64_t exact_recomputations = 0;  // old entries whose distance was computed again (ties)
-  uint64_t neighbours = 0;           // entries in the updated trellis
-  SearchStats search_stats;          // of the new columns' search
+  uint64_t neighbours = 0;            // entries in the updated trellis
+  SearchStats search_stats;           // of the new columns' search
   double thresholds_seconds = 0;
   double search_seconds = 0;
   double merge_seconds = 0;
@@ -90,11 +90,9 @@ struct TrellisUpdateReport {
 // old file (Corruption) and of the writer (IOError, ResourceExhausted, Busy) pass through; the
 // partial output file is then left for a resume by the same call.
 Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
-                                          const PoseFeatures& features,
-                                          const NeighbourRules& rules,
+                                          const PoseFeatures& features, const NeighbourRules& rules,
                                           const NeighbourSearch& search,
-                                          const TrellisParams& params,
-                                          const std::string& out_path,
+                                          const TrellisParams& params, const std::string& out_path,
                                           const TrellisUpdateOptions& options = {});
 
 }  // namespace motif

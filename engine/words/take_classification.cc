@@ -41,7 +41,8 @@ Result<TakeClassification> ClassifyTakes(Eigen::MatrixXd distances,
   const uint32_t dims = std::min<uint32_t>(options.dims, static_cast<uint32_t>(n - 1));
   MOTIF_ASSIGN_OR_RETURN(result.mds, ClassicalMds(result.distances, dims));
   uint32_t groups = options.groups;
-  if (groups == 0) groups = result.label_names.empty() ? 8 : static_cast<uint32_t>(result.label_names.size());
+  if (groups == 0)
+    groups = result.label_names.empty() ? 8 : static_cast<uint32_t>(result.label_names.size());
   groups = std::min<uint32_t>(groups, static_cast<uint32_t>(n));
   const RowMatrixXf points = result.mds.coordinates.cast<float>();
   KMeansOptions kmeans;
@@ -115,12 +116,14 @@ nlohmann::json ClassificationJson(const TakeClassification& result, const std::s
   for (size_t take = 0; take < result.names.size(); ++take) {
     nlohmann::json entry;
     entry["clip"] = result.names[take];
-    entry["label"] = result.labels[take] == kUnlabelled ? nlohmann::json(nullptr)
-                                                        : nlohmann::json(result.label_names[result.labels[take]]);
+    entry["label"] = result.labels[take] == kUnlabelled
+                         ? nlohmann::json(nullptr)
+                         : nlohmann::json(result.label_names[result.labels[take]]);
     entry["group"] = result.groups[take];
     std::vector<double> coordinates(static_cast<size_t>(result.mds.coordinates.cols()));
     for (Eigen::Index dim = 0; dim < result.mds.coordinates.cols(); ++dim) {
-      coordinates[static_cast<size_t>(dim)] = result.mds.coordinates(static_cast<Eigen::Index>(take), dim);
+      coordinates[static_cast<size_t>(dim)] =
+          result.mds.coordinates(static_cast<Eigen::Index>(take), dim);
     }
     entry["mds"] = coordinates;
     if (labelled) {

@@ -28,22 +28,22 @@ struct ClassifyOptions {
   uint32_t groups = 0;  // 0: the number of labels, or 8 without labels (at most the takes)
   uint32_t dims = 8;    // MDS dimensions (at most takes - 1)
   uint32_t knn = 1;
-  uint32_t top = 5;     // precision@top
+  uint32_t top = 5;  // precision@top
   uint64_t seed = 1;
   int threads = 0;
 };
 
 struct TakeClassification {
-  std::string distance;                  // "emd", "emd-tf", "dtw"
-  std::vector<std::string> names;        // the takes (clip names)
-  std::vector<uint32_t> clips;           // their archive clip indices
+  std::string distance;            // "emd", "emd-tf", "dtw"
+  std::vector<std::string> names;  // the takes (clip names)
+  std::vector<uint32_t> clips;     // their archive clip indices
   Eigen::MatrixXd distances;
   std::vector<std::string> label_names;  // sorted
   std::vector<uint32_t> labels;          // per take: index into label_names, or kUnlabelled
   MdsResult mds;
-  std::vector<uint32_t> groups;          // per take: its k-means group
+  std::vector<uint32_t> groups;  // per take: its k-means group
   uint32_t group_count = 0;
-  double adjusted_rand_index = 0;        // labelled takes only; 0 without labels
+  double adjusted_rand_index = 0;  // labelled takes only; 0 without labels
   double purity = 0;
   KnnEvaluation knn;
   uint32_t top = 5;

@@ -84,49 +84,52 @@ Result<SearchResult> SlidingWindowSearch(const FrameFileReader& reader, const Lo
   const uint32_t k = words.motifs.motif_count();
   if (query.motifs.empty()) return Status::InvalidArgument("search: the query has no word");
   if (top == 0) return Status::InvalidArgument("search: --top must be at least 1");
-  MOTIF_ASSIGN_OR_RETURN(std::vector<double> query_signature, words.tf_idf->Signature(query.motifs));
+  MOTIF_ASSIGN_OR_RETURN(std::vector<double> query_signature,
+                         words.tf_idf->Signature(query.motifs));
   const uint64_t q = query.motifs.size();
   const std::vector<double>& idf = words.tf_idf->idf();
   const size_t clips = words.signatures.clip_words.size();
   std::vector<TakeBest> best(clips);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, clips, 1), [&](const tbb::blocked_range<size_t>& range) {
-      EarthMoversDistance emd;
-      std::vector<uint32_t> counts(k);
-      std::vector<double> signature(k);
-      for (size_t clip = range.begin(); clip != range.end(); ++clip) {
-        const uint64_t m = words.signatures.clip_words[clip];
-        if (m < q) continue;
-        const uint16_t* motifs = &words.signatures.word_motifs[words.clip_first_words[clip]];
-        std::fill(counts.begin(), counts.end(), 0);
-        for (uint64_t word = 0; word < q; ++word) ++counts[motifs[word]];
-        TakeBest& take = best[clip];
-        take.profile.assign(m - q + 1, std::numeric_limits<float>::quiet_NaN());
-        for (uint64_t first = 0; first + q <= m; ++first) {
-          if (first > 0) {
-            --counts[motifs[first - 1]];
-            ++counts[motifs[first + q - 1]];
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, clips, 1), [&](const tbb::blocked_range<size_t>& range) {
+          EarthMoversDistance emd;
+          std::vector<uint32_t> counts(k);
+          std::vector<double> signature(k);
+          for (size_t clip = range.begin(); clip != range.end(); ++clip) {
+            const uint64_t m = words.signatures.clip_words[clip];
+            if (m < q) continue;
+            const uint16_t* motifs = &words.signatures.word_motifs[words.clip_first_words[clip]];
+            std::fill(counts.begin(), counts.end(), 0);
+            for (uint64_t word = 0; word < q; ++word) ++counts[motifs[word]];
+            TakeBest& take = best[clip];
+            take.profile.assign(m - q + 1, std::numeric_limits<float>::quiet_NaN());
+            for (uint64_t first = 0; first + q <= m; ++first) {
+              if (first > 0) {
+                --counts[motifs[first - 1]];
+                ++counts[motifs[first + q - 1]];
+              }
+              const bool trivial = clip == query.exclude_clip && first < query.exclude_end_word &&
+                                   first + q > query.exclude_first_word;
+              if (trivial) continue;
+              for (uint32_t motif = 0; motif < k; ++motif) {
+                signature[motif] =
+                    counts[motif] ? counts[motif] / static_cast<double>(q) * idf[motif] : 0.0;
+              }
+              Result<double> distance = emd.Distance(query_signature, signature, words.ground);
+              if (!distance.ok()) {
+                take.status = distance.status();
+                break;
+              }
+              take.profile[first] = static_cast<float>(*distance);
+              if (*distance < take.distance) {
+                take.distance = *distance;
+                take.first_word = first;
+              }
+            }
           }
-          const bool trivial = clip == query.exclude_clip && first < query.exclude_end_word &&
-                               first + q > query.exclude_first_word;
-          if (trivial) continue;
-          for (uint32_t motif = 0; motif < k; ++motif) {
-            signature[motif] = counts[motif] ? counts[motif] / static_cast<double>(q) * idf[motif] : 0.0;
-          }
-          Result<double> distance = emd.Distance(query_signature, signature, words.ground);
-          if (!distance.ok()) {
-            take.status = distance.status();
-            break;
-          }
-          take.profile[first] = static_cast<float>(*distance);
-          if (*distance < take.distance) {
-            take.distance = *distance;
-            take.first_word = first;
-          }
-        }
-      }
-    });
+        });
   });
   uint64_t windows = 0;
   for (const TakeBest& take : best) {
@@ -142,29 +145,32 @@ Result<SearchResult> WholeTakeSearch(const FrameFileReader& reader, const Loaded
                                      uint32_t query_clip, uint32_t top, int threads) {
   const size_t clips = words.signatures.clip_words.size();
   if (query_clip >= clips || words.signatures.clip_words[query_clip] == 0) {
-    return Status::InvalidArgument("search: clip " +
-                                   (query_clip < clips ? reader.clips()[query_clip].name
-                                                       : std::to_string(query_clip)) +
-                                   " has no motion word (shorter than one word)");
+    return Status::InvalidArgument(
+        "search: clip " +
+        (query_clip < clips ? reader.clips()[query_clip].name : std::to_string(query_clip)) +
+        " has no motion word (shorter than one word)");
   }
   if (top == 0) return Status::InvalidArgument("search: --top must be at least 1");
   const std::vector<double> query = words.ClipSignature(query_clip, false);
   std::vector<TakeBest> best(clips);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, clips, 1), [&](const tbb::blocked_range<size_t>& range) {
-      EarthMoversDistance emd;
-      for (size_t clip = range.begin(); clip != range.end(); ++clip) {
-        if (clip == query_clip || words.signatures.clip_words[clip] == 0) continue;
-        Result<double> distance = emd.Distance(query, words.ClipSignature(clip, false), words.ground);
-        if (!distance.ok()) {
-          best[clip].status = distance.status();
-          continue;
-        }
-        best[clip].distance = *distance;
-        best[clip].profile = {static_cast<float>(*distance)};
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, clips, 1),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        EarthMoversDistance emd;
+                        for (size_t clip = range.begin(); clip != range.end(); ++clip) {
+                          if (clip == query_clip || words.signatures.clip_words[clip] == 0)
+                            continue;
+                          Result<double> distance =
+                              emd.Distance(query, words.ClipSignature(clip, false), words.ground);
+                          if (!distance.ok()) {
+                            best[clip].status = distance.status();
+                            continue;
+                          }
+                          best[clip].distance = *distance;
+                          best[clip].profile = {static_cast<float>(*distance)};
+                        }
+                      });
   });
   for (const TakeBest& take : best) MOTIF_RETURN_IF_ERROR(take.status);
   SearchResult result = Rank(reader, words, best, 0, top);

@@ -25,12 +25,12 @@
 namespace motif {
 
 struct WindowMatch {
-  uint32_t clip = 0;          // archive clip index
-  uint64_t first_word = 0;    // within the clip
+  uint32_t clip = 0;        // archive clip index
+  uint64_t first_word = 0;  // within the clip
   uint64_t words = 0;
-  uint64_t start_frame = 0;   // clip-relative source frames the window's words read: [start, end)
+  uint64_t start_frame = 0;  // clip-relative source frames the window's words read: [start, end)
   uint64_t end_frame = 0;
-  double distance = 0;        // EMD to the query
+  double distance = 0;  // EMD to the query
 };
 
 struct WindowQuery {
@@ -44,9 +44,9 @@ struct WindowQuery {
 
 struct SearchResult {
   bool whole_take = false;
-  std::vector<WindowMatch> matches;            // the top takes, best first
-  std::vector<std::vector<float>> profiles;    // per match: the EMD of every window of its take
-  uint64_t windows = 0;                        // windows compared in all
+  std::vector<WindowMatch> matches;          // the top takes, best first
+  std::vector<std::vector<float>> profiles;  // per match: the EMD of every window of its take
+  uint64_t windows = 0;                      // windows compared in all
 };
 
 // `top` >= 1 takes. InvalidArgument: an empty query, top 0, a motif id out of range.

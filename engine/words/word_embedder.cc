@@ -22,8 +22,7 @@ Result<WordEmbedder> WordEmbedder::Create(const EmbeddingModel& model, const Fra
   if (resampler.joints() != model.joints) {
     return Status::InvalidArgument(
         "the embedding was trained on " + std::to_string(model.joints.size()) +
-        " weighted joints that are not the archive's " +
-        std::to_string(resampler.joints().size()) +
+        " weighted joints that are not the archive's " + std::to_string(resampler.joints().size()) +
         " (another skeleton or another weights file; train an embedding for this archive)");
   }
   WordEmbedder embedder;

@@ -42,15 +42,15 @@ Result<MotifSet> MotifsFromTensorFile(const TensorFile& file) {
   MotifSet motifs;
   MOTIF_ASSIGN_OR_RETURN(auto shape, file.Shape("centroids"));
   if (shape.first == 0 || shape.first > 65535 || shape.second == 0) {
-    return Status::Corruption("motifs file: tensor 'centroids' is " +
-                              std::to_string(shape.first) + " x " + std::to_string(shape.second) +
+    return Status::Corruption("motifs file: tensor 'centroids' is " + std::to_string(shape.first) +
+                              " x " + std::to_string(shape.second) +
                               " (1 to 65535 motifs of at least one dimension)");
   }
   MOTIF_ASSIGN_OR_RETURN(std::vector<float> centroids,
                          file.F32Matrix("centroids", shape.first, shape.second));
-  motifs.centroids = Eigen::Map<const RowMatrixXf>(centroids.data(),
-                                                   static_cast<Eigen::Index>(shape.first),
-                                                   static_cast<Eigen::Index>(shape.second));
+  motifs.centroids =
+      Eigen::Map<const RowMatrixXf>(centroids.data(), static_cast<Eigen::Index>(shape.first),
+                                    static_cast<Eigen::Index>(shape.second));
   MOTIF_ASSIGN_OR_RETURN(motifs.cluster_sizes, file.U64("cluster.sizes", shape.first));
   MOTIF_ASSIGN_OR_RETURN(motifs.inertia, file.ScalarF64("inertia"));
   MOTIF_ASSIGN_OR_RETURN(std::vector<uint64_t> identity, file.U64("identity", 4));
@@ -117,8 +117,8 @@ Result<SignatureSet> SignaturesFromTensorFile(const TensorFile& file) {
   }
   if (total != set.word_motifs.size() || takes != set.take_count) {
     return Status::Corruption("signatures file: " + std::to_string(total) +
-                              " words in the clips and " + std::to_string(takes) +
-                              " takes, for " + std::to_string(set.word_motifs.size()) +
+                              " words in the clips and " + std::to_string(takes) + " takes, for " +
+                              std::to_string(set.word_motifs.size()) +
                               " word motifs and take count " + std::to_string(set.take_count));
   }
   for (size_t word = 0; word < set.word_motifs.size(); ++word) {

@@ -23,7 +23,7 @@ inline constexpr char kMotifsKind[] = "motifs";
 inline constexpr char kSignaturesKind[] = "signatures";
 
 struct MotifSet {
-  RowMatrixXf centroids;               // k x D
+  RowMatrixXf centroids;                // k x D
   std::vector<uint64_t> cluster_sizes;  // k
   double inertia = 0;
   uint32_t iterations = 0;

@@ -21,7 +21,8 @@ std::vector<uint32_t> LoadedWords::ClipMotifs(size_t clip) const {
   const uint64_t first = clip_first_words[clip];
   return std::vector<uint32_t>(
       signatures.word_motifs.begin() + static_cast<std::ptrdiff_t>(first),
-      signatures.word_motifs.begin() + static_cast<std::ptrdiff_t>(first + signatures.clip_words[clip]));
+      signatures.word_motifs.begin() +
+          static_cast<std::ptrdiff_t>(first + signatures.clip_words[clip]));
 }
 
 std::vector<double> LoadedWords::ClipSignature(size_t clip, bool plain) const {
@@ -31,8 +32,9 @@ std::vector<double> LoadedWords::ClipSignature(size_t clip, bool plain) const {
     return *tf;
   }
   const size_t k = signatures.motif_count;
-  return std::vector<double>(signatures.signatures.begin() + static_cast<std::ptrdiff_t>(clip * k),
-                             signatures.signatures.begin() + static_cast<std::ptrdiff_t>((clip + 1) * k));
+  return std::vector<double>(
+      signatures.signatures.begin() + static_cast<std::ptrdiff_t>(clip * k),
+      signatures.signatures.begin() + static_cast<std::ptrdiff_t>((clip + 1) * k));
 }
 
 Result<LoadedWords> LoadWords(const FrameFileReader& reader, const WordsPaths& paths,

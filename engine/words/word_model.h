@@ -23,8 +23,8 @@ struct LoadedWords {
   std::optional<EmbeddingModel> embedding;  // only if asked for
   MotifSet motifs;
   SignatureSet signatures;
-  Eigen::MatrixXd ground;                   // k x k centroid distances
-  std::vector<uint64_t> clip_first_words;   // word id of each clip's first word
+  Eigen::MatrixXd ground;                  // k x k centroid distances
+  std::vector<uint64_t> clip_first_words;  // word id of each clip's first word
   std::optional<TfIdf> tf_idf;
 
   // The motifs of clip `clip`'s words.

@@ -87,7 +87,8 @@ Result<EmbeddingStage> TrainEmbedding(const FrameFileReader& reader,
   train.progress = progress("train", "batches");
   MOTIF_ASSIGN_OR_RETURN(EmbeddingTrainer trainer,
                          EmbeddingTrainer::Create(pool, std::move(neighbours), train));
-  MOTIF_ASSIGN_OR_RETURN(FrameResampler resampler, FrameResampler::Create(reader.layout(), weights));
+  MOTIF_ASSIGN_OR_RETURN(FrameResampler resampler,
+                         FrameResampler::Create(reader.layout(), weights));
   EmbeddingStage stage;
   EmbeddingModel& model = stage.model;
   model.net = trainer.initial_net();
@@ -125,9 +126,8 @@ Result<EmbeddingStage> TrainEmbedding(const FrameFileReader& reader,
   model.epoch_active = state.epoch_active;
   model.accuracy = trainer.HeldOutAccuracy(model.net);
   report->seconds_train = SecondsSince(start);
-  MOTIF_RETURN_IF_ERROR(
-      WriteTensorFile(paths.embedding, EmbeddingToTensorFile(model), PosixFileSystem(),
-                      &stage.identity));
+  MOTIF_RETURN_IF_ERROR(WriteTensorFile(paths.embedding, EmbeddingToTensorFile(model),
+                                        PosixFileSystem(), &stage.identity));
   std::error_code ignored;  // a left-over checkpoint is harmless: its key no longer matters
   std::filesystem::remove(checkpoint_path, ignored);
   return stage;
@@ -158,17 +158,16 @@ uint64_t TrainingKey(uint64_t archive_identity, const std::vector<float>& joint_
   for (float weight : joint_weights) key << weight << ",";
   const WordPoolOptions& pool = options.pool;
   key << " W=" << options.words.word_frames << " S=" << options.words.stride_frames
-      << " fps=" << options.words.word_fps << " pool=" << pool.max_words << "/"
-      << pool.warp_copies << "/" << pool.warp.min_speed << "/" << pool.warp.max_speed << "/"
-      << pool.held_out_fraction;
+      << " fps=" << options.words.word_fps << " pool=" << pool.max_words << "/" << pool.warp_copies
+      << "/" << pool.warp.min_speed << "/" << pool.warp.max_speed << "/" << pool.held_out_fraction;
   const DtwNeighbourOptions& n = options.neighbours;
   key << " dtw=" << n.k << "/" << n.band_frames << "/" << n.lists << "/" << n.probes << "/"
       << n.max_verified;
   const EmbeddingTrainOptions& t = options.train;
   const EmbeddingNetShape& s = t.shape;
   key << " net=" << s.conv1_channels << "/" << s.conv1_kernel << "/" << s.conv2_channels << "/"
-      << s.conv2_kernel << "/" << s.conv2_stride << "/" << s.embedding_dims << " train="
-      << t.epochs << "/" << t.batch_triplets << "/" << t.learning_rate << "/" << t.margin << "/"
+      << s.conv2_kernel << "/" << s.conv2_stride << "/" << s.embedding_dims << " train=" << t.epochs
+      << "/" << t.batch_triplets << "/" << t.learning_rate << "/" << t.margin << "/"
       << t.temporal_positives << "/" << t.dtw_positives << "/" << t.far_words << "/"
       << t.mine_semi_hard << " seed=" << options.seed;
   const std::string text = key.str();
@@ -322,7 +321,8 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
     const std::vector<uint64_t> first_words = signatures.ClipFirstWords();
     for (size_t clip = 0; clip < clips.size(); ++clip) {
       if (signatures.clip_words[clip] == 0) continue;
-      const auto begin = signatures.word_motifs.begin() + static_cast<std::ptrdiff_t>(first_words[clip]);
+      const auto begin =
+          signatures.word_motifs.begin() + static_cast<std::ptrdiff_t>(first_words[clip]);
       takes.emplace_back(begin, begin + static_cast<std::ptrdiff_t>(signatures.clip_words[clip]));
     }
     MOTIF_ASSIGN_OR_RETURN(TfIdf tf_idf, TfIdf::Fit(takes, signatures.motif_count));
@@ -334,7 +334,8 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
       if (signatures.clip_words[clip] == 0) continue;
       MOTIF_ASSIGN_OR_RETURN(std::vector<double> signature, tf_idf.Signature(takes[take++]));
       std::copy(signature.begin(), signature.end(),
-                signatures.signatures.begin() + static_cast<std::ptrdiff_t>(clip * signatures.motif_count));
+                signatures.signatures.begin() +
+                    static_cast<std::ptrdiff_t>(clip * signatures.motif_count));
     }
     MOTIF_RETURN_IF_ERROR(WriteTensorFile(paths.signatures, SignaturesToTensorFile(signatures)));
     report.seconds_signatures = SecondsSince(start);

@@ -55,13 +55,13 @@ struct WordsOptions {
   WordPoolOptions pool;      // words, seed and threads are set from this struct
   DtwNeighbourOptions neighbours;
   EmbeddingTrainOptions train;
-  uint32_t motifs = 100;            // k
+  uint32_t motifs = 100;  // k
   uint32_t kmeans_iterations = 100;
-  uint64_t seed = 1;                // of every random choice
-  int threads = 0;                  // 0: all cores
-  uint32_t batch_words = 1024;      // words embedded per streamed batch
+  uint64_t seed = 1;            // of every random choice
+  int threads = 0;              // 0: all cores
+  uint32_t batch_words = 1024;  // words embedded per streamed batch
   std::function<void(const std::string&, uint64_t, uint64_t, const std::string&)> progress;
-                                    // (stage, done, total, unit)
+  // (stage, done, total, unit)
   std::function<void(const std::string&)> note;
   // Called after each training epoch once its checkpoint is written; a non-OK status stops the
   // run there and is returned (cancellation; the next run resumes from that checkpoint).
@@ -75,8 +75,8 @@ struct WordsReport {
   uint32_t motifs = 0;
   uint32_t dims = 0;
   bool embedding_reused = false;
-  bool embedding_loaded = false;     // from embedding_in
-  uint32_t resumed_from_epoch = 0;   // 0: trained from scratch (or not trained)
+  bool embedding_loaded = false;    // from embedding_in
+  uint32_t resumed_from_epoch = 0;  // 0: trained from scratch (or not trained)
   bool motifs_reused = false;
   bool signatures_reused = false;
   uint64_t pool_words = 0;

@@ -88,10 +88,9 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
     return Status::Corruption(path + ": no committed version (both commit slots are empty or " +
                               "damaged" + slot_errors + ")");
   }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) {
-                     return a.slot.generation > b.slot.generation;
-                   });
+  std::stable_sort(
+      candidates.begin(), candidates.end(),
+      [](const Candidate& a, const Candidate& b) { return a.slot.generation > b.slot.generation; });
   Status newest_error;
   for (const Candidate& candidate : candidates) {
     Status loaded = LoadCommit(data, size, candidate.slot_idx, candidate.slot, &archive);
@@ -104,9 +103,8 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
   return newest_error.WithContext(path);
 }
 
-Result<LoadedArchive> LoadArchiveCommit(const std::string& path, const uint8_t* data,
-                                        uint64_t size, uint64_t generation,
-                                        uint64_t committed_length) {
+Result<LoadedArchive> LoadArchiveCommit(const std::string& path, const uint8_t* data, uint64_t size,
+                                        uint64_t generation, uint64_t committed_length) {
   if (size == 0) return Status::Corruption(path + ": empty file, not a motion archive (.mfs)");
   LoadedArchive archive;
   archive.file_bytes = size;

@@ -18,12 +18,12 @@
 namespace motif::frame_file {
 
 struct LoadedArchive {
-  FileHeader header;        // fixed part and both slots as found (a damaged slot reads empty)
-  int active_slot = 0;      // index of the slot in use (-1: a version named by LoadArchiveCommit)
-  CommitSlot slot;          // header.slots[active_slot]
+  FileHeader header;    // fixed part and both slots as found (a damaged slot reads empty)
+  int active_slot = 0;  // index of the slot in use (-1: a version named by LoadArchiveCommit)
+  CommitSlot slot;      // header.slots[active_slot]
   Footer footer;
   ArchiveMetadata metadata;
-  uint64_t file_bytes = 0;  // the whole file, including any uncommitted tail
+  uint64_t file_bytes = 0;      // the whole file, including any uncommitted tail
   uint64_t max_generation = 0;  // the highest generation of any slot with a valid checksum
   std::string fallback_reason;  // non-empty if a newer valid slot failed validation
 };
@@ -37,8 +37,7 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
 // metadata stay in the file (frame_file.md section 7). Validated as a commit slot's version
 // is (checks 9 to 12), the header's fixed part first. Corruption naming the file if that
 // version is not there (another file, or a truncated one).
-Result<LoadedArchive> LoadArchiveCommit(const std::string& path, const uint8_t* data,
-                                        uint64_t size, uint64_t generation,
-                                        uint64_t committed_length);
+Result<LoadedArchive> LoadArchiveCommit(const std::string& path, const uint8_t* data, uint64_t size,
+                                        uint64_t generation, uint64_t committed_length);
 
 }  // namespace motif::frame_file

@@ -14,10 +14,14 @@ constexpr size_t kMinClipRecordBytes = 4 + 4 + 4 + 8 * 6 + 24 + 4;
 
 uint32_t ComponentsOf(ColumnKind kind) {
   switch (kind) {
-    case ColumnKind::kJointRotation: return 4;
-    case ColumnKind::kRootHeight: return 1;
-    case ColumnKind::kRootVelocity: return 2;
-    case ColumnKind::kHeading: return 1;
+    case ColumnKind::kJointRotation:
+      return 4;
+    case ColumnKind::kRootHeight:
+      return 1;
+    case ColumnKind::kRootVelocity:
+      return 2;
+    case ColumnKind::kHeading:
+      return 1;
   }
   return 0;
 }
@@ -98,8 +102,7 @@ void EncodeClip(const ClipInfo& clip, std::string* out) {
 // Decoding: every failure is Corruption("metadata at offset 0x..: <section>: <problem>").
 class SectionDecoder {
  public:
-  SectionDecoder(const char* section, uint64_t payload_offset, const uint8_t* payload,
-                 size_t size)
+  SectionDecoder(const char* section, uint64_t payload_offset, const uint8_t* payload, size_t size)
       : section_(section), payload_offset_(payload_offset), reader_(payload, size) {}
 
   ByteReader* reader() { return &reader_; }
@@ -136,8 +139,8 @@ Status DecodeArchive(SectionDecoder* section, ArchiveMetadata* metadata) {
     return section->Error("fps " + std::to_string(metadata->fps) + " is not finite and > 0");
   }
   if (metadata->joint_count == 0 || metadata->joint_count > kMaxJoints) {
-    return section->Error("joint count " + std::to_string(metadata->joint_count) +
-                          " outside [1, " + std::to_string(kMaxJoints) + "]");
+    return section->Error("joint count " + std::to_string(metadata->joint_count) + " outside [1, " +
+                          std::to_string(kMaxJoints) + "]");
   }
   if (metadata->block_frames == 0 || metadata->block_frames > kMaxBlockFrames) {
     return section->Error("block size " + std::to_string(metadata->block_frames) +
@@ -196,8 +199,8 @@ Status DecodeColumns(SectionDecoder* section, ArchiveMetadata* metadata) {
     return section->Truncated("column table header");
   }
   if (entry_bytes < kColumnEntryBytes) {
-    return section->Error("column entries of " + std::to_string(entry_bytes) +
-                          " bytes, at least " + std::to_string(kColumnEntryBytes) + " needed");
+    return section->Error("column entries of " + std::to_string(entry_bytes) + " bytes, at least " +
+                          std::to_string(kColumnEntryBytes) + " needed");
   }
   const uint64_t stride = metadata->layout().stride();
   if (column_count > stride || reader->remaining() / entry_bytes < column_count) {
@@ -298,8 +301,7 @@ Status DecodeClips(SectionDecoder* section, ArchiveMetadata* metadata) {
   return Status::Ok();
 }
 
-Status DecodeBlocks(SectionDecoder* section, uint64_t metadata_offset,
-                    ArchiveMetadata* metadata) {
+Status DecodeBlocks(SectionDecoder* section, uint64_t metadata_offset, ArchiveMetadata* metadata) {
   ByteReader* reader = section->reader();
   uint64_t block_count = 0;
   uint32_t entry_bytes = 0, reserved = 0;
@@ -309,8 +311,8 @@ Status DecodeBlocks(SectionDecoder* section, uint64_t metadata_offset,
   }
   if (reserved != 0) return section->Error("reserved field is not zero");
   if (entry_bytes < kBlockEntryBytes) {
-    return section->Error("block entries of " + std::to_string(entry_bytes) +
-                          " bytes, at least " + std::to_string(kBlockEntryBytes) + " needed");
+    return section->Error("block entries of " + std::to_string(entry_bytes) + " bytes, at least " +
+                          std::to_string(kBlockEntryBytes) + " needed");
   }
   if (reader->remaining() / entry_bytes < block_count) {
     return section->Error(std::to_string(block_count) + " blocks do not fit");
@@ -340,8 +342,8 @@ Status DecodeBlocks(SectionDecoder* section, uint64_t metadata_offset,
         block.bytes > metadata_offset || block.offset > metadata_offset - block.bytes) {
       return section->Error(what + " at offset " + Hex(block.offset) + " (" +
                             std::to_string(block.bytes) +
-                            " bytes) overlaps another block or lies outside [" +
-                            Hex(kHeaderBytes) + ", " + Hex(metadata_offset) + ")");
+                            " bytes) overlaps another block or lies outside [" + Hex(kHeaderBytes) +
+                            ", " + Hex(metadata_offset) + ")");
     }
     next_frame += block.frame_count;
     previous_end = block.offset + block.bytes;
@@ -381,9 +383,8 @@ std::vector<ColumnSpec> DefaultColumns(uint32_t joint_count, const ColumnDefault
   }
   columns.push_back({ColumnKind::kRootHeight, 1, static_cast<uint32_t>(layout.height_offset()),
                      kNoJoint, encoding(defaults.height_step, false, 2)});
-  columns.push_back({ColumnKind::kRootVelocity, 2,
-                     static_cast<uint32_t>(layout.velocity_offset()), kNoJoint,
-                     encoding(defaults.velocity_step, false, 1)});
+  columns.push_back({ColumnKind::kRootVelocity, 2, static_cast<uint32_t>(layout.velocity_offset()),
+                     kNoJoint, encoding(defaults.velocity_step, false, 1)});
   columns.push_back({ColumnKind::kHeading, 1, static_cast<uint32_t>(layout.heading_offset()),
                      kNoJoint, encoding(defaults.heading_step, false, 2)});
   return columns;

@@ -47,7 +47,7 @@ enum class SectionTag : uint32_t {
 struct ColumnSpec {
   ColumnKind kind = ColumnKind::kJointRotation;
   uint8_t component_count = 0;
-  uint32_t row_offset = 0;       // first float of the column in a frame row
+  uint32_t row_offset = 0;        // first float of the column in a frame row
   uint32_t joint_idx = kNoJoint;  // the joint of a kJointRotation column
   ColumnEncoding encoding;
 

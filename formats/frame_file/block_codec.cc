@@ -76,9 +76,9 @@ Status DecodeBlock(const std::vector<ColumnSpec>& columns, uint32_t joint_count,
       return Status::Corruption(what + ": chunk runs past the block");
     }
     values.resize(static_cast<size_t>(column.component_count) * frame_count);
-    Status decoded = DecodeColumnChunk(column.encoding, block_bytes + chunk_offset,
-                                       compressed_bytes, column.component_count, frame_count,
-                                       values.data());
+    Status decoded =
+        DecodeColumnChunk(column.encoding, block_bytes + chunk_offset, compressed_bytes,
+                          column.component_count, frame_count, values.data());
     if (!decoded.ok()) return decoded.WithContext(what + " at offset " + Hex(chunk_offset));
     for (uint32_t component = 0; component < column.component_count; ++component) {
       const float* run = values.data() + static_cast<size_t>(component) * frame_count;

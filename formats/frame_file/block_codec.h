@@ -43,7 +43,6 @@ class BlockEncoder {
 // handle.frame_count * stride). Corruption: "checksum mismatch", or what does not decode.
 // The caller prefixes "<file>: block <n> at offset <hex>".
 Status DecodeBlock(const std::vector<ColumnSpec>& columns, uint32_t joint_count,
-                   const BlockHandle& handle, const uint8_t* block_bytes,
-                   std::vector<float>* rows);
+                   const BlockHandle& handle, const uint8_t* block_bytes, std::vector<float>* rows);
 
 }  // namespace motif::frame_file

@@ -227,9 +227,9 @@ Status DecodeColumnChunk(const ColumnEncoding& encoding, const uint8_t* chunk, s
     const size_t decoded = ZSTD_decompressDCtx(scratch.context.get(), scratch.bytes.data(),
                                                raw_bytes, chunk, chunk_bytes);
     if (ZSTD_isError(decoded) || decoded != raw_bytes) {
-      return Status::Corruption(std::string("column chunk does not decode: ") +
-                                (ZSTD_isError(decoded) ? ZSTD_getErrorName(decoded)
-                                                       : "wrong size"));
+      return Status::Corruption(
+          std::string("column chunk does not decode: ") +
+          (ZSTD_isError(decoded) ? ZSTD_getErrorName(decoded) : "wrong size"));
     }
     bytes = scratch.bytes.data();
   } else if (chunk_bytes != raw_bytes) {
@@ -249,10 +249,9 @@ Status DecodeColumnChunk(const ColumnEncoding& encoding, const uint8_t* chunk, s
   } else {
     for (size_t word_idx = 0; word_idx < word_count; ++word_idx) {
       const uint8_t* word_bytes = bytes + 4 * word_idx;
-      words[word_idx] = static_cast<uint32_t>(word_bytes[0]) |
-                        static_cast<uint32_t>(word_bytes[1]) << 8 |
-                        static_cast<uint32_t>(word_bytes[2]) << 16 |
-                        static_cast<uint32_t>(word_bytes[3]) << 24;
+      words[word_idx] =
+          static_cast<uint32_t>(word_bytes[0]) | static_cast<uint32_t>(word_bytes[1]) << 8 |
+          static_cast<uint32_t>(word_bytes[2]) << 16 | static_cast<uint32_t>(word_bytes[3]) << 24;
     }
   }
   if (encoding.zigzag) {

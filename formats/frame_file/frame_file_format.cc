@@ -154,13 +154,12 @@ Status FileHeader::DecodeFixedFrom(const uint8_t* bytes, size_t size, FileHeader
     return Status::Corruption("header at offset 0x0: checksum mismatch");
   }
   if (LoadU32(bytes + 12) != kHeaderBytes) {
-    return Status::Corruption("header size " + std::to_string(LoadU32(bytes + 12)) +
-                              ", expected " + std::to_string(kHeaderBytes));
+    return Status::Corruption("header size " + std::to_string(LoadU32(bytes + 12)) + ", expected " +
+                              std::to_string(kHeaderBytes));
   }
   for (size_t offset = 16; offset < 40; offset += 8) {
     if (LoadU64(bytes + offset) != 0) {
-      return Status::Corruption("header reserved field at offset " + Hex(offset) +
-                                " is not zero");
+      return Status::Corruption("header reserved field at offset " + Hex(offset) + " is not zero");
     }
   }
   return Status::Ok();
@@ -198,8 +197,8 @@ Status Footer::DecodeFrom(const uint8_t* bytes, Footer* footer) {
                               std::to_string(footer->format_major));
   }
   if (LoadU32(bytes + 12) != kFooterBytes) {
-    return Status::Corruption("footer size " + std::to_string(LoadU32(bytes + 12)) +
-                              ", expected " + std::to_string(kFooterBytes));
+    return Status::Corruption("footer size " + std::to_string(LoadU32(bytes + 12)) + ", expected " +
+                              std::to_string(kFooterBytes));
   }
   if (LoadU64(bytes + 48) != 0) return Status::Corruption("footer reserved field is not zero");
   footer->generation = LoadU64(bytes + 16);

@@ -135,7 +135,7 @@ struct BlockHandle {
   uint64_t bytes = 0;        // the whole block: header, chunk entries, chunks
   uint64_t first_frame = 0;  // global frame index
   uint32_t frame_count = 0;
-  uint64_t checksum = 0;     // Checksum64 of the block's `bytes` bytes
+  uint64_t checksum = 0;  // Checksum64 of the block's `bytes` bytes
 
   void EncodeTo(std::string* out) const;  // kBlockEntryBytes
   // Reads kBlockEntryBytes known bytes; Corruption on a non-zero reserved field.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 #include "common/mapped_file.h"
 #include "formats/frame_file/archive_loader.h"
 #include "formats/frame_file/block_codec.h"
@@ -74,8 +73,8 @@ class FrameFileReader::Impl::Stream final : public FrameStream {
     const uint64_t block_end = block.first_frame + block.frame_count;
     run_first_ = next_frame_;
     run_count_ = std::min(block_end, end_frame_) - next_frame_;
-    run_rows_ = block_rows_.data() + (next_frame_ - block.first_frame) *
-                                         impl_->metadata().layout().stride();
+    run_rows_ = block_rows_.data() +
+                (next_frame_ - block.first_frame) * impl_->metadata().layout().stride();
     next_frame_ += run_count_;
     ++block_idx_;
     return true;
@@ -114,9 +113,9 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::OpenCommit(const std::
   MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
   impl->data = impl->file->data();
   impl->size = impl->file->size();
-  MOTIF_ASSIGN_OR_RETURN(impl->archive, frame_file::LoadArchiveCommit(path, impl->data, impl->size,
-                                                                      generation,
-                                                                      committed_length));
+  MOTIF_ASSIGN_OR_RETURN(
+      impl->archive,
+      frame_file::LoadArchiveCommit(path, impl->data, impl->size, generation, committed_length));
   return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
 }
 

@@ -19,7 +19,7 @@
 namespace motif {
 
 struct FrameFileSummary {
-  uint64_t file_bytes = 0;        // committed length
+  uint64_t file_bytes = 0;  // committed length
   uint64_t block_count = 0;
   uint64_t compressed_bytes = 0;  // sum of block sizes
   uint32_t block_frames = 0;      // the writer's nominal block size

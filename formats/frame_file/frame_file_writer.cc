@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <system_error>
@@ -33,7 +33,6 @@ using frame_file::Footer;
 using frame_file::LoadedArchive;
 
 namespace {
-
 
 // Maps `path` read-only just long enough to validate it and copy out what an append needs.
 Result<LoadedArchive> LoadArchiveFile(const std::string& path) {
@@ -185,8 +184,7 @@ class FrameFileWriter::Impl {
     if (!open_clip_) return Invalid("AppendFrames without BeginClip");
     if (frame_count == 0) return Status::Ok();
     if (rows == nullptr) return Invalid("AppendFrames given no rows");
-    MOTIF_RETURN_IF_ERROR(CheckRows(open_clip_->name, rows, frame_count,
-                                    open_clip_->frame_count));
+    MOTIF_RETURN_IF_ERROR(CheckRows(open_clip_->name, rows, frame_count, open_clip_->frame_count));
     MOTIF_RETURN_IF_ERROR(BufferRows(rows, frame_count));
     return Status::Ok();
   }
@@ -272,8 +270,7 @@ class FrameFileWriter::Impl {
     for (size_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
       const float* row = rows + frame_idx * stride_;
       for (size_t float_idx = 0; float_idx < stride_; ++float_idx) {
-        const ColumnEncoding& encoding =
-            metadata_.columns[column_of_float_[float_idx]].encoding;
+        const ColumnEncoding& encoding = metadata_.columns[column_of_float_[float_idx]].encoding;
         if (frame_file::IsEncodable(encoding, row[float_idx])) continue;
         const std::string where = "clip \"" + clip_name + "\" frame " +
                                   std::to_string(first_clip_frame + frame_idx) + ", row float " +
@@ -313,8 +310,8 @@ class FrameFileWriter::Impl {
     BlockHandle block;
     block.first_frame = next_frame_ - buffered_frames_;
     block.frame_count = buffered_frames_;
-    MOTIF_RETURN_IF_ERROR(encoder_->Encode(buffer_.data(), buffered_frames_, block.first_frame,
-                                           &block_bytes_));
+    MOTIF_RETURN_IF_ERROR(
+        encoder_->Encode(buffer_.data(), buffered_frames_, block.first_frame, &block_bytes_));
     block.offset = write_offset_;
     block.bytes = block_bytes_.size();
     block.checksum = frame_file::Checksum64(block_bytes_.data(), block_bytes_.size());
@@ -445,8 +442,8 @@ Result<std::unique_ptr<FrameFileWriter>> FrameFileWriter::Create(
   Status valid = skeleton.Validate();
   if (!valid.ok()) return valid.WithContext(path);
   if (skeleton.joint_count() > frame_file::kMaxJoints) {
-    return Status::InvalidArgument(path + ": more than " +
-                                   std::to_string(frame_file::kMaxJoints) + " joints");
+    return Status::InvalidArgument(path + ": more than " + std::to_string(frame_file::kMaxJoints) +
+                                   " joints");
   }
   if (!std::isfinite(fps) || !(fps > 0)) {
     return Status::InvalidArgument(path + ": fps " + std::to_string(fps) +
@@ -461,8 +458,8 @@ Result<std::unique_ptr<FrameFileWriter>> FrameFileWriter::Create(
   defaults.velocity_step = options.velocity_step;
   defaults.heading_step = options.heading_step;
   defaults.lossless = options.lossless;
-  valid = frame_file::ValidateColumns(frame_file::DefaultColumns(joint_count, defaults),
-                                      joint_count);
+  valid =
+      frame_file::ValidateColumns(frame_file::DefaultColumns(joint_count, defaults), joint_count);
   if (!valid.ok()) return valid.WithContext(path);
 
   auto impl = std::make_unique<Impl>(Impl::Mode::kCreate, path, options);
@@ -474,8 +471,7 @@ Result<std::unique_ptr<FrameFileWriter>> FrameFileWriter::Create(
 Result<std::unique_ptr<FrameFileWriter>> FrameFileWriter::OpenForAppend(
     const std::string& path, const FrameFileWriterOptions& options) {
   auto impl = std::make_unique<Impl>(Impl::Mode::kAppend, path, options);
-  MOTIF_RETURN_IF_ERROR(
-      impl->lock().Acquire(path, "the archive is locked by another writer"));
+  MOTIF_RETURN_IF_ERROR(impl->lock().Acquire(path, "the archive is locked by another writer"));
   MOTIF_ASSIGN_OR_RETURN(LoadedArchive archive, LoadArchiveFile(path));
   if (!archive.fallback_reason.empty()) {
     return Status::Corruption(archive.fallback_reason +

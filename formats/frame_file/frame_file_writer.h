@@ -47,9 +47,9 @@ class FrameFileWriter {
  public:
   // Starts a new archive at `path` (which must not exist: InvalidArgument otherwise) for takes of
   // `skeleton` at `fps` frames per second.
-  static Result<std::unique_ptr<FrameFileWriter>> Create(const std::string& path,
-                                                         const Skeleton& skeleton, double fps,
-                                                         const FrameFileWriterOptions& options = {});
+  static Result<std::unique_ptr<FrameFileWriter>> Create(
+      const std::string& path, const Skeleton& skeleton, double fps,
+      const FrameFileWriterOptions& options = {});
   // Opens an existing archive to append clips. Validates it first (Corruption / NotFound), and
   // discards an uncommitted tail left by an interrupted earlier writer.
   static Result<std::unique_ptr<FrameFileWriter>> OpenForAppend(
@@ -60,7 +60,7 @@ class FrameFileWriter {
   const Skeleton& skeleton() const;
   double fps() const;
   FrameLayout layout() const;
-  uint64_t frame_count() const;               // committed plus appended so far
+  uint64_t frame_count() const;                // committed plus appended so far
   const std::vector<ClipInfo>& clips() const;  // committed plus appended so far
 
   // Appends one whole clip. `clip.rows` has clip.info.frame_count * layout().stride() floats;

@@ -36,9 +36,9 @@ enum class FirstFramePolicy {
 };
 
 struct ImportOptions {
-  double amc_fps = 120.0;        // AMC files store no rate; CMU captured at 120 Hz
-  double bvh_fps = 0;            // > 0 overrides every BVH file's Frame Time
-  std::string asf_path;          // if set, the skeleton for every AMC file
+  double amc_fps = 120.0;  // AMC files store no rate; CMU captured at 120 Hz
+  double bvh_fps = 0;      // > 0 overrides every BVH file's Frame Time
+  std::string asf_path;    // if set, the skeleton for every AMC file
   FirstFramePolicy first_frame = FirstFramePolicy::kAuto;
 };
 

@@ -160,11 +160,10 @@ bool CanonicalizeSkeleton(Take* take) {
 Status ConformToSkeleton(const Skeleton& target, Take* take) {
   const Skeleton& skeleton = take->skeleton;
   auto mismatch = [&](const std::string& what) {
-    return Status::InvalidArgument(take->source_path + ": its skeleton (" + skeleton.family() +
-                                   ", " + std::to_string(skeleton.joint_count()) +
-                                   " joints) does not match the archive's (" + target.family() +
-                                   ", " + std::to_string(target.joint_count()) +
-                                   " joints): " + what);
+    return Status::InvalidArgument(
+        take->source_path + ": its skeleton (" + skeleton.family() + ", " +
+        std::to_string(skeleton.joint_count()) + " joints) does not match the archive's (" +
+        target.family() + ", " + std::to_string(target.joint_count()) + " joints): " + what);
   };
   if (skeleton.family() != target.family()) return mismatch("different skeleton family");
   if (skeleton.joint_count() != target.joint_count()) return mismatch("different joint count");

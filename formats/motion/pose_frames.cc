@@ -97,8 +97,7 @@ Take ClipFramesToTake(const Skeleton& skeleton, const ClipInfo& info, const floa
   }
   take.root_positions.resize(frame_count);
   take.rotations.resize(frame_count * joint_count);
-  Eigen::Vector3d position(info.start_position[0], info.start_position[1],
-                           info.start_position[2]);
+  Eigen::Vector3d position(info.start_position[0], info.start_position[1], info.start_position[2]);
   for (size_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
     const float* row = rows + frame_idx * stride;
     const double heading = row[layout.heading_offset()];

@@ -34,14 +34,14 @@ struct FrameLayout {
 
 // One clip of an archive, as in its clip table (docs/formats/frame_file.md).
 struct ClipInfo {
-  std::string name;                 // source file stem
+  std::string name;  // source file stem
   std::string source_path;
-  uint64_t first_frame = 0;         // global index of the clip's first frame in the archive
+  uint64_t first_frame = 0;  // global index of the clip's first frame in the archive
   uint64_t frame_count = 0;
-  double fps = 120.0;               // the archive's rate (the clip is stored at it)
-  double source_fps = 120.0;        // the source file's rate before resampling
-  double meters_per_unit = 0;       // 0 if unknown
-  uint64_t content_hash = 0;        // XXH3-64 of the source bytes, 0 for synthetic clips
+  double fps = 120.0;                      // the archive's rate (the clip is stored at it)
+  double source_fps = 120.0;               // the source file's rate before resampling
+  double meters_per_unit = 0;              // 0 if unknown
+  uint64_t content_hash = 0;               // XXH3-64 of the source bytes, 0 for synthetic clips
   std::array<double, 3> start_position{};  // root world position at the clip's first frame
   // Per joint (archive skeleton order): this clip's bone offsets and end sites. Subjects differ
   // in bone lengths, so export uses the clip's own.

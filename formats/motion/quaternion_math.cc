@@ -2,7 +2,8 @@
 
 namespace motif {
 
-std::array<double, 3> QuaternionToEuler(const Eigen::Quaterniond& q, const std::array<Axis, 3>& axes,
+std::array<double, 3> QuaternionToEuler(const Eigen::Quaterniond& q,
+                                        const std::array<Axis, 3>& axes,
                                         const std::array<double, 3>& previous) {
   // Tait-Bryan decomposition M = R_i(a) R_j(b) R_k(c) for distinct axes i, j, k. With parity
   // sign s = +1 for cyclic (x,y,z), (y,z,x), (z,x,y) and -1 otherwise:

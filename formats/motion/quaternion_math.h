@@ -16,9 +16,12 @@ enum class Axis : uint8_t { kX = 0, kY = 1, kZ = 2 };
 
 inline Eigen::Vector3d AxisVector(Axis axis) {
   switch (axis) {
-    case Axis::kX: return Eigen::Vector3d::UnitX();
-    case Axis::kY: return Eigen::Vector3d::UnitY();
-    case Axis::kZ: return Eigen::Vector3d::UnitZ();
+    case Axis::kX:
+      return Eigen::Vector3d::UnitX();
+    case Axis::kY:
+      return Eigen::Vector3d::UnitY();
+    case Axis::kZ:
+      return Eigen::Vector3d::UnitZ();
   }
   return Eigen::Vector3d::UnitX();
 }
@@ -68,7 +71,8 @@ inline double RotationAngleBetween(const Eigen::Quaterniond& a, const Eigen::Qua
 }
 
 // q or -q, whichever is on the same side as `reference` (non-negative dot product).
-inline Eigen::Quaterniond AlignSign(const Eigen::Quaterniond& q, const Eigen::Quaterniond& reference) {
+inline Eigen::Quaterniond AlignSign(const Eigen::Quaterniond& q,
+                                    const Eigen::Quaterniond& reference) {
   if (q.dot(reference) < 0) return Eigen::Quaterniond(-q.w(), -q.x(), -q.y(), -q.z());
   return q;
 }
@@ -76,7 +80,8 @@ inline Eigen::Quaterniond AlignSign(const Eigen::Quaterniond& q, const Eigen::Qu
 // Euler angles (radians) for `q` in the order `axes` (three distinct axes), such that
 // ComposeRotations(axes, result, 3) equals q. Of the two solutions, returns the one closest to
 // `previous` (pass the previous frame's angles to keep exported channels continuous).
-std::array<double, 3> QuaternionToEuler(const Eigen::Quaterniond& q, const std::array<Axis, 3>& axes,
+std::array<double, 3> QuaternionToEuler(const Eigen::Quaterniond& q,
+                                        const std::array<Axis, 3>& axes,
                                         const std::array<double, 3>& previous = {0, 0, 0});
 
 }  // namespace motif

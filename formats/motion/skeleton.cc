@@ -8,12 +8,18 @@ namespace motif {
 
 const char* ChannelTypeName(ChannelType type) {
   switch (type) {
-    case ChannelType::kXPosition: return "Xposition";
-    case ChannelType::kYPosition: return "Yposition";
-    case ChannelType::kZPosition: return "Zposition";
-    case ChannelType::kXRotation: return "Xrotation";
-    case ChannelType::kYRotation: return "Yrotation";
-    case ChannelType::kZRotation: return "Zrotation";
+    case ChannelType::kXPosition:
+      return "Xposition";
+    case ChannelType::kYPosition:
+      return "Yposition";
+    case ChannelType::kZPosition:
+      return "Zposition";
+    case ChannelType::kXRotation:
+      return "Xrotation";
+    case ChannelType::kYRotation:
+      return "Yrotation";
+    case ChannelType::kZRotation:
+      return "Zrotation";
   }
   return "?";
 }
@@ -92,16 +98,16 @@ float DefaultJointWeight(const std::string& family, const std::string& joint_nam
   if (family == kCmuFamily) return 0.0f;
   // Other skeletons: match common naming schemes by substring. Exclusions first, since "hand"
   // and "foot" names often contain "arm" or "leg" prefixes (e.g. "LeftHandIndex", "LeftFoot").
-  static const char* kExcluded[] = {"hand", "finger", "thumb", "index", "middle", "ring",
-                                    "pinky", "toe", "foot", "wrist", "ankle", "head",
-                                    "neck", "eye", "jaw", "collar", "clavicle", "end"};
+  static const char* kExcluded[] = {"hand",  "finger", "thumb", "index",  "middle",   "ring",
+                                    "pinky", "toe",    "foot",  "wrist",  "ankle",    "head",
+                                    "neck",  "eye",    "jaw",   "collar", "clavicle", "end"};
   for (const char* excluded : kExcluded) {
     if (name.find(excluded) != std::string::npos) return 0.0f;
   }
-  static const char* kWeighted[] = {"hip",   "pelvis", "abdomen", "spine", "chest", "back",
-                                    "shldr", "shoulder", "upperarm", "arm", "forearm",
-                                    "elbow", "thigh",  "upleg",   "upperleg", "leg",
-                                    "shin",  "knee",   "calf"};
+  static const char* kWeighted[] = {"hip",     "pelvis", "abdomen",  "spine",    "chest",
+                                    "back",    "shldr",  "shoulder", "upperarm", "arm",
+                                    "forearm", "elbow",  "thigh",    "upleg",    "upperleg",
+                                    "leg",     "shin",   "knee",     "calf"};
   for (const char* weighted : kWeighted) {
     if (name.find(weighted) != std::string::npos) return 1.0f;
   }

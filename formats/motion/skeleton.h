@@ -37,12 +37,12 @@ bool ParseChannelType(const std::string& name, ChannelType* type);
 
 struct Joint {
   std::string name;
-  int32_t parent = -1;                  // index of the parent joint; -1 for the root only
-  std::array<double, 3> offset{};       // from the parent's origin, rest pose, source length units
+  int32_t parent = -1;             // index of the parent joint; -1 for the root only
+  std::array<double, 3> offset{};  // from the parent's origin, rest pose, source length units
   bool has_end_site = false;
-  std::array<double, 3> end_site{};     // offset of the end site from this joint, if any
-  std::vector<ChannelType> channels;    // BVH channel layout (rotations in composition order)
-  float weight = 0.0f;                  // default weight w_k of this joint in the pose distance
+  std::array<double, 3> end_site{};   // offset of the end site from this joint, if any
+  std::vector<ChannelType> channels;  // BVH channel layout (rotations in composition order)
+  float weight = 0.0f;                // default weight w_k of this joint in the pose distance
 };
 
 class Skeleton {

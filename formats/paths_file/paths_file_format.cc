@@ -3,8 +3,6 @@
 #include <cstring>
 #include <tuple>
 
-
-
 namespace motif::paths_file {
 
 namespace {
@@ -52,15 +50,14 @@ auto SortKey(const PathCandidate& candidate) {
 // "" if the candidate is within the params, else why not.
 std::string CandidateProblem(const PathsParams& params, const PathCandidate& candidate) {
   const uint64_t n = params.frame_count;
-  if (candidate.top_end > n || candidate.top_start > candidate.top_end ||
-      candidate.match_end > n || candidate.match_start > candidate.match_end) {
+  if (candidate.top_end > n || candidate.top_start > candidate.top_end || candidate.match_end > n ||
+      candidate.match_start > candidate.match_end) {
     return "top row [" + std::to_string(candidate.top_start) + ", " +
            std::to_string(candidate.top_end) + ") or match [" +
            std::to_string(candidate.match_start) + ", " + std::to_string(candidate.match_end) +
            ") is not a range within the " + std::to_string(n) + " frames";
   }
-  if (candidate.top_length() < params.min_length ||
-      candidate.match_length() < params.min_length) {
+  if (candidate.top_length() < params.min_length || candidate.match_length() < params.min_length) {
     return "lengths " + std::to_string(candidate.top_length()) + " and " +
            std::to_string(candidate.match_length()) + " are not both at least min_length " +
            std::to_string(params.min_length);
@@ -105,7 +102,8 @@ std::string CandidatesProblem(const PathsParams& params,
                               const std::vector<PathCandidate>& candidates) {
   for (size_t idx = 0; idx < candidates.size(); ++idx) {
     std::string problem = CandidateProblem(params, candidates[idx]);
-    if (problem.empty() && idx > 0) problem = OrderProblem(params, candidates[idx - 1], candidates[idx]);
+    if (problem.empty() && idx > 0)
+      problem = OrderProblem(params, candidates[idx - 1], candidates[idx]);
     if (!problem.empty()) return "candidate " + std::to_string(idx) + ": " + problem;
   }
   return "";
@@ -114,8 +112,9 @@ std::string CandidatesProblem(const PathsParams& params,
 // Header, 96 bytes:
 //   0 magic[8] | 8 format_major u16 | 10 format_minor u16 | 12 header_bytes u32
 //   16 trellis_identity u64 | 24 archive_identity u64 | 32 frame_count u64 | 40 branch u32
-//   44 flags u32 (bit 0: all_branches; the others 0) | 48 min_length u64 | 56 candidate_count u64 | 64 records_raw_bytes u64
-//   72 records_bytes u64 | 80 records_checksum u64 | 88 header_checksum u64 of [0, 88)
+//   44 flags u32 (bit 0: all_branches; the others 0) | 48 min_length u64 | 56 candidate_count u64 |
+//   64 records_raw_bytes u64 72 records_bytes u64 | 80 records_checksum u64 | 88 header_checksum
+//   u64 of [0, 88)
 void FileHeader::EncodeTo(std::string* out) const {
   std::string header(kFileMagic.begin(), kFileMagic.end());
   PutU16(&header, format_major);
@@ -136,22 +135,22 @@ void FileHeader::EncodeTo(std::string* out) const {
 }
 
 Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* header) {
-  MOTIF_RETURN_IF_ERROR(CheckMagicAndMajor(bytes, size, kFileMagic.data(), "paths file", kFormatMajor));
+  MOTIF_RETURN_IF_ERROR(
+      CheckMagicAndMajor(bytes, size, kFileMagic.data(), "paths file", kFormatMajor));
   header->format_major = LoadU16(bytes + 8);
   if (size < kHeaderBytes) {
     return Status::Corruption("file of " + std::to_string(size) +
-                              " bytes is shorter than the header (" +
-                              std::to_string(kHeaderBytes) + " bytes): truncated");
+                              " bytes is shorter than the header (" + std::to_string(kHeaderBytes) +
+                              " bytes): truncated");
   }
   header->format_minor = LoadU16(bytes + 10);
   header->header_bytes = LoadU32(bytes + 12);
   if (header->header_bytes < kHeaderBytes || header->header_bytes > kMaxHeaderBytes ||
       header->header_bytes > size) {
-    return Status::Corruption("header at offset 0x0: header_bytes " +
-                              std::to_string(header->header_bytes) + " is not in [" +
-                              std::to_string(kHeaderBytes) + ", min(" +
-                              std::to_string(kMaxHeaderBytes) + ", file size " +
-                              std::to_string(size) + ")]");
+    return Status::Corruption(
+        "header at offset 0x0: header_bytes " + std::to_string(header->header_bytes) +
+        " is not in [" + std::to_string(kHeaderBytes) + ", min(" + std::to_string(kMaxHeaderBytes) +
+        ", file size " + std::to_string(size) + ")]");
   }
   const size_t checksum_offset = header->header_bytes - 8;
   if (Checksum64(bytes, checksum_offset) != LoadU64(bytes + checksum_offset)) {
@@ -187,8 +186,8 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
       header->records_raw_bytes > (header->records_bytes / 3 + 1) * kZstdMaxBlockBytes) {
     return Status::Corruption("header: " + std::to_string(count) + " candidates in " +
                               std::to_string(header->records_raw_bytes) +
-                              " raw bytes compressed to " +
-                              std::to_string(header->records_bytes) + " is impossible");
+                              " raw bytes compressed to " + std::to_string(header->records_bytes) +
+                              " is impossible");
   }
   return Status::Ok();
 }

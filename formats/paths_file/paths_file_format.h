@@ -31,11 +31,11 @@ inline constexpr uint16_t kFormatMajor = 1;
 inline constexpr uint16_t kFormatMinor = 0;
 
 inline constexpr uint32_t kFlagAllBranches = 1;  // header flags, bit 0
-inline constexpr size_t kHeaderBytes = 96;      // version 1.0's header, checksum included
+inline constexpr size_t kHeaderBytes = 96;       // version 1.0's header, checksum included
 inline constexpr size_t kMaxHeaderBytes = 4096;  // later minor versions may append fields
 inline constexpr uint64_t kMaxFrameCount = uint64_t{1} << 32;
-inline constexpr size_t kMinRecordBytes = 6;     // six varints of one byte
-inline constexpr size_t kMaxRecordBytes = 60;    // six varints of ten bytes
+inline constexpr size_t kMinRecordBytes = 6;   // six varints of one byte
+inline constexpr size_t kMaxRecordBytes = 60;  // six varints of ten bytes
 // A zstd block holds at most 128 KiB and costs at least 3 bytes: a bound on how much a frame
 // of a given size can expand to, checked before allocating.
 inline constexpr uint64_t kZstdMaxBlockBytes = 128 * 1024;

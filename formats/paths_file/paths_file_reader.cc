@@ -33,10 +33,9 @@ Status DecompressRecords(const uint8_t* frame, size_t size, uint64_t raw_size, s
   char dummy = 0;
   const size_t decoded = ZSTD_decompress(raw_size ? raw->data() : &dummy, raw_size, frame, size);
   if (ZSTD_isError(decoded) || decoded != raw_size) {
-    return Status::Corruption(std::string("zstd frame does not decode") +
-                              (ZSTD_isError(decoded) ? std::string(": ") +
-                                                           ZSTD_getErrorName(decoded)
-                                                     : std::string()));
+    return Status::Corruption(
+        std::string("zstd frame does not decode") +
+        (ZSTD_isError(decoded) ? std::string(": ") + ZSTD_getErrorName(decoded) : std::string()));
   }
   return Status::Ok();
 }
@@ -61,8 +60,7 @@ Result<std::unique_ptr<PathsFileReader>> PathsFileReader::FromBytes(const std::s
   status = DecompressRecords(section, header.records_bytes, header.records_raw_bytes, &raw);
   if (!status.ok()) return status.WithContext(where);
   status = paths_file::DecodeRecords(reinterpret_cast<const uint8_t*>(raw.data()), raw.size(),
-                                     header.candidate_count, header.params,
-                                     &contents->candidates);
+                                     header.candidate_count, header.params, &contents->candidates);
   if (!status.ok()) return status.WithContext(where);
   return std::unique_ptr<PathsFileReader>(new PathsFileReader(std::move(contents)));
 }

@@ -8,8 +8,7 @@
 namespace motif {
 
 Result<std::string> EncodePathsFile(const PathsParams& params,
-                                    const std::vector<PathCandidate>& candidates,
-                                    int zstd_level) {
+                                    const std::vector<PathCandidate>& candidates, int zstd_level) {
   std::string problem = paths_file::ParamsProblem(params);
   if (problem.empty()) problem = paths_file::CandidatesProblem(params, candidates);
   if (!problem.empty()) return Status::InvalidArgument("paths file: " + problem);

@@ -10,28 +10,41 @@
 namespace motif {
 
 // The data are the in-memory bytes of the elements: the format is little-endian.
-static_assert(std::endian::native == std::endian::little, "tensor files assume a little-endian host");
+static_assert(std::endian::native == std::endian::little,
+              "tensor files assume a little-endian host");
 
 size_t TensorTypeBytes(TensorType type) {
   switch (type) {
-    case TensorType::kU8: return 1;
-    case TensorType::kU16: return 2;
-    case TensorType::kU32: return 4;
-    case TensorType::kU64: return 8;
-    case TensorType::kF32: return 4;
-    case TensorType::kF64: return 8;
+    case TensorType::kU8:
+      return 1;
+    case TensorType::kU16:
+      return 2;
+    case TensorType::kU32:
+      return 4;
+    case TensorType::kU64:
+      return 8;
+    case TensorType::kF32:
+      return 4;
+    case TensorType::kF64:
+      return 8;
   }
   return 0;
 }
 
 const char* TensorTypeName(TensorType type) {
   switch (type) {
-    case TensorType::kU8: return "u8";
-    case TensorType::kU16: return "u16";
-    case TensorType::kU32: return "u32";
-    case TensorType::kU64: return "u64";
-    case TensorType::kF32: return "f32";
-    case TensorType::kF64: return "f64";
+    case TensorType::kU8:
+      return "u8";
+    case TensorType::kU16:
+      return "u16";
+    case TensorType::kU32:
+      return "u32";
+    case TensorType::kU64:
+      return "u64";
+    case TensorType::kF32:
+      return "f32";
+    case TensorType::kF64:
+      return "f64";
   }
   return "unknown";
 }
@@ -109,7 +122,9 @@ Result<std::vector<T>> TensorFile::Read(const std::string& name, TensorType type
   if (tensor->rank != rank || (rows != kAnyCount && tensor->rows != rows) ||
       (cols != kAnyCount && tensor->cols != cols)) {
     auto shape = [](uint8_t r, uint64_t a, uint64_t b) {
-      auto text = [](uint64_t v) { return v == kAnyCount ? std::string("any") : std::to_string(v); };
+      auto text = [](uint64_t v) {
+        return v == kAnyCount ? std::string("any") : std::to_string(v);
+      };
       return r == 1 ? "[" + text(a) + "]" : "[" + text(a) + " x " + text(b) + "]";
     };
     return Status::Corruption(where + " has shape " +
@@ -236,11 +251,11 @@ Result<TensorFile> DecodeTensorFile(const std::string& bytes, const std::string&
   Status status = tensor_file::FileHeader::DecodeFrom(data, size, &header, &identity);
   if (!status.ok()) return status.WithContext(name);
   if (!expected_kind.empty() && header.kind != expected_kind) {
-    return Status::InvalidArgument(name + ": a tensor file of kind '" + header.kind +
-                                   "', not '" + expected_kind + "'");
+    return Status::InvalidArgument(name + ": a tensor file of kind '" + header.kind + "', not '" +
+                                   expected_kind + "'");
   }
-  const uint64_t table_bytes = static_cast<uint64_t>(header.tensor_count) *
-                               tensor_file::kEntryBytes;
+  const uint64_t table_bytes =
+      static_cast<uint64_t>(header.tensor_count) * tensor_file::kEntryBytes;
   if (Checksum64(data + header.header_bytes, table_bytes) != header.table_checksum) {
     return Status::Corruption(name + ": table at offset " + Hex(header.header_bytes) +
                               ": checksum mismatch");

@@ -82,8 +82,7 @@ class TensorFile {
   Result<std::vector<uint64_t>> U64(const std::string& name, uint64_t count = kAnyCount) const;
   Result<std::vector<float>> F32(const std::string& name, uint64_t count = kAnyCount) const;
   Result<std::vector<double>> F64(const std::string& name, uint64_t count = kAnyCount) const;
-  Result<std::vector<float>> F32Matrix(const std::string& name, uint64_t rows,
-                                       uint64_t cols) const;
+  Result<std::vector<float>> F32Matrix(const std::string& name, uint64_t rows, uint64_t cols) const;
   Result<std::vector<double>> F64Matrix(const std::string& name, uint64_t rows,
                                         uint64_t cols) const;
   // One u64 / f64 (a vector of one element).
@@ -95,8 +94,8 @@ class TensorFile {
 
  private:
   template <typename T>
-  Result<std::vector<T>> Read(const std::string& name, TensorType type, uint8_t rank,
-                              uint64_t rows, uint64_t cols) const;
+  Result<std::vector<T>> Read(const std::string& name, TensorType type, uint8_t rank, uint64_t rows,
+                              uint64_t cols) const;
 
   std::string kind_;
   std::vector<Tensor> tensors_;

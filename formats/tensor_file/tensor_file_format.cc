@@ -80,18 +80,17 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
   header->format_major = LoadU16(bytes + 8);
   if (size < kHeaderBytes) {
     return Status::Corruption("file of " + std::to_string(size) +
-                              " bytes is shorter than the header (" +
-                              std::to_string(kHeaderBytes) + " bytes): truncated");
+                              " bytes is shorter than the header (" + std::to_string(kHeaderBytes) +
+                              " bytes): truncated");
   }
   header->format_minor = LoadU16(bytes + 10);
   header->header_bytes = LoadU32(bytes + 12);
   if (header->header_bytes < kHeaderBytes || header->header_bytes > kMaxHeaderBytes ||
       header->header_bytes > size || header->header_bytes % kDataAlignment != 0) {
-    return Status::Corruption("header at offset 0x0: header_bytes " +
-                              std::to_string(header->header_bytes) +
-                              " is not a multiple of 8 in [" + std::to_string(kHeaderBytes) +
-                              ", min(" + std::to_string(kMaxHeaderBytes) + ", file size " +
-                              std::to_string(size) + ")]");
+    return Status::Corruption(
+        "header at offset 0x0: header_bytes " + std::to_string(header->header_bytes) +
+        " is not a multiple of 8 in [" + std::to_string(kHeaderBytes) + ", min(" +
+        std::to_string(kMaxHeaderBytes) + ", file size " + std::to_string(size) + ")]");
   }
   const size_t checksum_offset = header->header_bytes - 8;
   *header_checksum = LoadU64(bytes + checksum_offset);
@@ -100,8 +99,9 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
                               Hex(checksum_offset) + ")");
   }
   if (!ReadPadded(bytes + 16, kKindBytes, &header->kind) || !KindProblem(header->kind).empty()) {
-    return Status::Corruption("header: kind at 0x10 is not 1 to 15 characters of [a-z0-9_.-] "
-                              "padded with NUL bytes");
+    return Status::Corruption(
+        "header: kind at 0x10 is not 1 to 15 characters of [a-z0-9_.-] "
+        "padded with NUL bytes");
   }
   header->tensor_count = LoadU32(bytes + 32);
   const uint32_t flags = LoadU32(bytes + 36);
@@ -115,12 +115,11 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
   const uint64_t data_start =
       header->header_bytes + static_cast<uint64_t>(header->tensor_count) * kEntryBytes;
   if (data_start > size || header->data_bytes != size - data_start) {
-    return Status::Corruption("header: " + std::to_string(header->tensor_count) +
-                              " table entries and " + std::to_string(header->data_bytes) +
-                              " data bytes after a header of " +
-                              std::to_string(header->header_bytes) +
-                              " bytes do not make the file's " + std::to_string(size) +
-                              " bytes (truncated or extended?)");
+    return Status::Corruption(
+        "header: " + std::to_string(header->tensor_count) + " table entries and " +
+        std::to_string(header->data_bytes) + " data bytes after a header of " +
+        std::to_string(header->header_bytes) + " bytes do not make the file's " +
+        std::to_string(size) + " bytes (truncated or extended?)");
   }
   return Status::Ok();
 }
@@ -143,8 +142,9 @@ void TableEntry::EncodeTo(std::string* out) const {
 
 Status TableEntry::DecodeFrom(const uint8_t* bytes, TableEntry* entry) {
   if (!ReadPadded(bytes, kNameBytes, &entry->name) || !NameProblem(entry->name).empty()) {
-    return Status::Corruption("name is not 1 to 31 characters of [a-z0-9_.] padded with NUL "
-                              "bytes");
+    return Status::Corruption(
+        "name is not 1 to 31 characters of [a-z0-9_.] padded with NUL "
+        "bytes");
   }
   entry->type = static_cast<TensorType>(bytes[32]);
   entry->rank = bytes[33];
@@ -161,16 +161,16 @@ Status TableEntry::DecodeFrom(const uint8_t* bytes, TableEntry* entry) {
   entry->bytes = LoadU64(bytes + 64);
   entry->checksum = LoadU64(bytes + 72);
   if (entry->rank != 1 && entry->rank != 2) {
-    return Status::Corruption("tensor '" + entry->name + "': rank " +
-                              std::to_string(entry->rank) + " is not 1 or 2");
+    return Status::Corruption("tensor '" + entry->name + "': rank " + std::to_string(entry->rank) +
+                              " is not 1 or 2");
   }
   if (entry->rank == 1 && entry->cols != 1) {
     return Status::Corruption("tensor '" + entry->name + "': a vector with cols " +
                               std::to_string(entry->cols) + " (must be 1)");
   }
   // rows * cols * element bytes == bytes, without overflow.
-  const unsigned __int128 expected = static_cast<unsigned __int128>(entry->rows) * entry->cols *
-                                     TensorTypeBytes(entry->type);
+  const unsigned __int128 expected =
+      static_cast<unsigned __int128>(entry->rows) * entry->cols * TensorTypeBytes(entry->type);
   if (expected != entry->bytes) {
     return Status::Corruption("tensor '" + entry->name + "': " + std::to_string(entry->bytes) +
                               " bytes for " + std::to_string(entry->rows) + " x " +

@@ -29,7 +29,7 @@ inline constexpr std::array<uint8_t, 8> kFileMagic = {0x89, 'M', 'W', 'T', '\r',
 inline constexpr uint16_t kFormatMajor = 1;
 inline constexpr uint16_t kFormatMinor = 0;
 
-inline constexpr size_t kHeaderBytes = 64;      // version 1.0's header, checksum included
+inline constexpr size_t kHeaderBytes = 64;       // version 1.0's header, checksum included
 inline constexpr size_t kMaxHeaderBytes = 4096;  // later minor versions may append fields
 inline constexpr size_t kKindBytes = 16;         // kind: 1 to 15 characters, NUL-padded
 inline constexpr size_t kNameBytes = 32;         // tensor name: 1 to 31 characters, NUL-padded

@@ -89,12 +89,9 @@ double QuantizationBound(float eps) {
   return static_cast<double>(eps) / 131070.0 + static_cast<double>(eps) * 0x1p-24;
 }
 
-bool IsValidZstdLevel(int level) {
-  return level >= ZSTD_minCLevel() && level <= ZSTD_maxCLevel();
-}
+bool IsValidZstdLevel(int level) { return level >= ZSTD_minCLevel() && level <= ZSTD_maxCLevel(); }
 
-BlockEncoder::BlockEncoder(int zstd_level)
-    : zstd_level_(zstd_level), context_(ZSTD_createCCtx()) {
+BlockEncoder::BlockEncoder(int zstd_level) : zstd_level_(zstd_level), context_(ZSTD_createCCtx()) {
   MOTIF_CHECK(context_ != nullptr);
 }
 
@@ -123,8 +120,7 @@ Status BlockEncoder::Encode(uint64_t first_column,
     uint64_t previous_last = 0;
     for (size_t run_begin = 0; run_begin < column.size();) {
       size_t run_end = run_begin + 1;
-      while (run_end < column.size() &&
-             column[run_end].frame == column[run_end - 1].frame + 1) {
+      while (run_end < column.size() && column[run_end].frame == column[run_end - 1].frame + 1) {
         ++run_end;
       }
       const uint64_t start = column[run_begin].frame;
@@ -149,9 +145,8 @@ Status BlockEncoder::Encode(uint64_t first_column,
     uint16_t previous = 0, before_previous = 0;
     uint32_t run = 0;
     for (size_t entry_idx = 0; entry_idx < column.size(); ++entry_idx, ++out_idx) {
-      run = (entry_idx > 0 && column[entry_idx].frame == column[entry_idx - 1].frame + 1)
-                ? run + 1
-                : 1;
+      run = (entry_idx > 0 && column[entry_idx].frame == column[entry_idx - 1].frame + 1) ? run + 1
+                                                                                          : 1;
       const uint16_t code = QuantizeDistance(column[entry_idx].distance, eps);
       const uint16_t residual =
           static_cast<uint16_t>(code - Predict(run, entry_idx, previous, before_previous));
@@ -239,8 +234,8 @@ Status BlockDecoder::Decompress(const uint8_t* frame, uint64_t size, uint64_t ra
   }
   out->resize(raw_size);
   char dummy = 0;
-  const size_t decoded = ZSTD_decompressDCtx(context_, raw_size ? out->data() : &dummy, raw_size,
-                                             frame, size);
+  const size_t decoded =
+      ZSTD_decompressDCtx(context_, raw_size ? out->data() : &dummy, raw_size, frame, size);
   if (ZSTD_isError(decoded) || decoded != raw_size) {
     return Status::Corruption(std::string(what) + ": zstd frame does not decode" +
                               (ZSTD_isError(decoded)
@@ -251,8 +246,7 @@ Status BlockDecoder::Decompress(const uint8_t* frame, uint64_t size, uint64_t ra
 }
 
 Status BlockDecoder::Decode(const uint8_t* bytes, const BlockHandle& handle,
-                            const BlockLimits& limits, TrellisBlock* block,
-                            bool decode_distances) {
+                            const BlockLimits& limits, TrellisBlock* block, bool decode_distances) {
   if (handle.bytes < kBlockHeaderBytes + kBlockTrailerBytes) {
     return Status::Corruption("block of " + std::to_string(handle.bytes) + " bytes is too short");
   }
@@ -285,8 +279,8 @@ Status BlockDecoder::Decode(const uint8_t* bytes, const BlockHandle& handle,
                               " raw bytes is larger than its columns can need");
   }
   const uint8_t* ids_frame = bytes + kBlockHeaderBytes;
-  MOTIF_RETURN_IF_ERROR(Decompress(ids_frame, header.ids_bytes, header.ids_raw_bytes,
-                                   "id section", &ids_raw_));
+  MOTIF_RETURN_IF_ERROR(
+      Decompress(ids_frame, header.ids_bytes, header.ids_raw_bytes, "id section", &ids_raw_));
   block->first_column = header.first_column;
   block->column_count = header.column_count;
   if (!decode_distances) return DecodeColumns<false>(handle, limits, nullptr, block);
@@ -361,7 +355,8 @@ Status BlockDecoder::DecodeColumns(const BlockHandle& handle, const BlockLimits&
         uint32_t offset = 0;
         for (; offset < length && offset < 2; ++offset) {
           const uint16_t code = static_cast<uint16_t>(
-              previous + UnZigZag16(static_cast<uint16_t>(run_low[offset] | run_high[offset] << 8)));
+              previous +
+              UnZigZag16(static_cast<uint16_t>(run_low[offset] | run_high[offset] << 8)));
           run_out[offset] = Neighbour{first_frame + offset, table[code]};
           before_previous = previous;
           previous = code;
@@ -390,11 +385,11 @@ Status BlockDecoder::DecodeColumns(const BlockHandle& handle, const BlockLimits&
   }
   block->offsets[handle.column_count] = static_cast<uint32_t>(filled);
   if (filled != neighbour_count || cursor != end) {
-    return Status::Corruption("id section holds " + std::to_string(filled) + " neighbours in " +
-                              std::to_string(cursor - reinterpret_cast<const uint8_t*>(
-                                                          ids_raw_.data())) +
-                              " of " + std::to_string(ids_raw_.size()) + " bytes; the header says " +
-                              std::to_string(neighbour_count));
+    return Status::Corruption(
+        "id section holds " + std::to_string(filled) + " neighbours in " +
+        std::to_string(cursor - reinterpret_cast<const uint8_t*>(ids_raw_.data())) + " of " +
+        std::to_string(ids_raw_.size()) + " bytes; the header says " +
+        std::to_string(neighbour_count));
   }
   return Status::Ok();
 }

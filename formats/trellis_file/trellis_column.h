@@ -7,8 +7,8 @@
 namespace motif {
 
 struct Neighbour {
-  uint32_t frame = 0;    // global frame index in the archive
-  float distance = 0;    // pose distance D to the column's frame
+  uint32_t frame = 0;  // global frame index in the archive
+  float distance = 0;  // pose distance D to the column's frame
   bool operator==(const Neighbour& other) const {
     return frame == other.frame && distance == other.distance;
   }

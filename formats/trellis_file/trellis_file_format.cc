@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstring>
 
-
 namespace motif {
 
 // Floats compare by their bits: the params are stored bit for bit, and two builds are
@@ -21,7 +20,6 @@ bool TrellisParams::operator==(const TrellisParams& other) const {
 }
 
 namespace trellis_file {
-
 
 // Params, 60 bytes + search_params:
 //   0 frame_count u64 | 8 archive_identity u64 | 16 eps f32 | 20 mu f32 | 24 sigma f32
@@ -102,8 +100,7 @@ void FileHeader::EncodeTo(std::string* out) const {
 
 Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* header,
                               uint64_t* header_bytes) {
-  if (size < kFileMagic.size() ||
-      std::memcmp(bytes, kFileMagic.data(), kFileMagic.size()) != 0) {
+  if (size < kFileMagic.size() || std::memcmp(bytes, kFileMagic.data(), kFileMagic.size()) != 0) {
     return Status::Corruption("bad magic at offset 0x0: not a trellis file");
   }
   if (size < kMinHeaderBytes) {
@@ -227,8 +224,8 @@ Status Footer::DecodeFrom(const uint8_t* bytes, Footer* footer) {
                               std::to_string(footer->format_major));
   }
   if (LoadU32(bytes + 12) != kFooterBytes) {
-    return Status::Corruption("footer size " + std::to_string(LoadU32(bytes + 12)) +
-                              ", expected " + std::to_string(kFooterBytes));
+    return Status::Corruption("footer size " + std::to_string(LoadU32(bytes + 12)) + ", expected " +
+                              std::to_string(kFooterBytes));
   }
   footer->index_offset = LoadU64(bytes + 16);
   footer->block_count = LoadU64(bytes + 24);

@@ -39,19 +39,19 @@ inline constexpr std::array<uint8_t, 4> kBlockMagic = {'M', 'T', 'B', 'K'};
 inline constexpr uint16_t kFormatMajor = 1;
 inline constexpr uint16_t kFormatMinor = 0;
 
-inline constexpr size_t kHeaderFixedBytes = 32;    // magic .. reserved, before the params
-inline constexpr size_t kParamsFixedBytes = 60;    // the params' fixed fields + string length
+inline constexpr size_t kHeaderFixedBytes = 32;  // magic .. reserved, before the params
+inline constexpr size_t kParamsFixedBytes = 60;  // the params' fixed fields + string length
 inline constexpr size_t kBlockHeaderBytes = 40;
-inline constexpr size_t kBlockTrailerBytes = 8;    // the block checksum
-inline constexpr size_t kBlockEntryBytes = 40;     // one block index entry
+inline constexpr size_t kBlockTrailerBytes = 8;  // the block checksum
+inline constexpr size_t kBlockEntryBytes = 40;   // one block index entry
 inline constexpr size_t kFooterBytes = 64;
 inline constexpr size_t kMinHeaderBytes = kHeaderFixedBytes + kParamsFixedBytes + 8;
 
 // Upper bounds, enforced by the writer (InvalidArgument) and by readers before they allocate
 // (Corruption): a crafted file must not exhaust memory.
-inline constexpr uint64_t kMaxFrameCount = 1ull << 32;      // frame ids are u32
+inline constexpr uint64_t kMaxFrameCount = 1ull << 32;  // frame ids are u32
 inline constexpr uint32_t kMaxBlockColumns = 1u << 20;
-inline constexpr uint32_t kMaxBlockNeighbours = 1u << 28;   // distances: 512 MiB raw
+inline constexpr uint32_t kMaxBlockNeighbours = 1u << 28;  // distances: 512 MiB raw
 inline constexpr uint32_t kMaxParamsBytes = 1u << 20;
 inline constexpr uint32_t kMaxSearchParamsBytes = 1u << 16;  // the writer's limit
 
@@ -99,9 +99,9 @@ struct BlockHeader {
   uint32_t column_count = 0;
   uint64_t first_column = 0;
   uint32_t neighbour_count = 0;
-  uint32_t ids_raw_bytes = 0;        // the id section before compression
-  uint32_t ids_bytes = 0;            // the id section's zstd frame
-  uint32_t distances_bytes = 0;      // the distance section's zstd frame (raw: 2 x neighbours)
+  uint32_t ids_raw_bytes = 0;    // the id section before compression
+  uint32_t ids_bytes = 0;        // the id section's zstd frame
+  uint32_t distances_bytes = 0;  // the distance section's zstd frame (raw: 2 x neighbours)
 
   uint64_t block_bytes() const {
     return kBlockHeaderBytes + uint64_t{ids_bytes} + distances_bytes + kBlockTrailerBytes;
@@ -113,14 +113,14 @@ struct BlockHeader {
 
 // One block index entry.
 struct BlockHandle {
-  uint64_t offset = 0;         // from the start of the file
-  uint64_t bytes = 0;          // the whole block: header, sections, trailer
+  uint64_t offset = 0;  // from the start of the file
+  uint64_t bytes = 0;   // the whole block: header, sections, trailer
   uint64_t first_column = 0;
   uint32_t column_count = 0;
   uint32_t neighbour_count = 0;
-  uint64_t checksum = 0;       // the block's trailer: Checksum64 of its bytes but the last 8
+  uint64_t checksum = 0;  // the block's trailer: Checksum64 of its bytes but the last 8
 
-  void EncodeTo(std::string* out) const;  // kBlockEntryBytes
+  void EncodeTo(std::string* out) const;                // kBlockEntryBytes
   static BlockHandle DecodeFrom(const uint8_t* bytes);  // kBlockEntryBytes; no checks
 };
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 
-
 #include "common/mapped_file.h"
 #include "formats/trellis_file/trellis_block_codec.h"
 #include "formats/trellis_file/trellis_file_format.h"
@@ -179,8 +178,8 @@ uint64_t TrellisFileReader::identity() const {
 Status TrellisFileReader::ReadBlock(uint64_t block_idx, TrellisBlock* block,
                                     bool decode_distances) const {
   if (block_idx >= block_count()) {
-    return Status::InvalidArgument(impl_->path + ": block " + std::to_string(block_idx) +
-                                   " of " + std::to_string(block_count()));
+    return Status::InvalidArgument(impl_->path + ": block " + std::to_string(block_idx) + " of " +
+                                   std::to_string(block_count()));
   }
   return impl_->DecodeBlock(block_idx, block, decode_distances);
 }
@@ -188,16 +187,16 @@ Status TrellisFileReader::ReadBlock(uint64_t block_idx, TrellisBlock* block,
 Status TrellisFileReader::ReadEncodedBlock(uint64_t block_idx, const uint8_t** bytes,
                                            uint64_t* size) const {
   if (block_idx >= block_count()) {
-    return Status::InvalidArgument(impl_->path + ": block " + std::to_string(block_idx) +
-                                   " of " + std::to_string(block_count()));
+    return Status::InvalidArgument(impl_->path + ": block " + std::to_string(block_idx) + " of " +
+                                   std::to_string(block_count()));
   }
   const BlockHandle& handle = impl_->blocks[block_idx];
   const uint8_t* data = impl_->data + handle.offset;
   const uint64_t body = handle.bytes - trellis_file::kBlockTrailerBytes;
   if (trellis_file::LoadU64(data + body) != handle.checksum ||
       trellis_file::Checksum64(data, body) != handle.checksum) {
-    return Status::Corruption(impl_->path + ": block " + std::to_string(block_idx) +
-                              " at offset " + Hex(handle.offset) + ": checksum mismatch");
+    return Status::Corruption(impl_->path + ": block " + std::to_string(block_idx) + " at offset " +
+                              Hex(handle.offset) + ": checksum mismatch");
   }
   *bytes = data;
   *size = handle.bytes;
@@ -235,9 +234,8 @@ Status TrellisFileReader::ReadColumns(uint64_t first_column, uint64_t count,
 Status TrellisFileReader::ReleaseBlocks(uint64_t first_block, uint64_t end_block) const {
   if (first_block > end_block || end_block > block_count()) {
     return Status::InvalidArgument(impl_->path + ": release blocks [" +
-                                   std::to_string(first_block) + ", " +
-                                   std::to_string(end_block) + ") of " +
-                                   std::to_string(block_count()));
+                                   std::to_string(first_block) + ", " + std::to_string(end_block) +
+                                   ") of " + std::to_string(block_count()));
   }
   if (first_block == end_block) return Status::Ok();
   const BlockHandle& last = impl_->blocks[end_block - 1];

@@ -23,8 +23,8 @@ namespace motif {
 struct TrellisBlock {
   uint64_t first_column = 0;
   uint32_t column_count = 0;
-  std::vector<uint32_t> offsets;       // column_count + 1 entries into `neighbours`
-  std::vector<Neighbour> neighbours;   // column c: [offsets[c], offsets[c + 1])
+  std::vector<uint32_t> offsets;      // column_count + 1 entries into `neighbours`
+  std::vector<Neighbour> neighbours;  // column c: [offsets[c], offsets[c + 1])
 };
 
 class TrellisFileReader {

@@ -26,12 +26,11 @@ using trellis_file::BlockHeader;
 
 namespace {
 
-
 // What a resume scan found in a partial file.
 struct ScanResult {
-  bool header_matches = false;     // else the file is stale: start over
+  bool header_matches = false;      // else the file is stale: start over
   std::vector<BlockHandle> blocks;  // the complete, valid blocks, in order
-  uint64_t valid_end = 0;          // where the first invalid byte (or the end) is
+  uint64_t valid_end = 0;           // where the first invalid byte (or the end) is
 };
 
 // Scans a partial file's bytes: the header must be exactly `expected_header`; then blocks are
@@ -257,8 +256,8 @@ class TrellisFileWriter::Impl {
         }
         if (!(neighbour.distance >= 0 && neighbour.distance <= params_.eps)) {
           return Invalid(where() + ": distance " + std::to_string(neighbour.distance) +
-                         " of frame " + std::to_string(neighbour.frame) + " is not in [0, eps = " +
-                         std::to_string(params_.eps) + "]");
+                         " of frame " + std::to_string(neighbour.frame) +
+                         " is not in [0, eps = " + std::to_string(params_.eps) + "]");
         }
       }
     }
@@ -321,8 +320,7 @@ class TrellisFileWriter::Impl {
 std::string TrellisFileWriter::PartialPath(const std::string& path) { return path + ".partial"; }
 
 Result<std::unique_ptr<TrellisFileWriter>> TrellisFileWriter::OpenOrResume(
-    const std::string& path, const TrellisParams& params,
-    const TrellisFileWriterOptions& options) {
+    const std::string& path, const TrellisParams& params, const TrellisFileWriterOptions& options) {
   const std::string problem = trellis_file::ParamsProblem(params);
   if (!problem.empty()) return Status::InvalidArgument(path + ": trellis params: " + problem);
   if (params.search_params.size() > trellis_file::kMaxSearchParamsBytes) {
@@ -332,8 +330,7 @@ Result<std::unique_ptr<TrellisFileWriter>> TrellisFileWriter::OpenOrResume(
   }
   if (options.block_columns == 0 || options.block_columns > trellis_file::kMaxBlockColumns) {
     return Status::InvalidArgument(path + ": block_columns " +
-                                   std::to_string(options.block_columns) +
-                                   " is not in [1, 2^20]");
+                                   std::to_string(options.block_columns) + " is not in [1, 2^20]");
   }
   if (!trellis_file::IsValidZstdLevel(options.zstd_level)) {
     return Status::InvalidArgument(path + ": zstd level " + std::to_string(options.zstd_level) +

@@ -55,8 +55,7 @@ void RepairBlockChecksums(uint8_t* data, size_t size, uint64_t begin, uint64_t e
       const uint32_t entry_bytes = LoadU32(payload + 8);
       if (entry_bytes >= ff::kBlockEntryBytes) {
         const uint64_t fitting = (payload_bytes - kBlocksPayloadHeaderBytes) / entry_bytes;
-        for (uint64_t block_idx = 0; block_idx < block_count && block_idx < fitting;
-             ++block_idx) {
+        for (uint64_t block_idx = 0; block_idx < block_count && block_idx < fitting; ++block_idx) {
           uint8_t* entry = payload + kBlocksPayloadHeaderBytes + block_idx * entry_bytes;
           const uint64_t offset = LoadU64(entry);
           const uint64_t bytes = LoadU64(entry + 8);
@@ -150,8 +149,8 @@ bool ReadThroughFile(const std::vector<uint8_t>& bytes) {
     }
     if (!*more) {
       if (next_frame != frame_count) {
-        motif::fuzz::Fail("FrameStream", "ended at frame " + std::to_string(next_frame) +
-                                             " of " + std::to_string(frame_count));
+        motif::fuzz::Fail("FrameStream", "ended at frame " + std::to_string(next_frame) + " of " +
+                                             std::to_string(frame_count));
       }
       break;
     }

@@ -159,14 +159,13 @@ std::string AmcMotion(int frames, int first_frame, bool radians, bool reversed) 
       std::snprintf(buffer, sizeof(buffer), format, values...);
       return std::string(buffer);
     };
-    std::vector<std::string> lines = {
-        line("root %.4f %.4f %.4f %.4f %.4f %.4f\n", 1 + 0.1 * t, 17.5, -2 + 0.05 * t, 3 * t,
-             -10 + t, 0.5),
-        line("thigh %.4f %.4f %.4f\n", -30 + t, 5.25, 10 - t),
-        line("shin %.4f\n", 45 + 2 * t),
-        line("spine %.4f %.4f %.4f\n", 15.0, -25 + t, 0.5),
-        line("toe %.4f %.4f\n", 20 * t, 1.5),
-        line("neck %.4f %.4f\n", 0.1, -0.2)};
+    std::vector<std::string> lines = {line("root %.4f %.4f %.4f %.4f %.4f %.4f\n", 1 + 0.1 * t,
+                                           17.5, -2 + 0.05 * t, 3 * t, -10 + t, 0.5),
+                                      line("thigh %.4f %.4f %.4f\n", -30 + t, 5.25, 10 - t),
+                                      line("shin %.4f\n", 45 + 2 * t),
+                                      line("spine %.4f %.4f %.4f\n", 15.0, -25 + t, 0.5),
+                                      line("toe %.4f %.4f\n", 20 * t, 1.5),
+                                      line("neck %.4f %.4f\n", 0.1, -0.2)};
     if (reversed) std::reverse(lines.begin(), lines.end());
     text += std::to_string(first_frame + frame_idx) + "\n";
     for (const std::string& bone_line : lines) text += bone_line;
@@ -197,8 +196,7 @@ std::string WriteArchive(const fs::path& work, const std::string& name,
     Check((*writer)->Commit(), "committing " + path);
   }
   if (!commit_2.empty()) {
-    Result<std::unique_ptr<FrameFileWriter>> writer =
-        FrameFileWriter::OpenForAppend(path, options);
+    Result<std::unique_ptr<FrameFileWriter>> writer = FrameFileWriter::OpenForAppend(path, options);
     Check(writer.status(), "opening " + path);
     for (const ClipFrames& clip : commit_2) Check((*writer)->AppendClip(clip), "appending");
     Check((*writer)->Commit(), "committing " + path);
@@ -223,9 +221,9 @@ void FrameFileSeeds(const fs::path& out, const fs::path& work, const std::string
       TakeFromBvh(ReadText(kSourceDir + "/tests/data/import/custom_zxy.bvh.txt"), "c", 30);
   FrameFileWriterOptions small_blocks;
   small_blocks.block_frames = 2;
-  WriteSeed(dir, "seed-custom-blocks-of-2.mfs.bin",
-            WriteArchive(work, "a.mfs", {ClipOf(custom, "c")}, {}, custom.skeleton, 30,
-                         small_blocks));
+  WriteSeed(
+      dir, "seed-custom-blocks-of-2.mfs.bin",
+      WriteArchive(work, "a.mfs", {ClipOf(custom, "c")}, {}, custom.skeleton, 30, small_blocks));
   FrameFileWriterOptions lossless = small_blocks;
   lossless.lossless = true;
   WriteSeed(dir, "seed-custom-lossless.mfs.bin",
@@ -235,13 +233,12 @@ void FrameFileSeeds(const fs::path& out, const fs::path& work, const std::string
             WriteArchive(work, "c.mfs", {ClipOf(custom, "c1")}, {ClipOf(custom, "c2")},
                          custom.skeleton, 30, small_blocks));
   if (mocap.empty()) return;
-  const Take walk = TakeFromBvh(TruncatedBvh(ReadText(mocap + "/bvh/02_01.bvh"), 20), "02_01",
-                                120);
+  const Take walk = TakeFromBvh(TruncatedBvh(ReadText(mocap + "/bvh/02_01.bvh"), 20), "02_01", 120);
   FrameFileWriterOptions blocks_of_8;
   blocks_of_8.block_frames = 8;
-  WriteSeed(dir, "mocap-02_01-20-frames.mfs.bin",
-            WriteArchive(work, "d.mfs", {ClipOf(walk, "02_01")}, {}, walk.skeleton, 120,
-                         blocks_of_8));
+  WriteSeed(
+      dir, "mocap-02_01-20-frames.mfs.bin",
+      WriteArchive(work, "d.mfs", {ClipOf(walk, "02_01")}, {}, walk.skeleton, 120, blocks_of_8));
 }
 
 // --- Trellis -------------------------------------------------------------------------------
@@ -274,8 +271,8 @@ std::string WriteTrellis(const fs::path& work, uint64_t frame_count, uint32_t bl
         for (uint64_t frame = 0; frame < frame_count && neighbours.size() < k_max; ++frame) {
           const uint64_t gap = frame > column ? frame - column : column - frame;
           if (gap < 3 || (gap > 9 && gap < 13)) {
-            const float distance = params.eps * static_cast<float>((frame * 37 + column) % 101) /
-                                   100.0f;
+            const float distance =
+                params.eps * static_cast<float>((frame * 37 + column) % 101) / 100.0f;
             neighbours.push_back({static_cast<uint32_t>(frame), distance});
           }
         }

@@ -18,12 +18,12 @@ void CheckError(const Status& status, Status::Code expected_code, std::string_vi
                 std::string_view where) {
   if (status.ok()) return;
   if (status.code() != expected_code) {
-    Fail(where, std::string("expected ") + StatusCodeName(expected_code) + ", got " +
-                    status.ToString());
+    Fail(where,
+         std::string("expected ") + StatusCodeName(expected_code) + ", got " + status.ToString());
   }
   if (status.message().find(file_name) == std::string::npos) {
-    Fail(where, "the message does not name the file " + std::string(file_name) + ": " +
-                    status.ToString());
+    Fail(where,
+         "the message does not name the file " + std::string(file_name) + ": " + status.ToString());
   }
 }
 

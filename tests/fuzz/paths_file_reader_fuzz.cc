@@ -64,8 +64,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!problem.empty()) Fail("FromBytes", "accepted candidates that break the rules: " + problem);
 
   motif::Result<std::string> encoded = motif::EncodePathsFile(params, candidates, /*zstd_level=*/1);
-  if (!encoded.ok()) Fail("EncodePathsFile", "refused what the reader accepted: " +
-                                                 encoded.status().ToString());
+  if (!encoded.ok())
+    Fail("EncodePathsFile", "refused what the reader accepted: " + encoded.status().ToString());
   motif::Result<std::unique_ptr<motif::PathsFileReader>> again =
       motif::PathsFileReader::FromBytes(*encoded, kName);
   if (!again.ok()) Fail("round trip", again.status().ToString());

@@ -23,8 +23,8 @@ std::string CacheRoot() {
 std::string ExecutableStamp(const std::string& path) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0) return "missing";
-  const long long ns = static_cast<long long>(info.st_mtim.tv_sec) * 1000000000LL +
-                       info.st_mtim.tv_nsec;
+  const long long ns =
+      static_cast<long long>(info.st_mtim.tv_sec) * 1000000000LL + info.st_mtim.tv_nsec;
   return std::to_string(static_cast<long long>(info.st_size)) + "-" + std::to_string(ns);
 }
 

@@ -20,6 +20,7 @@ std::string ExecutableStamp(const std::string& path);
 // The folder of `key`, made by `make(folder)` when no finished one exists. `make` returns false
 // (after a gtest failure) when it could not make the inputs; the folder is then dropped and ""
 // returned.
-std::string SharedInputs(const std::string& key, const std::function<bool(const std::string&)>& make);
+std::string SharedInputs(const std::string& key,
+                         const std::function<bool(const std::string&)>& make);
 
 }  // namespace motif::testing

@@ -111,14 +111,16 @@ TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
 
   // A frame range, and a range outside the clip.
   RunResult range = RunTool("export " + archive + " --clip 05_01 --start 100 --end 220 --out " +
-                        dir.File("range.bvh"));
+                            dir.File("range.bvh"));
   ASSERT_EQ(range.exit_code, 0) << range.output;
   auto ranged = ImportTake({TakeFormat::kBvh, dir.File("range.bvh"), ""}, options);
   ASSERT_TRUE(ranged.ok());
   EXPECT_EQ(ranged->frame_count(), 120u);
   EXPECT_LE(RotationAngleBetween(ranged->rotation(0, 2), original->rotation(100, 2)), bound);
   EXPECT_EQ(RunTool("export " + archive + " --clip 05_01 --start 10 --end 100000 --out " +
-                dir.File("x.bvh")).exit_code, 13);
+                    dir.File("x.bvh"))
+                .exit_code,
+            13);
   EXPECT_EQ(RunTool("export " + archive + " --clip nope --out " + dir.File("x.bvh")).exit_code, 11);
 }
 
@@ -126,7 +128,9 @@ TEST(MotifmineTool, ImportOfMalformedFileNamesFileAndLeavesArchiveUnchanged) {
   MOTIF_REQUIRE_MOCAP_DATA();
   testing::TempDir dir;
   const std::string archive = dir.File("a.mfs");
-  ASSERT_EQ(RunTool("import " + archive + " " + testing::MocapDir() + "/bvh/02_01.bvh --quiet").exit_code, 0);
+  ASSERT_EQ(
+      RunTool("import " + archive + " " + testing::MocapDir() + "/bvh/02_01.bvh --quiet").exit_code,
+      0);
   const std::string before = ReadFileToString(archive).value();
   const std::string bad = dir.File("broken.bvh");
   std::string text = ReadFileToString(testing::MocapDir() + "/bvh/02_02.bvh").value();

@@ -35,8 +35,8 @@ TEST(MotifmineCluster, FindsThePlantedMotifsAndWritesMotifsJson) {
   EXPECT_EQ(RunTool("cluster " + archive).exit_code, 2);  // --out is required
   EXPECT_EQ(RunTool("cluster " + archive + " --out x --groups none").exit_code, 13);
 
-  RunResult cluster = RunTool("cluster " + archive + " --out " + dir.File("out") +
-                              " --truth " + dir.File("c.truth.json") + " --quiet");
+  RunResult cluster = RunTool("cluster " + archive + " --out " + dir.File("out") + " --truth " +
+                              dir.File("c.truth.json") + " --quiet");
   ASSERT_EQ(cluster.exit_code, 0) << cluster.output;
   EXPECT_NE(cluster.output.find("wrote " + dir.File("out") + "/motifs.json"), std::string::npos)
       << cluster.output;
@@ -57,8 +57,8 @@ TEST(MotifmineCluster, FindsThePlantedMotifsAndWritesMotifsJson) {
   for (const MotifsJsonMotif& motif : motifs->motifs) EXPECT_GE(motif.instances.size(), 2u);
 
   // A given G is honoured and recorded.
-  RunResult given = RunTool("cluster " + archive + " --out " + dir.File("out2") +
-                            " --groups 3 --quiet");
+  RunResult given =
+      RunTool("cluster " + archive + " --out " + dir.File("out2") + " --groups 3 --quiet");
   ASSERT_EQ(given.exit_code, 0) << given.output;
   auto three = ReadMotifsJson(dir.File("out2") + "/motifs.json");
   ASSERT_TRUE(three.ok());

@@ -53,9 +53,9 @@ Eigen::Quaterniond QuaternionAt(const std::vector<float>& rows, size_t row, size
 TEST(ExportReimport, ExportedInstancesMatchTheSourceFramesWithinTheQuantisationBound) {
   testing::TempDir dir;
   const std::string archive = dir.File("s.mfs");
-  RunResult synth = RunTool("synth " + archive + " --frames 6000 --motifs 2 --seed 5 " +
-                            "--motif-seconds-max 1.5 --clip-seconds-min 10 " +
-                            "--clip-seconds-max 20 --quiet");
+  RunResult synth =
+      RunTool("synth " + archive + " --frames 6000 --motifs 2 --seed 5 " +
+              "--motif-seconds-max 1.5 --clip-seconds-min 10 " + "--clip-seconds-max 20 --quiet");
   ASSERT_EQ(synth.exit_code, 0) << synth.output;
   auto truth = ReadTruthJson(dir.File("s.truth.json"));
   ASSERT_TRUE(truth.ok()) << truth.status().ToString();
@@ -107,8 +107,8 @@ TEST(ExportReimport, ExportedInstancesMatchTheSourceFramesWithinTheQuantisationB
   // the importer from dropping a first frame that it might take for one: every frame of the file
   // is an instance frame.
   const std::string reimported_path = dir.File("re.mfs");
-  RunResult import = RunTool("import " + reimported_path + " " + dir.File("bvh") +
-                             " --first-frame keep --quiet");
+  RunResult import =
+      RunTool("import " + reimported_path + " " + dir.File("bvh") + " --first-frame keep --quiet");
   ASSERT_EQ(import.exit_code, 0) << import.output;
   auto reimported = FrameFileReader::Open(reimported_path);
   ASSERT_TRUE(reimported.ok()) << reimported.status().ToString();
@@ -141,19 +141,17 @@ TEST(ExportReimport, ExportedInstancesMatchTheSourceFramesWithinTheQuantisationB
     ASSERT_TRUE((*source)->ReadFrames(instance.frame, instance.length(), &expected).ok());
     ASSERT_TRUE((*reimported)->ReadFrames(clip.first_frame, clip.frame_count, &actual).ok());
     // The heading may come back shifted by whole turns (it is unwrapped from the clip's start).
-    const double turns = std::round((actual[layout.heading_offset()] -
-                                     expected[layout.heading_offset()]) /
-                                    (2 * std::numbers::pi));
+    const double turns =
+        std::round((actual[layout.heading_offset()] - expected[layout.heading_offset()]) /
+                   (2 * std::numbers::pi));
     for (size_t frame = 0; frame < clip.frame_count; ++frame) {
       for (size_t joint = 0; joint < joints; ++joint) {
-        const double distance =
-            QuaternionDistance(QuaternionAt(expected, frame, stride, 4 * joint),
-                               QuaternionAt(actual, frame, stride, 4 * joint));
+        const double distance = QuaternionDistance(QuaternionAt(expected, frame, stride, 4 * joint),
+                                                   QuaternionAt(actual, frame, stride, 4 * joint));
         double& worst = joint == 0 ? worst_root : worst_joint;
         worst = std::max(worst, distance);
-        ASSERT_LE(distance, kJointBound)
-            << "frame " << frame << " joint " << joint << " ("
-            << (*source)->skeleton().joint(joint).name << ")";
+        ASSERT_LE(distance, kJointBound) << "frame " << frame << " joint " << joint << " ("
+                                         << (*source)->skeleton().joint(joint).name << ")";
       }
       const double height = std::abs(actual[frame * stride + layout.height_offset()] -
                                      expected[frame * stride + layout.height_offset()]);
@@ -168,9 +166,10 @@ TEST(ExportReimport, ExportedInstancesMatchTheSourceFramesWithinTheQuantisationB
     }
   }
   std::cout << "[ compared ] " << frames_compared << " frames of " << by_stem.size()
-            << " instances; worst quaternion distance: joints " << worst_joint << ", root " << worst_root
-            << " (bound " << kJointBound << "); root height " << worst_height << " (bound " << kHeightBound << "); heading "
-            << worst_heading << " rad (bound " << kHeadingBound << ")\n";
+            << " instances; worst quaternion distance: joints " << worst_joint << ", root "
+            << worst_root << " (bound " << kJointBound << "); root height " << worst_height
+            << " (bound " << kHeightBound << "); heading " << worst_heading << " rad (bound "
+            << kHeadingBound << ")\n";
 }
 
 }  // namespace

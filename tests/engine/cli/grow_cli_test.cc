@@ -22,7 +22,9 @@ using testing::RunTool;
 TEST(MotifmineGrow, SynthTrellisGrowThenReuse) {
   testing::TempDir dir;
   const std::string archive = dir.File("g.mfs");
-  RunResult synth = RunTool("synth " + archive + " --frames 6000 --motifs 2 --seed 5 --motif-seconds-max 1.5 --clip-seconds-min 10 --clip-seconds-max 20 --quiet");
+  RunResult synth = RunTool("synth " + archive +
+                            " --frames 6000 --motifs 2 --seed 5 --motif-seconds-max 1.5 "
+                            "--clip-seconds-min 10 --clip-seconds-max 20 --quiet");
   ASSERT_EQ(synth.exit_code, 0) << synth.output;
   RunResult no_trellis = RunTool("grow " + archive + " --quiet");
   EXPECT_EQ(no_trellis.exit_code, 11) << no_trellis.output;  // not found, naming the trellis
@@ -36,9 +38,10 @@ TEST(MotifmineGrow, SynthTrellisGrowThenReuse) {
   EXPECT_NE(grow.output.find("\"stage\":\"grow\""), std::string::npos) << grow.output;
   EXPECT_NE(grow.output.find("peak resident"), std::string::npos) << grow.output;
   std::smatch match;
-  ASSERT_TRUE(std::regex_search(grow.output, match,
-                                std::regex("candidates +([0-9,]+) paths of at least 60 frames on both sides \\(the "
-                                           "longest of each tree\\)")))
+  ASSERT_TRUE(std::regex_search(
+      grow.output, match,
+      std::regex("candidates +([0-9,]+) paths of at least 60 frames on both sides \\(the "
+                 "longest of each tree\\)")))
       << grow.output;
   std::string printed = match[1];
   printed.erase(std::remove(printed.begin(), printed.end(), ','), printed.end());
@@ -65,8 +68,8 @@ TEST(MotifmineGrow, SynthTrellisGrowThenReuse) {
   ASSERT_TRUE(b3.ok());
   EXPECT_EQ((*b3)->params().min_length, 30u);
   EXPECT_GT((*b3)->candidates().size(), 0u);
-  RunResult all = RunTool("grow " + archive + " --all-branches --out " + dir.File("all.mpa") +
-                          " --quiet");
+  RunResult all =
+      RunTool("grow " + archive + " --all-branches --out " + dir.File("all.mpa") + " --quiet");
   ASSERT_EQ(all.exit_code, 0) << all.output;
   EXPECT_NE(all.output.find("(every branch)"), std::string::npos) << all.output;
   auto all_paths = PathsFileReader::Open(dir.File("all.mpa"));

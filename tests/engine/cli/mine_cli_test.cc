@@ -46,7 +46,8 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   // One progress stream across the stages.
   for (const char* stage : {"synth", "trellis", "grow", "cluster"}) {
     EXPECT_NE(first.output.find(std::string("\"stage\":\"") + stage + "\""), std::string::npos)
-        << stage << "\n" << first.output;
+        << stage << "\n"
+        << first.output;
   }
   // The summary scores the planted motifs; every planted instance of this small archive is found.
   EXPECT_EQ(Figure(first.output, "recall"), 1.0) << first.output;

@@ -40,15 +40,15 @@ namespace {
 
 // Small enough for the whole test to take well under a minute, big enough that the exact
 // trellis has several column blocks (4096 columns each) to interrupt between.
-const std::vector<std::string> kMineArgs = {"mine",         "--out",  "out", "--synth-frames",
-                                            "16000",        "--synth-motifs", "2", "--seed", "4",
-                                            "--kmax",       "64"};
+const std::vector<std::string> kMineArgs = {"mine",  "--out",          "out", "--synth-frames",
+                                            "16000", "--synth-motifs", "2",   "--seed",
+                                            "4",     "--kmax",         "64"};
 
 struct ChildRun {
-  bool killed = false;     // ended by our SIGKILL
-  int exit_code = -1;      // when it exited by itself
-  std::string trigger;     // what it was killed at
-  std::string log;         // stderr
+  bool killed = false;  // ended by our SIGKILL
+  int exit_code = -1;   // when it exited by itself
+  std::string trigger;  // what it was killed at
+  std::string log;      // stderr
 };
 
 // Decides when to kill: called with each progress line (JSON on stderr) as it arrives, and with
@@ -115,9 +115,8 @@ ChildRun RunUntil(const std::string& cwd, std::vector<std::string> args, const T
 }
 
 ChildRun RunToEnd(const std::string& cwd, std::vector<std::string> args) {
-  return RunUntil(cwd, std::move(args), [](const nlohmann::json*, const std::string&) {
-    return false;
-  });
+  return RunUntil(cwd, std::move(args),
+                  [](const nlohmann::json*, const std::string&) { return false; });
 }
 
 std::vector<std::string> With(std::vector<std::string> args, const std::string& extra) {
@@ -222,9 +221,9 @@ void KillRerunAndCompare(const std::string& cwd, const std::vector<std::string>&
   // The same again: nothing left to do.
   const std::string again = Stdout(cwd, With(args, "--quiet"));
   for (const char* stage : {"synth", "trellis", "grow", "cluster"}) {
-    EXPECT_TRUE(std::regex_search(again, std::regex(std::string(stage) +
-                                                    " [0-9.]+s \\(reused\\)")))
-        << stage << " was not reused\n" << again;
+    EXPECT_TRUE(std::regex_search(again, std::regex(std::string(stage) + " [0-9.]+s \\(reused\\)")))
+        << stage << " was not reused\n"
+        << again;
   }
   auto motifs_again = ReadFileToString(cwd + "/out/motifs.json");
   ASSERT_TRUE(motifs_again.ok());

@@ -35,14 +35,13 @@ TEST(MineQuality, TheTopMotifOfASingleTakeIsItsRepeatedCycle) {
     std::string file;
     double least_recall;
   };
-  for (const Take& take : {Take{"08_01", "bvh/08_01.bvh", 1.0},
-                           Take{"90_30", "asfamc/90/90_30.amc", 0.75}}) {
+  for (const Take& take :
+       {Take{"08_01", "bvh/08_01.bvh", 1.0}, Take{"90_30", "asfamc/90/90_30.amc", 0.75}}) {
     const std::string out = dir.File(take.clip);
     RunResult mined = RunTool("mine " + testing::MocapDir() + "/" + take.file + " --out " + out +
                               " --quiet --no-report");
     ASSERT_EQ(mined.exit_code, 0) << mined.output;
-    EXPECT_NE(mined.output.find("joint-angle rule: 12 degrees"), std::string::npos)
-        << mined.output;
+    EXPECT_NE(mined.output.find("joint-angle rule: 12 degrees"), std::string::npos) << mined.output;
     const std::string truth = std::string(MOTIF_REPETITIONS_DIR) + "/" + take.clip + ".tsv";
     const nlohmann::json score = ScoreJson(out + "/motifs.json", truth);
     ASSERT_TRUE(score.is_object()) << take.clip;
@@ -67,8 +66,8 @@ TEST(MineQuality, AddingATakeKeepsEveryMotif) {
   ASSERT_EQ(after.exit_code, 0) << after.output;
   EXPECT_NE(before.output.find("eps 1.256"), std::string::npos) << before.output;
   EXPECT_NE(after.output.find("eps 1.256"), std::string::npos) << after.output;
-  const nlohmann::json score = ScoreJson(dir.File("b") + "/motifs.json",
-                                         dir.File("a") + "/motifs.json");
+  const nlohmann::json score =
+      ScoreJson(dir.File("b") + "/motifs.json", dir.File("a") + "/motifs.json");
   ASSERT_TRUE(score.is_object());
   ASSERT_GE(score["per_movement"].size(), 2u) << "the first run found too little to compare";
   for (const nlohmann::json& motif : score["per_movement"]) {
@@ -81,9 +80,10 @@ TEST(MotifmineScore, RefusesMissingArgumentsAndMalformedTruthNamingTheLine) {
   testing::TempDir dir;
   EXPECT_EQ(RunTool("score").exit_code, 2);
   const std::string truth = dir.File("t.tsv");
-  ASSERT_EQ(testing::RunShell("printf 'clip\\tmovement\\tstart\\tend\\na\\tstep\\t9\\t3\\n' > " +
-                              truth).exit_code,
-            0);
+  ASSERT_EQ(
+      testing::RunShell("printf 'clip\\tmovement\\tstart\\tend\\na\\tstep\\t9\\t3\\n' > " + truth)
+          .exit_code,
+      0);
   // A motifs.json is needed first: the smallest synthetic mine.
   RunResult mined = RunTool("mine --out " + dir.File("m") +
                             " --synth-frames 13000 --synth-motifs 3 --seed 4 --quiet --no-report");

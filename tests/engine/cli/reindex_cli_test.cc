@@ -205,17 +205,17 @@ TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSame
   EXPECT_FALSE(v1.params.exact);
   EXPECT_GT(v1.params.lsh.hashes_per_table, 0u) << "the family is recorded resolved";
   EXPECT_GT(v1.params.lsh.bucket_width, 0.0f);
-  RunResult late = RunTool("export " + Take("synth.mfs") + " --clip " +
-                           takes.back().stem().string() + " --start 0 --end 240 --out " + watch_ +
-                           "/late_take.bvh");
+  RunResult late =
+      RunTool("export " + Take("synth.mfs") + " --clip " + takes.back().stem().string() +
+              " --start 0 --end 240 --out " + watch_ + "/late_take.bvh");
   ASSERT_EQ(late.exit_code, 0) << late.output;
   RunResult second = Reindex();
   ASSERT_EQ(second.exit_code, 0) << second.output;
   const ReindexManifest v2 = Manifest();
   EXPECT_EQ(v2.build.kind, "incremental");
   EXPECT_FALSE(v2.params.exact) << "the search is recorded";
-  std::printf("LSH reindex: %llu new frames of %llu\n",
-              (unsigned long long)v2.build.new_frames, (unsigned long long)v2.archive.frames);
+  std::printf("LSH reindex: %llu new frames of %llu\n", (unsigned long long)v2.build.new_frames,
+              (unsigned long long)v2.archive.frames);
 
   char flags[160];
   std::snprintf(flags, sizeof flags, "--eps %.9g --hashes %u --width %.9g", v2.params.eps,
@@ -240,16 +240,18 @@ TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSame
       if (!full.count(entry)) ++counts[1][entry.first >= old_frames][entry.second >= old_frames];
     }
     for (const auto& entry : full) {
-      if (!incremental.count(entry)) ++counts[0][entry.first >= old_frames][entry.second >= old_frames];
+      if (!incremental.count(entry))
+        ++counts[0][entry.first >= old_frames][entry.second >= old_frames];
     }
     for (int only_incremental = 0; only_incremental < 2; ++only_incremental) {
-      std::printf("  only in %s: old col/old frame %llu, old col/new frame %llu, new col/old "
-                  "frame %llu, new col/new frame %llu\n",
-                  only_incremental ? "incremental" : "from scratch",
-                  (unsigned long long)counts[only_incremental][0][0],
-                  (unsigned long long)counts[only_incremental][0][1],
-                  (unsigned long long)counts[only_incremental][1][0],
-                  (unsigned long long)counts[only_incremental][1][1]);
+      std::printf(
+          "  only in %s: old col/old frame %llu, old col/new frame %llu, new col/old "
+          "frame %llu, new col/new frame %llu\n",
+          only_incremental ? "incremental" : "from scratch",
+          (unsigned long long)counts[only_incremental][0][0],
+          (unsigned long long)counts[only_incremental][0][1],
+          (unsigned long long)counts[only_incremental][1][0],
+          (unsigned long long)counts[only_incremental][1][1]);
     }
     // The new frames' columns are a full build's.
     EXPECT_EQ(counts[0][1][0] + counts[0][1][1] + counts[1][1][0] + counts[1][1][1], 0u);
@@ -342,7 +344,8 @@ TEST_F(ReindexCliTest, ProgressJsonGivesLogLinesAndASummaryLine) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   for (const char* stage : {"import", "trellis", "grow", "cluster"}) {
     EXPECT_NE(run.output.find(std::string("\"stage\":\"") + stage), std::string::npos)
-        << stage << "\n" << run.output;
+        << stage << "\n"
+        << run.output;
   }
   EXPECT_NE(run.output.find("\"event\":\"reindex\""), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\"exit_code\":0"), std::string::npos) << run.output;
@@ -402,8 +405,8 @@ VersionContent ReadAll(const MinedVersion& version) {
   content.candidates = version.paths->candidates();
   content.motifs = version.motifs;
   content.archive_frames = version.archive->frame_count();
-  EXPECT_TRUE(version.archive->ReadFrames(content.archive_frames - 100, 100, &content.last_frames)
-                  .ok());
+  EXPECT_TRUE(
+      version.archive->ReadFrames(content.archive_frames - 100, 100, &content.last_frames).ok());
   return content;
 }
 
@@ -483,4 +486,3 @@ TEST_F(ReindexCliTest, ReadersOpeningWhileARunSwitchesAlwaysSeeOneWholeVersion) 
 
 }  // namespace
 }  // namespace motif
-

@@ -85,9 +85,9 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
   }
   testing::TempDir dir;
   const std::string archive = dir.File("s.mfs");
-  RunResult synth = RunTool("synth " + archive + " --frames 9000 --motifs 3 --seed 5 " +
-                            "--motif-seconds-max 1.5 --clip-seconds-min 10 " +
-                            "--clip-seconds-max 20 --quiet");
+  RunResult synth =
+      RunTool("synth " + archive + " --frames 9000 --motifs 3 --seed 5 " +
+              "--motif-seconds-max 1.5 --clip-seconds-min 10 " + "--clip-seconds-max 20 --quiet");
   ASSERT_EQ(synth.exit_code, 0) << synth.output;
   auto truth = ReadTruthJson(dir.File("s.truth.json"));
   ASSERT_TRUE(truth.ok()) << truth.status().ToString();
@@ -116,10 +116,9 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
 
   // Motif 0's figures are in the file, the others are drawn by the script.
   constexpr size_t kKeyframes = 5, kInstancesDrawn = 4;
-  RunResult report = RunTool("report " + dir.File("out") + " --eager 1 --keyframes " +
-                             std::to_string(kKeyframes) + " --instances " +
-                             std::to_string(kInstancesDrawn) + " --truth " +
-                             dir.File("s.truth.json"));
+  RunResult report = RunTool(
+      "report " + dir.File("out") + " --eager 1 --keyframes " + std::to_string(kKeyframes) +
+      " --instances " + std::to_string(kInstancesDrawn) + " --truth " + dir.File("s.truth.json"));
   ASSERT_EQ(report.exit_code, 0) << report.output;
   size_t expected_figures = 0, instances = 0;
   for (const MotifsJsonMotif& motif : document.motifs) {
@@ -139,14 +138,15 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
   ASSERT_TRUE(AtomicWriteFile(instrumented, page).ok());
 
   // The page after its scripts ran.
-  const std::string command = ChromiumCommand(chromium, dir.File("profile")) + "--dump-dom 'file://" +
-                              instrumented + "' 2>'" + dir.File("chromium.log") + "'";
+  const std::string command = ChromiumCommand(chromium, dir.File("profile")) +
+                              "--dump-dom 'file://" + instrumented + "' 2>'" +
+                              dir.File("chromium.log") + "'";
   RunResult dom = RunShell("timeout 180 " + command);
   auto log = ReadFileToString(dir.File("chromium.log"));
   ASSERT_EQ(dom.exit_code, 0) << (log.ok() ? *log : "");
   const size_t marker = dom.output.find("<pre id=\"e2e-result\"");
-  ASSERT_NE(marker, std::string::npos)
-      << "the page's load handler did not run\n" << dom.output.substr(0, 2000);
+  ASSERT_NE(marker, std::string::npos) << "the page's load handler did not run\n"
+                                       << dom.output.substr(0, 2000);
   const size_t text_start = dom.output.find('>', marker) + 1;
   const std::string text =
       dom.output.substr(text_start, dom.output.find("</pre>", text_start) - text_start);
@@ -170,8 +170,8 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
   const std::string png = (artefacts / "report.png").string();
   std::filesystem::remove(png);
   RunResult shot = RunShell("timeout 180 " + ChromiumCommand(chromium, dir.File("profile2")) +
-                         "--window-size=1200,3000 --screenshot='" + png + "' 'file://" +
-                         instrumented + "' >/dev/null 2>&1");
+                            "--window-size=1200,3000 --screenshot='" + png + "' 'file://" +
+                            instrumented + "' >/dev/null 2>&1");
   ASSERT_EQ(shot.exit_code, 0);
   std::filesystem::copy_file(instrumented, artefacts / "report.e2e.html",
                              std::filesystem::copy_options::overwrite_existing);

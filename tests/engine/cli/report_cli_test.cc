@@ -38,8 +38,8 @@ class ReportCliTest : public ::testing::Test {
     document_.frames = (*reader)->frame_count();
     std::map<std::string, uint64_t> first_frames;
     for (const ClipInfo& clip : (*reader)->clips()) {
-      document_.clips.push_back({clip.name, clip.source_path, clip.frame_count, clip.fps,
-                                 clip.first_frame});
+      document_.clips.push_back(
+          {clip.name, clip.source_path, clip.frame_count, clip.fps, clip.first_frame});
       first_frames[clip.name] = clip.first_frame;
     }
     document_.params = {1.0, 64, 4, 60, 0, 1};
@@ -76,8 +76,8 @@ TEST_F(ReportCliTest, ExportMotifWritesOneBvhPerInstance) {
   EXPECT_EQ(files, motif.instances.size());
   for (size_t idx = 0; idx < motif.instances.size(); ++idx) {
     const MotifsJsonInstance& instance = motif.instances[idx];
-    const std::string name = "motif" + std::to_string(motif.id) + "_" + std::to_string(idx) +
-                             "_" + instance.clip + "_" + std::to_string(instance.start) + "-" +
+    const std::string name = "motif" + std::to_string(motif.id) + "_" + std::to_string(idx) + "_" +
+                             instance.clip + "_" + std::to_string(instance.start) + "-" +
                              std::to_string(instance.end) + ".bvh";
     auto text = ReadFileToString(folder + "/" + name);
     ASSERT_TRUE(text.ok()) << name << "\n" << run.output;
@@ -93,8 +93,7 @@ TEST_F(ReportCliTest, ExportMotifErrorsAreClear) {
   EXPECT_EQ(RunTool("export-motif " + out + " --motif 0").exit_code, 2) << "--out is required";
   RunResult missing = RunTool("export-motif " + dir_.File("nowhere") + " --motif 0 --out x");
   EXPECT_EQ(missing.exit_code, 11);
-  EXPECT_NE(missing.output.find("motifs.json does not exist"), std::string::npos)
-      << missing.output;
+  EXPECT_NE(missing.output.find("motifs.json does not exist"), std::string::npos) << missing.output;
   RunResult unknown = RunTool("export-motif " + out + " --motif 99 --out " + dir_.File("x"));
   EXPECT_EQ(unknown.exit_code, 11);
   EXPECT_NE(unknown.output.find("no motif 99"), std::string::npos) << unknown.output;
@@ -105,8 +104,8 @@ TEST_F(ReportCliTest, ExportMotifErrorsAreClear) {
   RunResult moved = RunTool("export-motif " + out + " --motif 0 --out " + dir_.File("x"));
   EXPECT_EQ(moved.exit_code, 11);
   EXPECT_NE(moved.output.find("--archive"), std::string::npos) << moved.output;
-  EXPECT_EQ(RunTool("export-motif " + out + " --motif 0 --out " + dir_.File("x") +
-                    " --archive " + dir_.File("moved.mfs"))
+  EXPECT_EQ(RunTool("export-motif " + out + " --motif 0 --out " + dir_.File("x") + " --archive " +
+                    dir_.File("moved.mfs"))
                 .exit_code,
             0);
 
@@ -136,10 +135,10 @@ TEST_F(ReportCliTest, ReportWritesTheHtmlFile) {
   EXPECT_EQ(rects, instances);
   EXPECT_NE(html->find("recall 1.000"), std::string::npos);
   EXPECT_EQ(RunTool("report " + dir_.File("out") + " --view top").exit_code, 13);
-  EXPECT_EQ(RunTool("report " + dir_.File("out") + " --out " + dir_.File("front.html") +
-                    " --view front")
-                .exit_code,
-            0);
+  EXPECT_EQ(
+      RunTool("report " + dir_.File("out") + " --out " + dir_.File("front.html") + " --view front")
+          .exit_code,
+      0);
   EXPECT_TRUE(std::filesystem::exists(dir_.File("front.html")));
 }
 

@@ -82,7 +82,8 @@ TEST_F(WordsCliTest, SearchFindsAnExportedRangeAndTheWholeTake) {
   EXPECT_EQ(json["query"]["kind"], "clip-range");
   EXPECT_EQ(json["query"]["words"], 27);  // words [30, 57) read frames [600, 1196)
   ASSERT_EQ(json["matches"].size(), 3u);
-  EXPECT_LE(json["matches"][0]["distance"].get<double>(), json["matches"][1]["distance"].get<double>());
+  EXPECT_LE(json["matches"][0]["distance"].get<double>(),
+            json["matches"][1]["distance"].get<double>());
   EXPECT_TRUE(testing::FileExists(dir_->File("range/search.html")));
   // The same range exported as BVH and searched as a file: found where it came from.
   ASSERT_EQ(RunTool("export " + archive_ + " --clip synth_000001 --start 600 --end 1200 --out " +
@@ -98,8 +99,7 @@ TEST_F(WordsCliTest, SearchFindsAnExportedRangeAndTheWholeTake) {
   EXPECT_EQ(json["matches"][0]["clip"], "synth_000001");
   const int64_t start = json["matches"][0]["start"].get<int64_t>();
   const int64_t end = json["matches"][0]["end"].get<int64_t>();
-  EXPECT_LT(std::max<int64_t>(start, 600), std::min<int64_t>(end, 1200))
-      << file.output;
+  EXPECT_LT(std::max<int64_t>(start, 600), std::min<int64_t>(end, 1200)) << file.output;
   // The whole take: every other take ranked.
   RunResult whole = RunTool("search " + archive_ + " --clip synth_000001 --top 100 --out " +
                             dir_->File("whole") + " --quiet");
@@ -166,10 +166,13 @@ TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
   expect("classify " + archive_ + " --labels " + dir_->File("nothing.tsv"), 11, "nothing.tsv");
   expect("search " + archive_, 2, "either --clip NAME or --query FILE");
   expect("search " + archive_ + " --clip synth_000001 --query x.bvh", 2, "either --clip");
-  expect("search " + archive_ + " --clip synth_000001 --start 5", 2, "--start and --end go together");
+  expect("search " + archive_ + " --clip synth_000001 --start 5", 2,
+         "--start and --end go together");
   expect("search " + archive_ + " --clip nope", 11, "no clip named 'nope'");
-  expect("search " + archive_ + " --clip synth_000001 --start 10 --end 50", 13, "no whole motion word");
-  expect("search " + archive_ + " --clip synth_000001 --start 10 --end 99999999", 13, "not a range");
+  expect("search " + archive_ + " --clip synth_000001 --start 10 --end 50", 13,
+         "no whole motion word");
+  expect("search " + archive_ + " --clip synth_000001 --start 10 --end 99999999", 13,
+         "not a range");
   expect("search " + archive_ + " --query " + dir_->File("none.bvh"), 11, "none.bvh");
   // Refused options (other epochs included) did not retrain or rewrite anything.
   EXPECT_EQ(testing::ReadBytes(dir_->File("s.mwe")), embedding);

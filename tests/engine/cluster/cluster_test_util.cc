@@ -6,8 +6,8 @@
 
 namespace motif::testing {
 
-Columns MakePlantedColumns(uint64_t frames, const std::vector<PlantedMotif>& motifs,
-                           uint32_t noise, uint64_t seed) {
+Columns MakePlantedColumns(uint64_t frames, const std::vector<PlantedMotif>& motifs, uint32_t noise,
+                           uint64_t seed) {
   Columns columns(frames);
   for (const PlantedMotif& motif : motifs) {
     for (size_t i = 0; i < motif.starts.size(); ++i) {
@@ -18,8 +18,9 @@ Columns MakePlantedColumns(uint64_t frames, const std::vector<PlantedMotif>& mot
           for (int64_t delta = -1; delta <= 1; ++delta) {
             const int64_t offset = static_cast<int64_t>(k) + delta;
             if (offset < 0 || offset >= static_cast<int64_t>(motif.length)) continue;
-            column.push_back({static_cast<uint32_t>(motif.starts[j] + static_cast<uint64_t>(offset)),
-                              delta == 0 ? 0.25f : 0.5f});
+            column.push_back(
+                {static_cast<uint32_t>(motif.starts[j] + static_cast<uint64_t>(offset)),
+                 delta == 0 ? 0.25f : 0.5f});
           }
         }
       }
@@ -40,9 +41,10 @@ Columns MakePlantedColumns(uint64_t frames, const std::vector<PlantedMotif>& mot
     std::sort(list.begin(), list.end(), [](const Neighbour& a, const Neighbour& b) {
       return a.frame != b.frame ? a.frame < b.frame : a.distance < b.distance;
     });
-    list.erase(std::unique(list.begin(), list.end(),
-                           [](const Neighbour& a, const Neighbour& b) { return a.frame == b.frame; }),
-               list.end());
+    list.erase(
+        std::unique(list.begin(), list.end(),
+                    [](const Neighbour& a, const Neighbour& b) { return a.frame == b.frame; }),
+        list.end());
   }
   return columns;
 }

@@ -23,8 +23,8 @@ struct PlantedMotif {
 // Column s_i + k of occurrence i holds frames s_j + k - 1 .. s_j + k + 1 (inside occurrence j)
 // of every other occurrence j of the same motif, plus `noise` seeded random frames anywhere
 // (every column, planted or not). Distances are in [0, 1].
-Columns MakePlantedColumns(uint64_t frames, const std::vector<PlantedMotif>& motifs,
-                           uint32_t noise, uint64_t seed);
+Columns MakePlantedColumns(uint64_t frames, const std::vector<PlantedMotif>& motifs, uint32_t noise,
+                           uint64_t seed);
 
 // For every ordered pair of occurrences (i, j) of a motif: the full path (top i, matched j,
 // rooted at (s_i, s_j)) and a shorter branch of the same tree.

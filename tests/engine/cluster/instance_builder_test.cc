@@ -32,12 +32,12 @@ TEST(KeepLongestPathPerRootTest, KeepsOnlyTheLongestBranchOfEachTree) {
 }
 
 TEST(OverlapsEnoughTest, ThreeQuartersOfTheLongerIsTheBoundary) {
-  EXPECT_TRUE(OverlapsEnough({0, 100}, {25, 125}, 0.75));   // 75 of 100
-  EXPECT_FALSE(OverlapsEnough({0, 100}, {26, 126}, 0.75));  // 74 of 100
-  EXPECT_FALSE(OverlapsEnough({0, 400}, {300, 380}, 0.75)); // inside, but 80 of 400
-  EXPECT_TRUE(OverlapsEnough({0, 100}, {0, 133}, 0.75));    // 100 of 133
-  EXPECT_FALSE(OverlapsEnough({0, 100}, {0, 134}, 0.75));   // 100 of 134
-  EXPECT_FALSE(OverlapsEnough({0, 100}, {100, 200}, 0.75)); // touching, no shared frame
+  EXPECT_TRUE(OverlapsEnough({0, 100}, {25, 125}, 0.75));    // 75 of 100
+  EXPECT_FALSE(OverlapsEnough({0, 100}, {26, 126}, 0.75));   // 74 of 100
+  EXPECT_FALSE(OverlapsEnough({0, 400}, {300, 380}, 0.75));  // inside, but 80 of 400
+  EXPECT_TRUE(OverlapsEnough({0, 100}, {0, 133}, 0.75));     // 100 of 133
+  EXPECT_FALSE(OverlapsEnough({0, 100}, {0, 134}, 0.75));    // 100 of 134
+  EXPECT_FALSE(OverlapsEnough({0, 100}, {100, 200}, 0.75));  // touching, no shared frame
 }
 
 TEST(BuildInstancesTest, TwoInstancesPerPathLinked) {
@@ -53,9 +53,9 @@ TEST(BuildInstancesTest, TwoInstancesPerPathLinked) {
 TEST(BuildInstancesTest, MergesOverlapsOfThreeQuartersIntoTheUnionAndCarriesLinks) {
   InstanceSet set = BuildInstances({
       Path(0, 100, 1000, 1100, 0, 1000),
-      Path(20, 120, 2000, 2100, 20, 2000),   // top overlaps the first top by 80 of 100: merged
+      Path(20, 120, 2000, 2100, 20, 2000),  // top overlaps the first top by 80 of 100: merged
       Path(500, 600, 3000, 3100, 500, 3000),
-      Path(530, 630, 4000, 4100, 530, 4000), // overlaps [500, 600) by 70 of 100: kept apart
+      Path(530, 630, 4000, 4100, 530, 4000),  // overlaps [500, 600) by 70 of 100: kept apart
   });
   ASSERT_EQ(set.instances.size(), 7u);
   EXPECT_EQ(set.instances[0], (MotifInstance{0, 120}));
@@ -116,8 +116,8 @@ TEST(BuildInstancesTest, SweepMatchesAllPairsOnRandomPaths) {
     for (int idx = 0; idx < 80; ++idx) {
       const uint64_t top = random() % 2000;
       const uint64_t match = random() % 2000;
-      candidates.push_back(Path(top, top + 20 + random() % 100, match, match + 20 + random() % 100,
-                                top, match));
+      candidates.push_back(
+          Path(top, top + 20 + random() % 100, match, match + 20 + random() % 100, top, match));
     }
     const InstanceSet set = BuildInstances(candidates);
     // Brute force: all pairs, transitive closure, unions.

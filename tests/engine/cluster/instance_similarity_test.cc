@@ -100,7 +100,8 @@ TEST(InstanceSimilarityTest, SameGraphForAnyThreadCountAndBlockSize) {
   ASSERT_TRUE(testing::WriteColumns(dir.File("a.mtr"), columns, 64).ok());
   ASSERT_TRUE(testing::WriteColumns(dir.File("b.mtr"), columns, 1000).ok());
   std::vector<MotifInstance> instances;
-  for (uint64_t start = 0; start + 150 <= 4500; start += 75) instances.push_back({start, start + 150});
+  for (uint64_t start = 0; start + 150 <= 4500; start += 75)
+    instances.push_back({start, start + 150});
   std::vector<std::vector<std::tuple<uint32_t, uint32_t, double>>> results;
   for (const char* name : {"a.mtr", "b.mtr"}) {
     auto trellis = OpenTrellis(dir.File(name));

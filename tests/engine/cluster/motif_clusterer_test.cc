@@ -24,8 +24,8 @@ std::vector<MotifInstance> InstancesOf(const ClusterResult& result, const Motif&
 }
 
 TEST(RankMotifsTest, MostFramesFirstAndSingletonsDropped) {
-  const std::vector<MotifInstance> instances = {{0, 10}, {20, 30}, {40, 100}, {200, 260},
-                                                {300, 310}, {400, 500}};
+  const std::vector<MotifInstance> instances = {{0, 10},    {20, 30},   {40, 100},
+                                                {200, 260}, {300, 310}, {400, 500}};
   std::vector<Motif> motifs = RankMotifs({{0, 1}, {3, 2}, {4}, {5}}, instances);
   ASSERT_EQ(motifs.size(), 2u);
   EXPECT_EQ(motifs[0].instances, (std::vector<uint32_t>{2, 3}));
@@ -38,9 +38,9 @@ TEST(RankMotifsTest, RanksByTheFramesExplainedBeyondTheFirstInstance) {
   // Five 100-frame repetitions ((5 - 1) x 100 = 400) come before two 300-frame ones (300),
   // which come before two 240-frame ones (240), though the five cover 500 frames and the two
   // pairs 600 and 480.
-  const std::vector<MotifInstance> instances = {
-      {0, 100},     {200, 300},   {400, 500},   {600, 700},   {800, 900},
-      {1000, 1240}, {1300, 1540}, {2000, 2300}, {2500, 2800}};
+  const std::vector<MotifInstance> instances = {{0, 100},     {200, 300},   {400, 500},
+                                                {600, 700},   {800, 900},   {1000, 1240},
+                                                {1300, 1540}, {2000, 2300}, {2500, 2800}};
   std::vector<Motif> motifs = RankMotifs({{5, 6}, {7, 8}, {0, 1, 2, 3, 4}}, instances);
   ASSERT_EQ(motifs.size(), 3u);
   EXPECT_EQ(motifs[0].instances.size(), 5u);
@@ -62,10 +62,9 @@ TEST(RankMotifsTest, NoTwoInstancesOfAMotifOverlapByMoreThanAQuarter) {
 TEST(RankMotifsTest, AMotifWhoseInstancesLieInsideABetterMotifsIsDropped) {
   // Motif A: three 300-frame instances. Motif B: the first 80 frames of each of A's instances.
   // Motif C: two 80-frame instances, one inside A, one elsewhere: it stays.
-  const std::vector<MotifInstance> instances = {
-      {0, 300}, {1000, 1300}, {2000, 2300},  // A
-      {0, 80},  {1000, 1080}, {2010, 2090},  // B
-      {100, 180}, {5000, 5080}};             // C
+  const std::vector<MotifInstance> instances = {{0, 300},   {1000, 1300}, {2000, 2300},  // A
+                                                {0, 80},    {1000, 1080}, {2010, 2090},  // B
+                                                {100, 180}, {5000, 5080}};               // C
   std::vector<Motif> motifs = RankMotifs({{0, 1, 2}, {3, 4, 5}, {6, 7}}, instances);
   ASSERT_EQ(motifs.size(), 2u);
   EXPECT_EQ(motifs[0].instances, (std::vector<uint32_t>{0, 1, 2}));
@@ -77,11 +76,11 @@ TEST(RankMotifsTest, AMotifWhoseInstancesLieInsideABetterMotifsIsDropped) {
 // each other (6-8), and two 60-frame stretches linked only to each other (9, 10).
 TEST(RankMotifsTest, SplitsAGroupByLengthAndDropsFragments) {
   const std::vector<MotifInstance> instances = {
-      {0, 400},       {1000, 1380},  {2000, 2430},  {3000, 3410},  // the long motif
-      {4000, 4070},   {4500, 4570},                                // fragments of it
-      {5000, 5120},   {5500, 5610},  {6000, 6130},                 // a short motif
-      {7000, 7060},   {7500, 7560}};                               // a chance pair
-  const std::vector<InstanceLink> links = {{0, 1}, {1, 2}, {2, 3}, {0, 4}, {2, 5},
+      {0, 400},     {1000, 1380}, {2000, 2430}, {3000, 3410},  // the long motif
+      {4000, 4070}, {4500, 4570},                              // fragments of it
+      {5000, 5120}, {5500, 5610}, {6000, 6130},                // a short motif
+      {7000, 7060}, {7500, 7560}};                             // a chance pair
+  const std::vector<InstanceLink> links = {{0, 1}, {1, 2}, {2, 3}, {0, 4},  {2, 5},
                                            {6, 7}, {7, 8}, {0, 6}, {9, 10}, {3, 9}};
   const std::vector<std::vector<uint32_t>> groups = {{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}};
   uint64_t dropped = 0;
@@ -97,8 +96,8 @@ TEST(RankMotifsTest, SplitsAGroupByLengthAndDropsFragments) {
   many.push_back({8000, 8065});
   many.push_back({8500, 8570});
   uint64_t many_dropped = 0;
-  std::vector<Motif> kept = RankMotifs({{0, 1, 2, 3, 4, 5, 11, 12}}, many, links, 3.0,
-                                       &many_dropped);
+  std::vector<Motif> kept =
+      RankMotifs({{0, 1, 2, 3, 4, 5, 11, 12}}, many, links, 3.0, &many_dropped);
   ASSERT_EQ(kept.size(), 1u);
   EXPECT_EQ(kept[0].instances, (std::vector<uint32_t>{0, 1, 2, 3}));
   EXPECT_EQ(many_dropped, 4u);

@@ -69,9 +69,8 @@ SimilarityGraph NoisyClusters(uint32_t clusters, uint32_t size, double p_in, uin
 }
 
 TEST(SimilarityGraphTest, SymmetricRowsSummedDuplicatesAndComponents) {
-  SimilarityGraph graph =
-      SimilarityGraph::FromEdges(6, {{0, 1, 1.0}, {1, 0, 0.5}, {2, 2, 9.0}, {3, 4, 2.0},
-                                     {4, 5, 0.0}});
+  SimilarityGraph graph = SimilarityGraph::FromEdges(
+      6, {{0, 1, 1.0}, {1, 0, 0.5}, {2, 2, 9.0}, {3, 4, 2.0}, {4, 5, 0.0}});
   EXPECT_EQ(graph.edge_count(), 2u);
   EXPECT_DOUBLE_EQ(graph.Degree(0), 1.5);
   EXPECT_DOUBLE_EQ(graph.Degree(1), 1.5);

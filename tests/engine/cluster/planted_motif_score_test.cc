@@ -60,7 +60,7 @@ TEST(ScorePlantedMotifsTest, TheLargestOverlapLabelsAPlantedInstance) {
   const std::vector<PlantedInstance> planted = {
       {"a", 0, 100, 0}, {"a", 200, 300, 0}, {"a", 400, 500, 1}, {"a", 600, 700, 1}};
   const std::vector<FoundInstance> found = {
-      {"a", 0, 60, 2}, {"a", 40, 100, 3},  // 60 and 60: a tie, the lower motif id (2) wins
+      {"a", 0, 60, 2},    {"a", 40, 100, 3},   // 60 and 60: a tie, the lower motif id (2) wins
       {"a", 200, 300, 3}, {"a", 180, 260, 2},  // 100 beats 60: motif 3
       {"a", 400, 500, 4}, {"a", 600, 700, 4}};
   PlantedMotifScore score = ScorePlantedMotifs(found, planted);

@@ -64,8 +64,8 @@ std::vector<FoundInstance> MineArchive(const testing::TempDir& dir, const std::s
   auto result = ClusterMotifs((*paths)->candidates(), **trellis, cluster_options);
   EXPECT_TRUE(result.ok()) << result.status().ToString();
   if (!result.ok()) return {};
-  auto document = MakeMotifsDocument(*result, archive, (*frames)->frame_count(),
-                                     (*frames)->clips(), MotifsJsonParams{});
+  auto document = MakeMotifsDocument(*result, archive, (*frames)->frame_count(), (*frames)->clips(),
+                                     MotifsJsonParams{});
   EXPECT_TRUE(document.ok()) << document.status().ToString();
   if (!document.ok()) return {};
   std::vector<FoundInstance> found;
@@ -92,9 +92,9 @@ TEST(PlantedMotifs, ProceduralArchiveWithTenMotifsIsMinedWithHighRecallPrecision
   {
     auto writer = FrameFileWriter::Create(archive, (*synthesizer)->skeleton(), options.fps);
     ASSERT_TRUE(writer.ok()) << writer.status().ToString();
-    ASSERT_TRUE((*synthesizer)->Run([&](const ClipFrames& clip) {
-      return (*writer)->AppendClip(clip);
-    }).ok());
+    ASSERT_TRUE((*synthesizer)
+                    ->Run([&](const ClipFrames& clip) { return (*writer)->AppendClip(clip); })
+                    .ok());
     ASSERT_TRUE((*writer)->Commit().ok());
   }
   const std::vector<PlantedInstance>& planted = (*synthesizer)->truth();
@@ -134,8 +134,8 @@ Segment WarpSegment(const Take& source, size_t start, size_t frames, size_t out_
   const size_t joints = source.joint_count();
   Segment segment;
   for (size_t out = 0; out < out_frames; ++out) {
-    const double time =
-        std::clamp(source_time(out), 0.0, static_cast<double>(frames - 1)) + static_cast<double>(start);
+    const double time = std::clamp(source_time(out), 0.0, static_cast<double>(frames - 1)) +
+                        static_cast<double>(start);
     const size_t lo = std::min(static_cast<size_t>(time), source.frame_count() - 2);
     const double weight = time - static_cast<double>(lo);
     for (size_t joint = 0; joint < joints; ++joint) {
@@ -211,22 +211,22 @@ TEST(PlantedMotifs, RealSegmentInsertedThreeTimesAtDifferentSpeedsIsFoundAsOneMo
   std::vector<Copy> copies;
   {
     const size_t slow = 525;
-    copies.push_back({1, 0.4, WarpSegment(source, segment_start, segment_frames, slow, [&](size_t k) {
-                        return last * static_cast<double>(k) / static_cast<double>(slow - 1);
-                      })});
+    copies.push_back(
+        {1, 0.4, WarpSegment(source, segment_start, segment_frames, slow, [&](size_t k) {
+           return last * static_cast<double>(k) / static_cast<double>(slow - 1);
+         })});
     const size_t fast = 336;
-    copies.push_back({2, 0.5, WarpSegment(source, segment_start, segment_frames, fast, [&](size_t k) {
-                        return last * static_cast<double>(k) / static_cast<double>(fast - 1);
-                      })});
+    copies.push_back(
+        {2, 0.5, WarpSegment(source, segment_start, segment_frames, fast, [&](size_t k) {
+           return last * static_cast<double>(k) / static_cast<double>(fast - 1);
+         })});
     const size_t uneven = 420;
-    copies.push_back({7, 0.6, WarpSegment(source, segment_start, segment_frames, uneven,
-                                          [&](size_t k) {
-                                            // x + c sin(2 pi x) / (2 pi): speed 1 + c cos(2 pi x)
-                                            const double x = static_cast<double>(k) /
-                                                             static_cast<double>(uneven - 1);
-                                            return last * (x + 0.4 * std::sin(2 * kPi * x) /
-                                                                   (2 * kPi));
-                                          })});
+    copies.push_back(
+        {7, 0.6, WarpSegment(source, segment_start, segment_frames, uneven, [&](size_t k) {
+           // x + c sin(2 pi x) / (2 pi): speed 1 + c cos(2 pi x)
+           const double x = static_cast<double>(k) / static_cast<double>(uneven - 1);
+           return last * (x + 0.4 * std::sin(2 * kPi * x) / (2 * kPi));
+         })});
   }
 
   testing::TempDir dir;
@@ -239,7 +239,8 @@ TEST(PlantedMotifs, RealSegmentInsertedThreeTimesAtDifferentSpeedsIsFoundAsOneMo
       ASSERT_GT(take.frame_count(), 100u);
       for (const Copy& copy : copies) {
         if (copy.host != host_idx) continue;
-        const size_t at = static_cast<size_t>(copy.at_share * static_cast<double>(take.frame_count()));
+        const size_t at =
+            static_cast<size_t>(copy.at_share * static_cast<double>(take.frame_count()));
         take = InsertSegment(take, at, copy.segment);
         inserted[take.name] = {at, at + copy.segment.root_positions.size()};
       }
@@ -270,11 +271,11 @@ TEST(PlantedMotifs, RealSegmentInsertedThreeTimesAtDifferentSpeedsIsFoundAsOneMo
     double best_iou = 0;
     for (const FoundInstance& instance : found) {
       if (instance.clip != clip) continue;
-      best_iou = std::max(best_iou, IntervalIoU(instance.start, instance.end, range.first,
-                                                range.second));
+      best_iou =
+          std::max(best_iou, IntervalIoU(instance.start, instance.end, range.first, range.second));
     }
-    std::printf("  the copy in %s [%llu, %llu): best IoU of a found instance %.2f\n",
-                clip.c_str(), static_cast<unsigned long long>(range.first),
+    std::printf("  the copy in %s [%llu, %llu): best IoU of a found instance %.2f\n", clip.c_str(),
+                static_cast<unsigned long long>(range.first),
                 static_cast<unsigned long long>(range.second), best_iou);
     motifs_of_copy.push_back(std::move(motifs));
   }

@@ -61,19 +61,22 @@ TEST(MotifTruth, RejectsMalformedLinesNamingTheFileAndLine) {
 TEST(TruthScore, AHitNeedsTheSameClipAndIoUOfAtLeastHalf) {
   const std::vector<TruthOccurrence> truth = {{"a", "step", 100, 200}};
   // IoU 0.5 exactly: [100, 200) against [100, 150) hits; [100, 149) does not; clip b never.
-  EXPECT_EQ(ScoreAgainstTruth(Document({{{"a", 100, 150}, {"a", 500, 560}}}), truth).occurrences_hit, 1u);
-  EXPECT_EQ(ScoreAgainstTruth(Document({{{"a", 100, 149}, {"a", 500, 560}}}), truth).occurrences_hit, 0u);
-  EXPECT_EQ(ScoreAgainstTruth(Document({{{"b", 100, 200}, {"b", 500, 560}}}), truth).occurrences_hit, 0u);
+  EXPECT_EQ(
+      ScoreAgainstTruth(Document({{{"a", 100, 150}, {"a", 500, 560}}}), truth).occurrences_hit, 1u);
+  EXPECT_EQ(
+      ScoreAgainstTruth(Document({{{"a", 100, 149}, {"a", 500, 560}}}), truth).occurrences_hit, 0u);
+  EXPECT_EQ(
+      ScoreAgainstTruth(Document({{{"b", 100, 200}, {"b", 500, 560}}}), truth).occurrences_hit, 0u);
 }
 
 TEST(TruthScore, TheTopMotifIsScoredAgainstTheMovementItMatchesBest) {
   const std::vector<TruthOccurrence> truth = {
-      {"a", "step", 0, 100},   {"a", "step", 200, 300}, {"b", "step", 0, 100},
-      {"a", "hop", 400, 450},  {"b", "hop", 400, 450},  {"c", "hop", 0, 50},
+      {"a", "step", 0, 100},  {"a", "step", 200, 300}, {"b", "step", 0, 100},
+      {"a", "hop", 400, 450}, {"b", "hop", 400, 450},  {"c", "hop", 0, 50},
   };
   // Motif 0: two steps and one miss. Motif 1: both hops of a and b.
-  const MotifsDocument document =
-      Document({{{"a", 0, 100}, {"b", 10, 100}, {"b", 600, 700}}, {{"a", 400, 450}, {"b", 405, 450}}});
+  const MotifsDocument document = Document(
+      {{{"a", 0, 100}, {"b", 10, 100}, {"b", 600, 700}}, {{"a", 400, 450}, {"b", 405, 450}}});
   const TruthScore score = ScoreAgainstTruth(document, truth);
   EXPECT_EQ(score.occurrences, 5u);
   EXPECT_EQ(score.occurrences_elsewhere, 1u);  // clip c is not in the document
@@ -115,9 +118,8 @@ TEST(TruthScore, PlantedMotifsOfATruthJsonBecomeMovements) {
   Result<std::vector<TruthOccurrence>> truth = ReadTruthOccurrences(path);
   ASSERT_TRUE(truth.ok()) << truth.status().ToString();
   EXPECT_EQ(*truth, (std::vector<TruthOccurrence>{{"a", "planted-3", 0, 100},
-                                                   {"a", "planted-3", 300, 420}}));
-  const TruthScore score =
-      ScoreAgainstTruth(Document({{{"a", 0, 100}, {"a", 300, 400}}}), *truth);
+                                                  {"a", "planted-3", 300, 420}}));
+  const TruthScore score = ScoreAgainstTruth(Document({{{"a", 0, 100}, {"a", 300, 400}}}), *truth);
   EXPECT_EQ(score.top1.movement, "planted-3");
   EXPECT_DOUBLE_EQ(score.top1.precision, 1.0);
   EXPECT_DOUBLE_EQ(score.top1.recall, 1.0);

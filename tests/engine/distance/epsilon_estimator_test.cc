@@ -123,8 +123,8 @@ TEST(EpsilonEstimator, JointAngleRuleIsTheDefaultAndReportsThePaperRuleBeside) {
       EpsilonEstimator(features, Rules(features), options).Estimate();
   ASSERT_TRUE(estimate.ok()) << estimate.status().ToString();
   EXPECT_EQ(estimate->rule, EpsilonRule::kJointAngle);
-  EXPECT_FLOAT_EQ(estimate->eps, static_cast<float>(JointAngleEpsilon(
-                                     features.weights(), kDefaultJointAngleDegrees)));
+  EXPECT_FLOAT_EQ(estimate->eps, static_cast<float>(JointAngleEpsilon(features.weights(),
+                                                                      kDefaultJointAngleDegrees)));
   EXPECT_NEAR(estimate->paper_eps, estimate->mu - 2 * estimate->sigma, 1e-12);
   EXPECT_NE(estimate->how.find("joint-angle rule"), std::string::npos) << estimate->how;
   EXPECT_TRUE(estimate->note.empty()) << estimate->note;

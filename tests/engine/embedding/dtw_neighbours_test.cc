@@ -22,8 +22,9 @@ std::vector<std::vector<WordNeighbour>> BruteForce(const WordPool& pool, uint32_
                             static_cast<int64_t>(pool.index_in_clip(word));
         if (std::abs(gap) < static_cast<int64_t>(pool.overlap_words())) continue;
       }
-      all.push_back({static_cast<uint32_t>(other),
-                     static_cast<float>(distance.Dtw(pool.features(word, 0), pool.features(other, 0)))});
+      all.push_back(
+          {static_cast<uint32_t>(other),
+           static_cast<float>(distance.Dtw(pool.features(word, 0), pool.features(other, 0)))});
     }
     std::sort(all.begin(), all.end(), [](const WordNeighbour& a, const WordNeighbour& b) {
       return a.distance < b.distance || (a.distance == b.distance && a.word < b.word);

@@ -47,8 +47,8 @@ TEST(EmbeddingTrainer, TrainingLowersTheLossAndBeatsTheUntrainedNetOnHeldOutWord
   EXPECT_LT(state.epoch_loss.back(), 0.7 * state.epoch_loss.front());
   const TripletAccuracy accuracy = trainer->HeldOutAccuracy(trainer->NetOf(state));
   std::printf("held-out triplets %llu: raw %.3f untrained %.3f trained %.3f\n",
-              static_cast<unsigned long long>(accuracy.triplets), accuracy.raw,
-              accuracy.untrained, accuracy.trained);
+              static_cast<unsigned long long>(accuracy.triplets), accuracy.raw, accuracy.untrained,
+              accuracy.trained);
   EXPECT_GT(accuracy.triplets, 100u);
   EXPECT_GT(accuracy.trained, accuracy.untrained);
 }

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "engine/distance/pose_features.h"
 
@@ -62,9 +62,9 @@ TEST(WordInput, RootMotionScalesVelocityWithSpeedAndDifferencesTheHeading) {
   EXPECT_EQ(out[0], 10.0f);
   EXPECT_EQ(out[1], 2.5f);
   EXPECT_EQ(out[2], -1.25f);
-  EXPECT_NEAR(out[3], 0.25 * 24, 1e-5);       // frame 0: to frame 1
-  EXPECT_NEAR(out[4 + 3], 0.5 * 24, 1e-5);    // frame 1: to frame 2
-  EXPECT_NEAR(out[8 + 3], 0.5 * 24, 1e-5);    // frame 2 repeats frame 1
+  EXPECT_NEAR(out[3], 0.25 * 24, 1e-5);     // frame 0: to frame 1
+  EXPECT_NEAR(out[4 + 3], 0.5 * 24, 1e-5);  // frame 1: to frame 2
+  EXPECT_NEAR(out[8 + 3], 0.5 * 24, 1e-5);  // frame 2 repeats frame 1
   EXPECT_EQ(out[8], 12.0f);
 }
 

@@ -101,8 +101,8 @@ TEST(WordPool, FromAnArchiveEqualsFromTheClipsAndKeepsToTheBudget) {
     cut += clip.word_count < clips[clip.archive_clip].word_count();
     // The pool's words are the clip's first ones, with the archive's ids.
     const uint64_t first = clip.first_word;
-    EXPECT_TRUE(SameFeatures(*small, first, 1, direct,
-                             direct.clips()[clip.archive_clip].first_word, 1));
+    EXPECT_TRUE(
+        SameFeatures(*small, first, 1, direct, direct.clips()[clip.archive_clip].first_word, 1));
   }
   EXPECT_LE(cut, 1u);
   options.threads = 1;

@@ -29,12 +29,14 @@ void AddNode(GrowColumns* columns, uint64_t column, uint64_t frame) {
 }
 
 void AddPath(GrowColumns* columns, uint64_t first_column, const std::vector<uint64_t>& frames) {
-  for (size_t idx = 0; idx < frames.size(); ++idx) AddNode(columns, first_column + idx, frames[idx]);
+  for (size_t idx = 0; idx < frames.size(); ++idx)
+    AddNode(columns, first_column + idx, frames[idx]);
 }
 
 void AddDiagonal(GrowColumns* columns, uint64_t first_column, uint64_t first_frame,
                  uint64_t length) {
-  for (uint64_t idx = 0; idx < length; ++idx) AddNode(columns, first_column + idx, first_frame + idx);
+  for (uint64_t idx = 0; idx < length; ++idx)
+    AddNode(columns, first_column + idx, first_frame + idx);
 }
 
 Result<std::vector<PathCandidate>> GrowInMemory(const GrowColumns& columns,
@@ -82,8 +84,7 @@ GrowColumns RandomColumns(uint64_t frame_count, uint64_t seed, int paths, int no
     uint64_t column = uniform(frame_count);
     uint64_t frame = uniform(frame_count);
     const uint64_t length = 1 + uniform(frame_count / 2 + 1);
-    for (uint64_t step = 0; step < length && column < frame_count && frame < frame_count;
-         ++step) {
+    for (uint64_t step = 0; step < length && column < frame_count && frame < frame_count; ++step) {
       if (uniform(20) != 0) AddNode(&columns, column, frame);  // occasional misses
       // A run of similar frames around the path's node.
       if (uniform(4) == 0 && frame + 1 < frame_count) AddNode(&columns, column, frame + 1);

@@ -31,8 +31,7 @@ std::vector<PathCandidate> Grow(const GrowColumns& columns, const std::vector<ui
   if (!in_memory.ok()) return {};
   TempDir dir;
   for (uint32_t block_columns : {1u, 7u, 4096u}) {
-    auto through_file =
-        GrowThroughFile(dir.File("t.mtr"), columns, clips, options, block_columns);
+    auto through_file = GrowThroughFile(dir.File("t.mtr"), columns, clips, options, block_columns);
     EXPECT_TRUE(through_file.ok()) << through_file.status().ToString();
     if (through_file.ok()) {
       EXPECT_EQ(*through_file, *in_memory) << "blocks of " << block_columns;
@@ -43,8 +42,8 @@ std::vector<PathCandidate> Grow(const GrowColumns& columns, const std::vector<ui
 
 TEST(PathGrower, OneDiagonalAndItsMirrorGiveTwoCandidates) {
   GrowColumns columns = EmptyColumns(200);
-  AddDiagonal(&columns, 0, 100, 100);   // frames 0..99 match 100..199
-  AddDiagonal(&columns, 100, 0, 100);   // and the other way round
+  AddDiagonal(&columns, 0, 100, 100);  // frames 0..99 match 100..199
+  AddDiagonal(&columns, 100, 0, 100);  // and the other way round
   const auto candidates = Grow(columns, {0}, Options(3, 60));
   const std::vector<PathCandidate> expected = {Candidate(0, 100, 100, 200),
                                                Candidate(100, 200, 0, 100)};
@@ -121,8 +120,8 @@ TEST(PathGrower, LowerLeafClaimsFirst) {
   for (uint64_t frame : {11, 12, 13}) AddNode(&columns, 1, frame);
   // 10 claims 11 and 12 (window 10..12); 11 finds 11 and 12 cleared and claims 13.
   auto candidates = Grow(columns, {0}, Options(3, 1));
-  const std::vector<PathCandidate> expected = {
-      Candidate(0, 2, 10, 12), Candidate(0, 2, 10, 13), Candidate(0, 2, 11, 14)};
+  const std::vector<PathCandidate> expected = {Candidate(0, 2, 10, 12), Candidate(0, 2, 10, 13),
+                                               Candidate(0, 2, 11, 14)};
   EXPECT_EQ(candidates, expected) << Describe(candidates);
 }
 
@@ -146,8 +145,8 @@ TEST(PathGrower, StallsAndSkipsWithinTheWindow) {
   std::vector<uint64_t> slow, fast;
   for (uint64_t step = 0; step < 100; ++step) slow.push_back(200 + step / 2);
   for (uint64_t step = 0; step < 50; ++step) fast.push_back(300 + 2 * step);
-  AddPath(&columns, 0, slow);   // top [0, 100), match [200, 250)
-  AddPath(&columns, 120, fast); // top [120, 170), match [300, 399)
+  AddPath(&columns, 0, slow);    // top [0, 100), match [200, 250)
+  AddPath(&columns, 120, fast);  // top [120, 170), match [300, 399)
   EXPECT_EQ(Grow(columns, {0}, Options(3, 60)), std::vector<PathCandidate>{})
       << "lambda applies to both sides";
   const std::vector<PathCandidate> at_50 = {Candidate(0, 100, 200, 250),
@@ -243,14 +242,14 @@ TEST(PathGrower, CountsTreesDeathsAndEntries) {
 
 TEST(PathGrower, RejectsBadOptionsClipsAndColumns) {
   EXPECT_TRUE(PathGrower::Create(10, {0}, Options(0, 60)).status().IsInvalidArgument());
-  EXPECT_TRUE(PathGrower::Create(10, {0}, Options(kMaxBranch + 1, 60)).status().IsInvalidArgument());
+  EXPECT_TRUE(
+      PathGrower::Create(10, {0}, Options(kMaxBranch + 1, 60)).status().IsInvalidArgument());
   EXPECT_TRUE(PathGrower::Create(10, {0}, Options(3, 0)).status().IsInvalidArgument());
   EXPECT_TRUE(PathGrower::Create(10, {1}, Options(3, 1)).status().IsInvalidArgument());
   EXPECT_TRUE(PathGrower::Create(10, {0, 5, 5}, Options(3, 1)).status().IsInvalidArgument());
   EXPECT_TRUE(PathGrower::Create(10, {0, 10}, Options(3, 1)).status().IsInvalidArgument());
-  EXPECT_TRUE(PathGrower::Create((uint64_t{1} << 32) + 1, {0}, Options(3, 1))
-                  .status()
-                  .IsInvalidArgument());
+  EXPECT_TRUE(
+      PathGrower::Create((uint64_t{1} << 32) + 1, {0}, Options(3, 1)).status().IsInvalidArgument());
   ASSERT_TRUE(PathGrower::Create(10, {}, Options(3, 1)).ok());  // no clips: one clip
 
   auto grower = PathGrower::Create(10, {0}, Options(3, 1));
@@ -261,7 +260,7 @@ TEST(PathGrower, RejectsBadOptionsClipsAndColumns) {
   EXPECT_TRUE((*grower)->AddColumn(duplicate, 2).IsInvalidArgument());
   const Neighbour outside[] = {{10, 0}};
   EXPECT_TRUE((*grower)->AddColumn(outside, 1).IsInvalidArgument());
-  EXPECT_EQ((*grower)->next_column(), 0u);  // unchanged
+  EXPECT_EQ((*grower)->next_column(), 0u);                        // unchanged
   EXPECT_TRUE((*grower)->Finish().status().IsInvalidArgument());  // before the last column
   for (int column = 0; column < 10; ++column) ASSERT_TRUE((*grower)->AddColumn(nullptr, 0).ok());
   EXPECT_TRUE((*grower)->AddColumn(nullptr, 0).IsInvalidArgument());  // one too many
@@ -279,9 +278,12 @@ TEST(GrowPaths, ReportsProgressAndClipsAgainstTheTrellis) {
   ASSERT_TRUE(reader.ok());
   std::vector<std::pair<uint64_t, uint64_t>> calls;
   GrowStats stats;
-  auto candidates = GrowPaths(**reader, {0}, Options(3, 60),
-                              [&](uint64_t done, uint64_t total) { calls.push_back({done, total}); },
-                              &stats);
+  auto candidates = GrowPaths(
+      **reader, {0}, Options(3, 60),
+      [&](uint64_t done, uint64_t total) {
+        calls.push_back({done, total});
+      },
+      &stats);
   ASSERT_TRUE(candidates.ok());
   EXPECT_EQ(*candidates, std::vector<PathCandidate>{Candidate(0, 70, 30, 100)});
   const std::vector<std::pair<uint64_t, uint64_t>> expected_calls = {

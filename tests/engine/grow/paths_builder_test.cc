@@ -114,7 +114,8 @@ TEST_F(PathsBuilderTest, RefusesATrellisOfAnotherArchive) {
   EXPECT_TRUE(missing.status().IsNotFound());
   PathsOptions zero;
   zero.branch = 0;
-  EXPECT_TRUE(BuildPaths(archive_, trellis_, dir_->File("o.mpa"), zero).status().IsInvalidArgument());
+  EXPECT_TRUE(
+      BuildPaths(archive_, trellis_, dir_->File("o.mpa"), zero).status().IsInvalidArgument());
 }
 
 TEST(PathsBuilder, DefaultPathAndLambdaInFrames) {

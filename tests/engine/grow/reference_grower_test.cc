@@ -25,9 +25,9 @@ TEST(ReferenceGrower, MatchesTheHandBuiltFigure2Step) {
   auto reference = GrowPathsReference(columns, {0}, options);
   ASSERT_TRUE(reference.ok());
   // 26 takes 27 and 28, 27 takes 29, 29 takes 31; 7 is a new tree.
-  const std::vector<PathCandidate> expected = {
-      Candidate(12, 14, 26, 28), Candidate(12, 14, 26, 29), Candidate(12, 14, 27, 30),
-      Candidate(12, 14, 29, 32), Candidate(13, 14, 7, 8)};
+  const std::vector<PathCandidate> expected = {Candidate(12, 14, 26, 28), Candidate(12, 14, 26, 29),
+                                               Candidate(12, 14, 27, 30), Candidate(12, 14, 29, 32),
+                                               Candidate(13, 14, 7, 8)};
   EXPECT_EQ(*reference, expected) << Describe(*reference);
   auto streaming = GrowInMemory(columns, {0}, options);
   ASSERT_TRUE(streaming.ok());
@@ -64,7 +64,8 @@ TEST(ReferenceGrower, EqualsTheStreamingGrowerOnRandomTrellises) {
         ASSERT_EQ(*streaming, *reference)
             << "seed " << seed << " B " << branch << " lambda " << min_length << " all "
             << options.keep_all_branches << "\nstreaming\n"
-            << Describe(*streaming) << "reference\n" << Describe(*reference);
+            << Describe(*streaming) << "reference\n"
+            << Describe(*reference);
         EXPECT_EQ(streaming_stats.trees, reference_stats.trees);
         EXPECT_EQ(streaming_stats.dead_paths, reference_stats.dead_paths);
         EXPECT_EQ(streaming_stats.entries, reference_stats.entries);

@@ -98,7 +98,8 @@ TEST(ImportIntoArchive, MixedSkeletonsAreRefusedAndNothingIsStored) {
   const std::string archive = dir.File("walks.mfs");
   ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/bvh/02_01.bvh"}, DefaultOptions()).ok());
   const std::string before = ReadFileToString(archive).value();
-  auto result = ImportIntoArchive(archive, {mocap + "/bvh/02_02.bvh", mocap + "/bvh_daz/02_01.bvh"}, DefaultOptions());
+  auto result = ImportIntoArchive(archive, {mocap + "/bvh/02_02.bvh", mocap + "/bvh_daz/02_01.bvh"},
+                                  DefaultOptions());
   ASSERT_FALSE(result.ok());
   EXPECT_TRUE(result.status().IsInvalidArgument()) << result.status().ToString();
   EXPECT_NE(result.status().message().find("bvh_daz/02_01.bvh"), std::string::npos)
@@ -142,7 +143,8 @@ TEST(ImportIntoArchive, AMalformedTakeStopsTheImportUnlessSkipped) {
   for (int frame = 0; frame < 3; ++frame) good_text += "0 1 0 0 0 0 10 0 0\n";
   ASSERT_TRUE(AtomicWriteFile(good, good_text).ok());
   ASSERT_TRUE(AtomicWriteFile(bad, header + "Frames: 2\nFrame Time: 0.0333333\n0 1 0 0 0 0 10 0\n"
-                                            "0 1 0 0 0 0 10 0 0\n").ok());
+                                            "0 1 0 0 0 0 10 0 0\n")
+                  .ok());
   ArchiveImportOptions options;
   options.import.first_frame = FirstFramePolicy::kKeep;
   const std::string archive = dir.File("x.mfs");
@@ -167,7 +169,8 @@ TEST(ImportIntoArchive, SameArchiveBytesWithOneOrTwoThreads) {
     ArchiveImportOptions options;
     options.threads = threads;
     const std::string archive = dir.File("t" + std::to_string(threads) + ".mfs");
-    ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/asfamc/60", mocap + "/asfamc/61"}, options).ok());
+    ASSERT_TRUE(
+        ImportIntoArchive(archive, {mocap + "/asfamc/60", mocap + "/asfamc/61"}, options).ok());
     bytes[threads - 1] = ReadFileToString(archive).value();
   }
   EXPECT_EQ(bytes[0], bytes[1]);

@@ -325,8 +325,7 @@ TEST_F(LshSearchTest, ChainingSeedsColumnsWithTheirPredecessorsNeighbours) {
   // A block of consecutive columns: where chaining acts.
   const uint64_t first = 12800;
   const uint64_t count = 256;
-  const std::vector<std::vector<Neighbour>> exact =
-      ExactBlock(*features_, *rules_, first, count);
+  const std::vector<std::vector<Neighbour>> exact = ExactBlock(*features_, *rules_, first, count);
   auto measure = [&](const LshSearch& search, const char* what) {
     std::vector<std::vector<Neighbour>> columns;
     SearchStats stats;
@@ -369,8 +368,7 @@ TEST_F(LshSearchTest, ChainProbeEveryProbesEveryNthColumnAndTheSweepsCarryTheRes
   for (const auto& search : searches) ASSERT_NE(search, nullptr);
   const uint64_t first = 12800;  // a multiple of 64: whole chains
   const uint64_t count = 256;
-  const std::vector<std::vector<Neighbour>> exact =
-      ExactBlock(*features_, *rules_, first, count);
+  const std::vector<std::vector<Neighbour>> exact = ExactBlock(*features_, *rules_, first, count);
   auto run = [&](const LshSearch& search, const char* what) {
     std::vector<std::vector<Neighbour>> columns;
     SearchStats stats;
@@ -417,8 +415,7 @@ TEST_F(LshSearchTest, ChainSweepsCarryPathsFoundLateToTheWholeChain) {
   for (const auto& search : searches) ASSERT_NE(search, nullptr);
   const uint64_t first = 12800;  // a multiple of 64: whole chains
   const uint64_t count = 256;
-  const std::vector<std::vector<Neighbour>> exact =
-      ExactBlock(*features_, *rules_, first, count);
+  const std::vector<std::vector<Neighbour>> exact = ExactBlock(*features_, *rules_, first, count);
   auto run = [&](const LshSearch& search, std::vector<std::vector<Neighbour>>* columns) {
     SearchStats stats;
     LshQueryStats lsh_stats;
@@ -436,8 +433,8 @@ TEST_F(LshSearchTest, ChainSweepsCarryPathsFoundLateToTheWholeChain) {
   const double recall_none = Recall(exact, columns_none).pooled();
   const double recall_backward = Recall(exact, columns_backward).pooled();
   const double recall_both = Recall(exact, columns_both).pooled();
-  std::printf("sweeps 0: recall %.4f; 1 (backward): %.4f; 4: %.4f\n", recall_none,
-              recall_backward, recall_both);
+  std::printf("sweeps 0: recall %.4f; 1 (backward): %.4f; 4: %.4f\n", recall_none, recall_backward,
+              recall_both);
   EXPECT_GT(recall_backward, recall_none + 0.01);
   EXPECT_GE(recall_both, recall_backward);
 

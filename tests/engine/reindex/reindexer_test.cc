@@ -44,9 +44,9 @@ void MakeTakes(const std::string& dir) {
   const std::string archive = dir + "/synth.mfs";
   auto writer = FrameFileWriter::Create(archive, (*synthesizer)->skeleton(), options.fps);
   ASSERT_TRUE(writer.ok());
-  ASSERT_TRUE((*synthesizer)->Run([&](const ClipFrames& clip) {
-    return (*writer)->AppendClip(clip);
-  }).ok());
+  ASSERT_TRUE((*synthesizer)
+                  ->Run([&](const ClipFrames& clip) { return (*writer)->AppendClip(clip); })
+                  .ok());
   ASSERT_TRUE((*writer)->Commit().ok());
   auto reader = FrameFileReader::Open(archive);
   ASSERT_TRUE(reader.ok());

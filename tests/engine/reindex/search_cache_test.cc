@@ -42,10 +42,12 @@ class SearchCacheTest : public ::testing::Test {
     auto synthesizer = MotionSynthesizer::Create(options);
     ASSERT_TRUE(synthesizer.ok());
     std::vector<ClipFrames> clips;
-    ASSERT_TRUE((*synthesizer)->Run([&](const ClipFrames& clip) {
-      clips.push_back(clip);
-      return Status::Ok();
-    }).ok());
+    ASSERT_TRUE((*synthesizer)
+                    ->Run([&](const ClipFrames& clip) {
+                      clips.push_back(clip);
+                      return Status::Ok();
+                    })
+                    .ok());
     ASSERT_GE(clips.size(), 3u);
     auto writer = FrameFileWriter::Create(archive_, (*synthesizer)->skeleton(), options.fps);
     ASSERT_TRUE(writer.ok());
@@ -84,8 +86,7 @@ TEST_F(SearchCacheTest, FeaturesOfTheEarlierVersionExtendedAreTheWholeArchives) 
   auto old_features = PoseFeatures::FromArchive(**earlier, Weights(**earlier));
   auto all_features = PoseFeatures::FromArchive(**now, Weights(**now));
   ASSERT_TRUE(old_features.ok() && all_features.ok());
-  auto extended =
-      PoseFeatures::ExtendFromArchive(std::move(*old_features), **now, Weights(**now));
+  auto extended = PoseFeatures::ExtendFromArchive(std::move(*old_features), **now, Weights(**now));
   ASSERT_TRUE(extended.ok()) << extended.status().ToString();
   EXPECT_TRUE(SameFeatures(*extended, *all_features));
   // Features of other weights are refused.

@@ -63,15 +63,16 @@ std::string CheckTagBalance(const std::string& html) {
 }
 
 // The script's decoding of EncodeFigurePoints, in C++: the SVG it would draw.
-std::string DecodeFigure(const std::string& encoded, size_t offset, const StickFigureLayout& layout) {
+std::string DecodeFigure(const std::string& encoded, size_t offset,
+                         const StickFigureLayout& layout) {
   static const std::string kAlphabet =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
   std::vector<FigurePoint> points(layout.points.size());
   for (size_t point_idx = 0; point_idx < points.size(); ++point_idx) {
     for (int axis = 0; axis < 2; ++axis) {
       const size_t at = offset + 4 * point_idx + 2 * axis;
-      const long code = static_cast<long>(kAlphabet.find(encoded[at]) * 64 +
-                                          kAlphabet.find(encoded[at + 1]));
+      const long code =
+          static_cast<long>(kAlphabet.find(encoded[at]) * 64 + kAlphabet.find(encoded[at + 1]));
       points[point_idx][axis] = (code - 1000) / 10.0;
     }
   }
@@ -99,7 +100,8 @@ class ReportHtmlTest : public ::testing::Test {
       instances_ += motif.instances.size();
     }
     bool odd_name_used = false;
-    for (const PlantedInstance& instance : synthetic_.truth) odd_name_used |= instance.clip == kOddName;
+    for (const PlantedInstance& instance : synthetic_.truth)
+      odd_name_used |= instance.clip == kOddName;
     ASSERT_TRUE(odd_name_used) << "the renamed clip should hold an instance";
   }
 

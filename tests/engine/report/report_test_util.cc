@@ -12,9 +12,9 @@ Result<SyntheticMotifs> MakeSyntheticMotifs(const std::string& archive_path,
                                             const std::string& first_clip_name) {
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
                          MotionSynthesizer::Create(options));
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
-                         FrameFileWriter::Create(archive_path, synthesizer->skeleton(),
-                                                 options.fps));
+  MOTIF_ASSIGN_OR_RETURN(
+      std::unique_ptr<FrameFileWriter> writer,
+      FrameFileWriter::Create(archive_path, synthesizer->skeleton(), options.fps));
   std::string renamed_from;
   bool first = true;
   MOTIF_RETURN_IF_ERROR(synthesizer->Run([&](const ClipFrames& clip) {
@@ -43,8 +43,8 @@ Result<SyntheticMotifs> MakeSyntheticMotifs(const std::string& archive_path,
   document.frames = frames;
   std::map<std::string, uint64_t> first_frames;
   for (const ClipInfo& clip : clips) {
-    document.clips.push_back({clip.name, clip.source_path, clip.frame_count, clip.fps,
-                              clip.first_frame});
+    document.clips.push_back(
+        {clip.name, clip.source_path, clip.frame_count, clip.fps, clip.first_frame});
     first_frames[clip.name] = clip.first_frame;
   }
   document.params = {1.0, 64, 4, 60, 0, 1};
@@ -54,10 +54,9 @@ Result<SyntheticMotifs> MakeSyntheticMotifs(const std::string& archive_path,
         {planted.clip, planted.start, planted.end, first_frames[planted.clip] + planted.start});
   }
   for (auto& [motif_id, instances] : by_motif) {
-    std::sort(instances.begin(), instances.end(),
-              [](const MotifsJsonInstance& a, const MotifsJsonInstance& b) {
-                return a.frame < b.frame;
-              });
+    std::sort(
+        instances.begin(), instances.end(),
+        [](const MotifsJsonInstance& a, const MotifsJsonInstance& b) { return a.frame < b.frame; });
     document.motifs.push_back({motif_id, instances});
   }
   return result;

@@ -40,8 +40,8 @@ TEST(StickFigureLayout, DrawsEveryBoneOnce) {
       EXPECT_TRUE(bones.insert({chain[step - 1], chain[step]}).second) << "bone drawn twice";
     }
   }
-  const std::set<std::pair<uint32_t, uint32_t>> expected = {
-      {0, 1}, {0, 2}, {0, 3}, {3, 4}, {3, 5}, {1, 6}, {2, 7}, {4, 8}};
+  const std::set<std::pair<uint32_t, uint32_t>> expected = {{0, 1}, {0, 2}, {0, 3}, {3, 4},
+                                                            {3, 5}, {1, 6}, {2, 7}, {4, 8}};
   EXPECT_EQ(bones, expected);
 }
 
@@ -85,8 +85,7 @@ TEST(StickFigureSvg, HasOneSegmentPerBoneAndOneDecimal) {
   const StickFigureLayout layout = MakeStickFigureLayout(skeleton);
 
   FigureProjection projection;
-  projection.pixels_per_unit = FigureScaleFor(skeleton, projection.height_px,
-                                              projection.margin_px);
+  projection.pixels_per_unit = FigureScaleFor(skeleton, projection.height_px, projection.margin_px);
   const std::vector<FigurePoint> points =
       ProjectFigure(layout, RestPosePositions(skeleton), projection);
   const std::string svg = StickFigureSvg(layout, points, 80, 120);

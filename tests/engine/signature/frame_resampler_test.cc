@@ -78,8 +78,8 @@ TEST(FrameResampler, ConstantRotationIsExact) {
   const size_t stride = FrameLayout{motion.joint_count}.stride();
   std::copy(clip.rows.begin(), clip.rows.begin() + stride, clip.rows.begin() + stride);
   const Skeleton skeleton = testing::ChainSkeleton(motion.joint_count);
-  auto resampler = FrameResampler::Create(FrameLayout{motion.joint_count},
-                                          testing::JointWeightsOf(skeleton));
+  auto resampler =
+      FrameResampler::Create(FrameLayout{motion.joint_count}, testing::JointWeightsOf(skeleton));
   ASSERT_TRUE(resampler.ok()) << resampler.status().ToString();
   std::vector<float> out(stride);
   for (double alpha : {0.0, 0.2, 0.5, 0.8, 1.0}) {
@@ -105,8 +105,8 @@ void ExpectExact24HzSamples(double fps, uint32_t flip_every) {
     const double seconds = static_cast<double>(sample) / 24.0;
     const float* row = &resampled[sample * layout.stride()];
     for (uint32_t joint = 0; joint < motion.joint_count; ++joint) {
-      worst = std::max(worst, AngleTo(row + layout.quaternion_offset(joint),
-                                      motion.Rotation(joint, seconds)));
+      worst = std::max(
+          worst, AngleTo(row + layout.quaternion_offset(joint), motion.Rotation(joint, seconds)));
     }
     EXPECT_NEAR(row[layout.height_offset()], motion.Height(seconds), 1e-6);
     EXPECT_NEAR(row[layout.velocity_offset()], motion.VelocityX(seconds), 1e-6);
@@ -197,8 +197,8 @@ TEST(FrameResampler, FeaturesAreThoseOfPoseFeatures) {
     resampler.RowFeatures(&resampled[sample * stride], from_row.data());
     ASSERT_EQ(std::memcmp(from_row.data(), features.frame(sample), bytes), 0) << sample;
     const SourcePosition position = words.grid().Sample(sample);
-    resampler.InterpolateFeatures(&source[position.lower * stride], &source[position.upper * stride],
-                                  position.alpha, direct.data());
+    resampler.InterpolateFeatures(&source[position.lower * stride],
+                                  &source[position.upper * stride], position.alpha, direct.data());
     ASSERT_EQ(std::memcmp(direct.data(), from_row.data(), bytes), 0) << sample;
   }
   // And the word distance's D is the trellis's D, bit for bit.
@@ -213,8 +213,7 @@ TEST(FrameResampler, FeaturesAreThoseOfPoseFeatures) {
 TEST(FrameResampler, RejectsBadWeights) {
   const FrameLayout layout{3};
   EXPECT_TRUE(FrameResampler::Create(layout, {1, 0, 1}).ok());
-  EXPECT_EQ(FrameResampler::Create(layout, {1, 1}).status().code(),
-            Status::Code::kInvalidArgument);
+  EXPECT_EQ(FrameResampler::Create(layout, {1, 1}).status().code(), Status::Code::kInvalidArgument);
   EXPECT_EQ(FrameResampler::Create(layout, {0, 0, 0}).status().code(),
             Status::Code::kInvalidArgument);
   EXPECT_EQ(FrameResampler::Create(layout, {1, -1, 1}).status().code(),

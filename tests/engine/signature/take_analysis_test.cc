@@ -50,8 +50,9 @@ TEST(ClassicalMds, FourCornersOfASquare) {
   // B's non-zero eigenvalues are both n s^2 / 4 = 1 for the unit square.
   EXPECT_NEAR(mds->eigenvalues[0], 1.0, 1e-12);
   EXPECT_NEAR(mds->eigenvalues[1], 1.0, 1e-12);
-  EXPECT_LT((EuclideanDistances(mds->coordinates) - EuclideanDistances(square)).cwiseAbs().maxCoeff(),
-            1e-12);
+  EXPECT_LT(
+      (EuclideanDistances(mds->coordinates) - EuclideanDistances(square)).cwiseAbs().maxCoeff(),
+      1e-12);
 }
 
 TEST(ClassicalMds, RefusesBadMatrices) {
@@ -139,7 +140,8 @@ TEST(SignatureDistanceMatrix, IsTheEmdOfEveryPairForAnyThreadCount) {
     EXPECT_EQ((*one)(a, a), 0.0);
     for (size_t b = 0; b < signatures.size(); ++b) {
       if (a == b) continue;
-      EXPECT_EQ((*one)(a, b), *emd.Distance(signatures[std::min(a, b)], signatures[std::max(a, b)], ground));
+      EXPECT_EQ((*one)(a, b),
+                *emd.Distance(signatures[std::min(a, b)], signatures[std::max(a, b)], ground));
     }
   }
   signatures[3].assign(k, 0.0);  // no mass
@@ -150,8 +152,10 @@ TEST(TakeDtw, HandCaseAndWarpedCopies) {
   // Frames of one joint (weight 1) at known rotations about X: D between angles a and b is
   // |q(a) - q(b)| = 2 sin(|a - b| / 4).
   auto frame = [](double angle) {
-    const int16_t w = static_cast<int16_t>(std::lround(std::cos(angle / 2) * PoseFeatures::kQuantScale));
-    const int16_t x = static_cast<int16_t>(std::lround(std::sin(angle / 2) * PoseFeatures::kQuantScale));
+    const int16_t w =
+        static_cast<int16_t>(std::lround(std::cos(angle / 2) * PoseFeatures::kQuantScale));
+    const int16_t x =
+        static_cast<int16_t>(std::lround(std::sin(angle / 2) * PoseFeatures::kQuantScale));
     return std::vector<float>{static_cast<float>(w) / PoseFeatures::kQuantScale,
                               static_cast<float>(x) / PoseFeatures::kQuantScale, 0.0f, 0.0f};
   };
@@ -163,7 +167,8 @@ TEST(TakeDtw, HandCaseAndWarpedCopies) {
     for (float value : frame(angle)) rows.push_back(value);
     for (int extra = 0; extra < 4; ++extra) rows.push_back(0.0f);  // height, velocity, heading
   }
-  const PoseFeatures features = PoseFeatures::FromRows(rows.data(), angles.size(), 1, {1.0f}, {0, 4, 9});
+  const PoseFeatures features =
+      PoseFeatures::FromRows(rows.data(), angles.size(), 1, {1.0f}, {0, 4, 9});
   const TakeFrames a{0, 4};
   const TakeFrames b{4, 9};
   const TakeFrames c{9, 12};

@@ -52,13 +52,13 @@ TEST(TimeWarp, PlaysATurnAtTheGivenSpeed) {
     for (uint32_t frame = 0; frame < 16; ++frame) {
       const double seconds = centre_seconds + (frame - 7.5) * speed / 24.0;
       for (uint32_t joint = 0; joint < motion.joint_count; ++joint) {
-        worst = std::max(worst,
-                         testing::AngleTo(&rows[frame * layout.stride() +
-                                                layout.quaternion_offset(joint)],
-                                          motion.Rotation(joint, seconds)));
+        worst = std::max(
+            worst,
+            testing::AngleTo(&rows[frame * layout.stride() + layout.quaternion_offset(joint)],
+                             motion.Rotation(joint, seconds)));
       }
-      EXPECT_NEAR(rows[frame * layout.stride() + layout.height_offset()],
-                  motion.Height(seconds), 1e-6);
+      EXPECT_NEAR(rows[frame * layout.stride() + layout.height_offset()], motion.Height(seconds),
+                  1e-6);
     }
     EXPECT_LT(worst, 1e-6) << "speed " << speed;
   }
@@ -130,8 +130,8 @@ TEST(TimeWarp, RandomCopiesAreReproducibleAndCloseToTheWord) {
   }
   ASSERT_GT(pairs, 0);
   // A warped copy is a positive: much nearer its word than a word 1.3 s away.
-  EXPECT_LT(to_copy, 0.5 * to_far) << "mean DTW to the copy " << to_copy / pairs
-                                   << ", to a word 8 words on " << to_far / pairs;
+  EXPECT_LT(to_copy, 0.5 * to_far)
+      << "mean DTW to the copy " << to_copy / pairs << ", to a word 8 words on " << to_far / pairs;
 }
 
 TEST(TimeWarp, RejectsBadOptions) {

@@ -181,7 +181,8 @@ TEST_F(WordDistanceTest, PreparedWordsGiveTheSameBits) {
         distance.Prepare(Word(second), &b);
         const double raw = distance.Dtw(Word(first), Word(second));
         ASSERT_EQ(distance.Dtw(a, b), raw) << band << " " << first << " " << second;
-        ASSERT_EQ(distance.Dtw(a, b, 0.5 * raw), distance.Dtw(Word(first), Word(second), 0.5 * raw));
+        ASSERT_EQ(distance.Dtw(a, b, 0.5 * raw),
+                  distance.Dtw(Word(first), Word(second), 0.5 * raw));
       }
     }
   }
@@ -261,8 +262,9 @@ TEST(WordDistanceRealTake, AdjacentWordsAreNearerThanWordsFarApart) {
     }
   }
   far /= static_cast<double>(far_pairs);
-  std::printf("06_13: %zu words; mean DTW adjacent %.3f, at least 10 words apart %.3f (%llu pairs)\n",
-              count, adjacent, far, static_cast<unsigned long long>(far_pairs));
+  std::printf(
+      "06_13: %zu words; mean DTW adjacent %.3f, at least 10 words apart %.3f (%llu pairs)\n",
+      count, adjacent, far, static_cast<unsigned long long>(far_pairs));
   EXPECT_LT(adjacent, 0.5 * far);
 }
 

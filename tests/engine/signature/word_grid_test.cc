@@ -90,7 +90,7 @@ TEST(WordGrid, WordLengthAndStrideAreSettable) {
   options.word_fps = 30;
   const WordGrid grid(241, 60.0, options);  // t(k) = 2 k: samples 0..120
   EXPECT_EQ(grid.sample_count(), 121u);
-  EXPECT_EQ(grid.word_count(), 12u);  // (121 - 8) / 10 + 1
+  EXPECT_EQ(grid.word_count(), 12u);                     // (121 - 8) / 10 + 1
   EXPECT_EQ(grid.SourceFrames(3), (FrameSpan{60, 75}));  // samples 30..37: frames 60..74
   EXPECT_DOUBLE_EQ(grid.StartSeconds(3), 1.0);
 }

@@ -56,14 +56,14 @@ WordBatch StreamAll(const FrameFileReader& reader, const WordStreamOptions& opti
 }
 
 // Every word of clips [first_clip, end_clip), materialised clip by clip with ClipWords.
-WordBatch MaterialiseAll(const FrameFileReader& reader, const WordOptions& options,
-                         bool keep_rows, size_t first_clip = 0, size_t end_clip = SIZE_MAX) {
+WordBatch MaterialiseAll(const FrameFileReader& reader, const WordOptions& options, bool keep_rows,
+                         size_t first_clip = 0, size_t end_clip = SIZE_MAX) {
   WordBatch all;
   const size_t stride = reader.layout().stride();
   end_clip = std::min(end_clip, reader.clips().size());
   for (size_t clip_idx = first_clip; clip_idx < end_clip; ++clip_idx) {
-    auto clip = ClipWords::Read(reader, clip_idx, testing::JointWeightsOf(reader.skeleton()),
-                                options);
+    auto clip =
+        ClipWords::Read(reader, clip_idx, testing::JointWeightsOf(reader.skeleton()), options);
     EXPECT_TRUE(clip.ok()) << clip.status().ToString();
     if (!clip.ok()) return all;
     WordBatch words;
@@ -115,8 +115,8 @@ class WordStreamTest : public ::testing::Test {
       piece.info.name = "short";
       piece.info.name += std::to_string(short_lengths[idx]);
       piece.info.frame_count = short_lengths[idx];
-      piece.rows.resize(short_lengths[idx] * FrameLayout{static_cast<uint32_t>(
-                                                 synth.skeleton.joint_count())}.stride());
+      piece.rows.resize(short_lengths[idx] *
+                        FrameLayout{static_cast<uint32_t>(synth.skeleton.joint_count())}.stride());
       // Interleave: short clips at the front, between long ones and at the end.
       clips.insert(clips.begin() + std::min(clips.size(), 2 * idx), piece);
     }
@@ -316,9 +316,8 @@ TEST(WordStream, RejectsBadOptions) {
                   .status()
                   .IsInvalidArgument());
   EXPECT_TRUE(WordStream::Create(*reader, {1, 1}).status().IsInvalidArgument());
-  EXPECT_TRUE(ClipWords::Read(*reader, 1, testing::JointWeightsOf(skeleton))
-                  .status()
-                  .IsInvalidArgument());
+  EXPECT_TRUE(
+      ClipWords::Read(*reader, 1, testing::JointWeightsOf(skeleton)).status().IsInvalidArgument());
 }
 
 }  // namespace

@@ -36,12 +36,10 @@ inline Skeleton ChainSkeleton(uint32_t joint_count) {
     joint.parent = static_cast<int32_t>(joint_idx) - 1;
     joint.offset = {0.0, joint_idx == 0 ? 0.0 : 10.0, 0.0};
     if (joint_idx == 0) {
-      joint.channels = {ChannelType::kXPosition, ChannelType::kYPosition,
-                        ChannelType::kZPosition, ChannelType::kZRotation,
-                        ChannelType::kYRotation, ChannelType::kXRotation};
+      joint.channels = {ChannelType::kXPosition, ChannelType::kYPosition, ChannelType::kZPosition,
+                        ChannelType::kZRotation, ChannelType::kYRotation, ChannelType::kXRotation};
     } else {
-      joint.channels = {ChannelType::kZRotation, ChannelType::kXRotation,
-                        ChannelType::kYRotation};
+      joint.channels = {ChannelType::kZRotation, ChannelType::kXRotation, ChannelType::kYRotation};
     }
     joint.weight = joint_idx % 3 == 2 ? 0.0f : 1.0f;
   }

@@ -33,15 +33,19 @@ TEST(TruthJsonReaderTest, ReadsWhatWriteTruthJsonWrote) {
 TEST(TruthJsonReaderTest, RejectsMalformedFiles) {
   EXPECT_TRUE(ReadTruthJson("/nonexistent/x.truth.json").status().IsNotFound());
   EXPECT_TRUE(ParseTruthJson("[]", "t").status().IsInvalidArgument());
-  EXPECT_EQ(ParseTruthJson(R"({"version": 2})", "t").status().code(),
-            Status::Code::kNotSupported);
-  const Status missing = ParseTruthJson(
-      R"({"version": 1, "archive": "a", "frames": 10, "instances": [{"clip": "c", "start": 1}]})",
-      "t").status();
+  EXPECT_EQ(ParseTruthJson(R"({"version": 2})", "t").status().code(), Status::Code::kNotSupported);
+  const Status missing =
+      ParseTruthJson(
+          R"({"version": 1, "archive": "a", "frames": 10, "instances": [{"clip": "c", "start": 1}]})",
+          "t")
+          .status();
   EXPECT_TRUE(missing.IsInvalidArgument());
   EXPECT_NE(missing.message().find("instances[0]: missing \"end\""), std::string::npos);
   EXPECT_TRUE(ParseTruthJson(R"({"version": 1, "archive": "a", "frames": 10, "instances":
-      [{"clip": "c", "start": 5, "end": 5, "motif": 0}]})", "t").status().IsInvalidArgument());
+      [{"clip": "c", "start": 5, "end": 5, "motif": 0}]})",
+                             "t")
+                  .status()
+                  .IsInvalidArgument());
 }
 
 }  // namespace

@@ -36,9 +36,9 @@ std::string MakeArchive(const testing::TempDir& dir, uint64_t frames) {
   }
   auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
   EXPECT_TRUE(writer.ok());
-  EXPECT_TRUE((*synthesizer)->Run([&](const ClipFrames& clip) {
-    return (*writer)->AppendClip(clip);
-  }).ok());
+  EXPECT_TRUE((*synthesizer)
+                  ->Run([&](const ClipFrames& clip) { return (*writer)->AppendClip(clip); })
+                  .ok());
   EXPECT_TRUE((*writer)->Commit().ok());
   return path;
 }

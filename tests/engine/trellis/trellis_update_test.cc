@@ -36,9 +36,9 @@ ArchiveRows Prefix(const ArchiveRows& full, size_t clip_count) {
   ArchiveRows prefix;
   prefix.skeleton = full.skeleton;
   const size_t stride = full.rows.size() / full.frame_count;
-  prefix.frame_count =
-      clip_count < full.clip_first_frames.size() ? full.clip_first_frames[clip_count]
-                                                 : full.frame_count;
+  prefix.frame_count = clip_count < full.clip_first_frames.size()
+                           ? full.clip_first_frames[clip_count]
+                           : full.frame_count;
   prefix.clip_first_frames.assign(full.clip_first_frames.begin(),
                                   full.clip_first_frames.begin() + clip_count);
   prefix.rows.assign(full.rows.begin(), full.rows.begin() + prefix.frame_count * stride);
@@ -77,8 +77,7 @@ NeighbourRules RulesFor(const PoseFeatures& features, float eps) {
   return rules;
 }
 
-TrellisParams ParamsFor(const PoseFeatures& features, float eps, uint64_t identity,
-                        bool exact) {
+TrellisParams ParamsFor(const PoseFeatures& features, float eps, uint64_t identity, bool exact) {
   TrellisParams params;
   params.frame_count = features.frame_count();
   params.archive_identity = identity;
@@ -142,8 +141,7 @@ class TrellisUpdateTest : public ::testing::Test {
     auto report = UpdateTrellis(**previous, new_features, RulesFor(new_features, eps), new_search,
                                 new_params, updated_path);
     EXPECT_TRUE(report.ok()) << report.status().ToString();
-    EXPECT_EQ(ReadFileToString(updated_path).value(), ReadFileToString(full_path).value())
-        << name;
+    EXPECT_EQ(ReadFileToString(updated_path).value(), ReadFileToString(full_path).value()) << name;
     return report.ok() ? *report : TrellisUpdateReport{};
   }
 
@@ -160,8 +158,8 @@ class TrellisUpdateTest : public ::testing::Test {
     const PoseFeatures old_features = old_rows.Features();
     update->eps = EstimateEps(old_features);
     update->new_features = full_.Features();
-    update->search = std::make_unique<ExactSearch>(
-        update->new_features, RulesFor(update->new_features, update->eps));
+    update->search = std::make_unique<ExactSearch>(update->new_features,
+                                                   RulesFor(update->new_features, update->eps));
     WriteFullTrellis(ExactSearch(old_features, RulesFor(old_features, update->eps)),
                      ParamsFor(old_features, update->eps, 1, true), dir_.File("old.mtr"));
     WriteFullTrellis(*update->search, ParamsFor(update->new_features, update->eps, 2, true),
@@ -374,4 +372,3 @@ TEST_F(TrellisUpdateTest, LshUpdateIsTheSameFileForOneAndTwoThreads) {
 
 }  // namespace
 }  // namespace motif
-

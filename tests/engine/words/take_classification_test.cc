@@ -47,7 +47,8 @@ TEST(TakeClassification, SeparatedGroupsOfPointsAreFoundAndClassified) {
   EXPECT_TRUE(json["takes"][17]["label"].is_null());
   EXPECT_EQ(json["takes"][0]["nearest"].size(), 4u);
   EXPECT_EQ(json["takes"][0]["predicted"], "blob0");
-  EXPECT_TRUE(ClassifyTakes(Eigen::MatrixXd::Zero(1, 1), {"a"}, options).status().IsInvalidArgument());
+  EXPECT_TRUE(
+      ClassifyTakes(Eigen::MatrixXd::Zero(1, 1), {"a"}, options).status().IsInvalidArgument());
   EXPECT_TRUE(ClassifyTakes(d, {"a", "b"}, options).status().IsInvalidArgument());
 }
 
@@ -76,7 +77,6 @@ TEST(TakeClassification, SignaturesSeparateTakesOfDistinctMotionClasses) {
   classify.top = 4;
   auto result = ClassifyTakes(*distances, labels, classify);
   ASSERT_TRUE(result.ok());
-
 
   EXPECT_DOUBLE_EQ(result->knn.accuracy, 1.0);
   EXPECT_DOUBLE_EQ(result->precision_at_top, 1.0);

@@ -117,7 +117,8 @@ TEST(WindowSearch, WholeTakesAndErrors) {
     EXPECT_LE(whole->matches[rank - 1].distance, whole->matches[rank].distance);
   }
   EXPECT_TRUE(WordsWithin(*reader, *words, 0, 100, 150).status().IsInvalidArgument());
-  EXPECT_TRUE(SlidingWindowSearch(*reader, *words, WindowQuery{}, 5, 1).status().IsInvalidArgument());
+  EXPECT_TRUE(
+      SlidingWindowSearch(*reader, *words, WindowQuery{}, 5, 1).status().IsInvalidArgument());
   WindowQuery bad;
   bad.motifs = {9999};
   EXPECT_TRUE(SlidingWindowSearch(*reader, *words, bad, 5, 1).status().IsInvalidArgument());

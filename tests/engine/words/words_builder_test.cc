@@ -65,7 +65,8 @@ TEST_F(WordsBuilderTest, WritesTheThreeFilesAndReusesThem) {
   EXPECT_EQ(sized, first->words);
   for (size_t clip = 0; clip < reader->clips().size(); ++clip) {
     if (loaded->signatures.clip_words[clip] == 0) continue;
-    EXPECT_EQ(loaded->ClipSignature(clip, false), *loaded->tf_idf->Signature(loaded->ClipMotifs(clip)));
+    EXPECT_EQ(loaded->ClipSignature(clip, false),
+              *loaded->tf_idf->Signature(loaded->ClipMotifs(clip)));
   }
 }
 
@@ -105,7 +106,8 @@ TEST_F(WordsBuilderTest, DamagedFilesAreMadeAgainOrRefused) {
   const std::string embedding = ReadBytes(paths.embedding);
   const std::string signatures = ReadBytes(paths.signatures);
   // A damaged signatures file: search and classify refuse it, naming the file.
-  PatchByte(paths.signatures, signatures.size() - 3, static_cast<char>(signatures[signatures.size() - 3] ^ 0x40));
+  PatchByte(paths.signatures, signatures.size() - 3,
+            static_cast<char>(signatures[signatures.size() - 3] ^ 0x40));
   auto reader = OpenArchive(archive_);
   auto loaded = LoadWords(*reader, paths, false);
   ASSERT_FALSE(loaded.ok());

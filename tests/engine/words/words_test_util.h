@@ -1,7 +1,7 @@
 // Archives for the words tests: procedural clips (MotionSynthesizer) and clips of a few distinct
 // motion classes (each joint swinging sinusoidally about a class-specific axis at a
-// class-specific rate, each clip starting at a random phase of it), and small, fast options for the words
-// pipeline.
+// class-specific rate, each clip starting at a random phase of it), and small, fast options for the
+// words pipeline.
 #pragma once
 
 #include <cmath>

@@ -114,12 +114,19 @@ TEST(ColumnCodec, EveryTransformCombinationRoundTrips) {
 }
 
 TEST(ColumnCodec, LosslessKeepsEveryFloatBitPattern) {
-  std::vector<float> values = {0.0f, -0.0f, 1.0f, -1.0f, std::numeric_limits<float>::denorm_min(),
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               1.0f,
+                               -1.0f,
+                               std::numeric_limits<float>::denorm_min(),
                                std::numeric_limits<float>::max(),
-                               std::numeric_limits<float>::lowest(), 1e-30f, 3.14159f, -2.5e7f};
+                               std::numeric_limits<float>::lowest(),
+                               1e-30f,
+                               3.14159f,
+                               -2.5e7f};
   const ColumnEncoding encoding = Lossless();
-  const std::vector<float> decoded = Decode(encoding, Encode(encoding, values, 1), 1,
-                                            static_cast<uint32_t>(values.size()));
+  const std::vector<float> decoded =
+      Decode(encoding, Encode(encoding, values, 1), 1, static_cast<uint32_t>(values.size()));
   ASSERT_EQ(decoded.size(), values.size());
   EXPECT_EQ(std::memcmp(decoded.data(), values.data(), values.size() * 4), 0);
 }
@@ -231,8 +238,8 @@ TEST(ColumnCodec, DecodeRejectsChunksOfTheWrongSize) {
   EXPECT_TRUE(DecodeColumnChunk(encoding, reinterpret_cast<const uint8_t*>(longer.data()),
                                 longer.size(), 1, 100, out.data())
                   .IsCorruption());
-  EXPECT_TRUE(DecodeColumnChunk(encoding, bytes, chunk.size() - 1, 1, 100, out.data())
-                  .IsCorruption());
+  EXPECT_TRUE(
+      DecodeColumnChunk(encoding, bytes, chunk.size() - 1, 1, 100, out.data()).IsCorruption());
   ColumnEncoding stored = encoding;
   stored.compression = Compression::kNone;
   EXPECT_TRUE(DecodeColumnChunk(stored, bytes, 17, 1, 100, out.data()).IsCorruption());
@@ -258,8 +265,8 @@ TEST(ColumnCodec, RandomBytesNeverDecodeSilentlyOrCrash) {
     std::fill(out.begin(), out.end(), kUnwritten);
     const auto* chunk = reinterpret_cast<const uint8_t*>(bytes.data());
     // Whatever the outcome, no crash, and nothing written past the chunk's values.
-    const Status status = DecodeColumnChunk(encoding, chunk, bytes.size(), kComponents, kFrames,
-                                            out.data());
+    const Status status =
+        DecodeColumnChunk(encoding, chunk, bytes.size(), kComponents, kFrames, out.data());
     for (size_t idx = kValues; idx < out.size(); ++idx) {
       ASSERT_TRUE(std::isnan(out[idx])) << "trial " << trial << ": wrote past the values";
     }
@@ -276,9 +283,9 @@ TEST(ColumnCodec, RandomBytesNeverDecodeSilentlyOrCrash) {
     for (size_t idx = 0; idx < kValues; ++idx) {
       ASSERT_FALSE(std::isnan(out[idx])) << "trial " << trial << ": value " << idx << " unset";
     }
-    EXPECT_TRUE(DecodeColumnChunk(encoding, chunk, bytes.size(), kComponents, kFrames - 1,
-                                  out.data())
-                    .IsCorruption())
+    EXPECT_TRUE(
+        DecodeColumnChunk(encoding, chunk, bytes.size(), kComponents, kFrames - 1, out.data())
+            .IsCorruption())
         << "trial " << trial << ": decoded as two different sizes";
   }
   // With this seed none of the 500 is a zstd frame of 1024 bytes: all are rejected.

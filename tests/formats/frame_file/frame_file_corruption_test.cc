@@ -28,15 +28,17 @@ FrameFileWriterOptions Options() {
 
 std::string MakeSmallArchive(const TempDir& dir, const std::string& name = "a.mfs") {
   const std::string path = dir.File(name);
-  WriteArchive(path, MakeSkeleton(kCorruptionJoints),
-               {MakeClip("one", kCorruptionJoints, 20, 1), MakeClip("two", kCorruptionJoints, 21, 2)}, Options());
+  WriteArchive(
+      path, MakeSkeleton(kCorruptionJoints),
+      {MakeClip("one", kCorruptionJoints, 20, 1), MakeClip("two", kCorruptionJoints, 21, 2)},
+      Options());
   return path;
 }
 
 // The committed version's structure, decoded by the library's own loader.
 frame_file::LoadedArchive Structure(const std::string& bytes) {
-  auto loaded = frame_file::LoadArchive(
-      "x", reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  auto loaded =
+      frame_file::LoadArchive("x", reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
   EXPECT_TRUE(loaded.ok()) << loaded.status().ToString();
   return loaded.ok() ? *loaded : frame_file::LoadedArchive();
 }
@@ -84,9 +86,9 @@ Outcome CheckDamaged(const std::string& path, const ArchiveContents& expected, i
             << context << ": " << read.message();
       } else {
         EXPECT_TRUE(read.ok()) << context << ": " << read.ToString();
-        const std::vector<float> want(expected.rows.begin() + block.first_frame * stride,
-                                      expected.rows.begin() +
-                                          (block.first_frame + block.frame_count) * stride);
+        const std::vector<float> want(
+            expected.rows.begin() + block.first_frame * stride,
+            expected.rows.begin() + (block.first_frame + block.frame_count) * stride);
         EXPECT_TRUE(SameBits(want, rows)) << context << ": block " << block_idx;
       }
     }
@@ -292,8 +294,8 @@ TEST(FrameFileCorruption, ChecksumMismatchNamesTheFileTheBlockAndItsOffset) {
   std::vector<float> rows;
   Status read = (*reader)->ReadFrames(block.first_frame, 1, &rows);
   EXPECT_TRUE(read.IsCorruption());
-  EXPECT_EQ(read.message(), path + ": block 1 at offset " + frame_file::Hex(block.offset) +
-                                ": checksum mismatch");
+  EXPECT_EQ(read.message(),
+            path + ": block 1 at offset " + frame_file::Hex(block.offset) + ": checksum mismatch");
   Status verified = (*reader)->Verify();
   EXPECT_EQ(verified.message(), read.message());
   auto stream = (*reader)->Stream();

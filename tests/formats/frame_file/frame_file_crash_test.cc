@@ -35,9 +35,9 @@ std::vector<ClipFrames> NewClips() {
 }
 
 enum class AfterFailure {
-  kDiskRecovers,     // non-sticky: only step k fails
-  kStaysFull,        // sticky: every step from k on fails, also the writer's cleanup
-  kRecoversLate,     // sticky, but the disk recovers before the writer is destroyed
+  kDiskRecovers,  // non-sticky: only step k fails
+  kStaysFull,     // sticky: every step from k on fails, also the writer's cleanup
+  kRecoversLate,  // sticky, but the disk recovers before the writer is destroyed
 };
 
 // Runs an append of NewClips() through `file_system`; the writer is destroyed on return, after
@@ -63,7 +63,8 @@ Status RunAppend(const std::string& path, FileSystem* file_system,
 
 Status RunCreate(const std::string& path, FileSystem* file_system,
                  const std::function<void()>& recover = nullptr) {
-  auto writer = FrameFileWriter::Create(path, MakeSkeleton(kCrashJoints), 120.0, Options(file_system));
+  auto writer =
+      FrameFileWriter::Create(path, MakeSkeleton(kCrashJoints), 120.0, Options(file_system));
   if (!writer.ok()) return writer.status();
   Status status;
   for (const ClipFrames& clip : BaseClips()) {
@@ -132,9 +133,8 @@ class FrameFileCrashTest : public ::testing::Test {
     for (AfterFailure mode :
          {AfterFailure::kDiskRecovers, AfterFailure::kStaysFull, AfterFailure::kRecoversLate}) {
       for (int64_t step = 0; step < static_cast<int64_t>(steps_.size()); ++step) {
-        const std::string context = "append, step " + std::to_string(step) + " (" +
-                                    steps_[step] + "), mode " +
-                                    std::to_string(static_cast<int>(mode));
+        const std::string context = "append, step " + std::to_string(step) + " (" + steps_[step] +
+                                    "), mode " + std::to_string(static_cast<int>(mode));
         // A new file each time (rewriting one with O_TRUNC makes ext4 flush it on close).
         const std::string path =
             dir_.File(Numbered("a", step) + Numbered("-", static_cast<int>(mode)) + ".mfs");

@@ -91,8 +91,7 @@ TEST(FrameFileFormat, SlotRejectsChecksumMismatchAndNonZeroReserved) {
   for (size_t byte_idx = 0; byte_idx < kSlotBytes; ++byte_idx) {
     std::string bad = bytes;
     bad[byte_idx] ^= 0x10;
-    EXPECT_TRUE(CommitSlot::DecodeFrom(Bytes(bad), &decoded, &is_empty).IsCorruption())
-        << byte_idx;
+    EXPECT_TRUE(CommitSlot::DecodeFrom(Bytes(bad), &decoded, &is_empty).IsCorruption()) << byte_idx;
   }
   std::string reserved = bytes;
   PatchU64(&reserved, 24, 9, 0, 32);
@@ -260,9 +259,8 @@ TEST(FrameFileFormat, MetadataRejectsBrokenInvariants) {
   SampleMetadata().EncodeTo(&bytes);
   ArchiveMetadata decoded;
   for (size_t cut = 0; cut < bytes.size(); cut += 7) {
-    EXPECT_TRUE(
-        ArchiveMetadata::DecodeFrom(Bytes(bytes), cut, kSampleMetadataOffset, &decoded)
-            .IsCorruption())
+    EXPECT_TRUE(ArchiveMetadata::DecodeFrom(Bytes(bytes), cut, kSampleMetadataOffset, &decoded)
+                    .IsCorruption())
         << "cut at " << cut;
   }
 }

@@ -54,9 +54,13 @@ std::string WriteTinyArchive(const TempDir& dir) {
   // Row: w x y z | height | velocity x z | heading. A turn about Y by 0, 0.1 and 0.2 rad.
   for (int frame_idx = 0; frame_idx < 3; ++frame_idx) {
     const double angle = 0.1 * frame_idx;
-    const std::vector<float> row = {static_cast<float>(std::cos(angle / 2)), 0.0f,
-                                    static_cast<float>(std::sin(angle / 2)), 0.0f,
-                                    0.9f + 0.01f * frame_idx, 0.0f, 1.5f,
+    const std::vector<float> row = {static_cast<float>(std::cos(angle / 2)),
+                                    0.0f,
+                                    static_cast<float>(std::sin(angle / 2)),
+                                    0.0f,
+                                    0.9f + 0.01f * frame_idx,
+                                    0.0f,
+                                    1.5f,
                                     0.0125f * frame_idx};
     clip.rows.insert(clip.rows.end(), row.begin(), row.end());
   }
@@ -98,21 +102,21 @@ std::string AnnotatedHexdump(const std::string& bytes) {
     std::vector<uint32_t> chunk_bytes;
     static const char* kColumnNames[] = {"root quaternion", "height", "velocity", "heading"};
     for (size_t column_idx = 0; column_idx < metadata.columns.size(); ++column_idx) {
-      const size_t entry = block.offset + frame_file::kBlockHeaderBytes +
-                           frame_file::kChunkEntryBytes * column_idx;
+      const size_t entry =
+          block.offset + frame_file::kBlockHeaderBytes + frame_file::kChunkEntryBytes * column_idx;
       frame_file::ByteReader reader(reinterpret_cast<const uint8_t*>(bytes.data()) + entry, 8);
       uint32_t compressed = 0, raw = 0;
       reader.GetU32(&compressed);
       reader.GetU32(&raw);
       chunk_bytes.push_back(compressed);
       DumpHexLines(bytes, entry, 8,
-           "chunk " + std::to_string(column_idx) + " (" + kColumnNames[column_idx] + "): " +
-               std::to_string(compressed) + " bytes, raw " + std::to_string(raw),
-           &out);
+                   "chunk " + std::to_string(column_idx) + " (" + kColumnNames[column_idx] +
+                       "): " + std::to_string(compressed) + " bytes, raw " + std::to_string(raw),
+                   &out);
     }
     for (size_t column_idx = 0; column_idx < metadata.columns.size(); ++column_idx) {
       DumpHexLines(bytes, chunk_offset, chunk_bytes[column_idx],
-           "chunk " + std::to_string(column_idx) + ": zstd frame", &out);
+                   "chunk " + std::to_string(column_idx) + ": zstd frame", &out);
       chunk_offset += chunk_bytes[column_idx];
     }
   }
@@ -131,14 +135,14 @@ std::string AnnotatedHexdump(const std::string& bytes) {
     reader.GetU64(&length);
     reader.Skip(length);
     DumpHexLines(bytes, section, 16,
-         std::string("section ") + kSectionNames[tag] + ": tag " + std::to_string(tag) +
-             ", reserved, payload_bytes " + std::to_string(length),
-         &out);
+                 std::string("section ") + kSectionNames[tag] + ": tag " + std::to_string(tag) +
+                     ", reserved, payload_bytes " + std::to_string(length),
+                 &out);
     if (tag == 3) {  // COLUMNS: one line per entry
       DumpHexLines(bytes, section + 16, 8, "column_count 4, entry_bytes 24", &out);
       for (size_t column_idx = 0; column_idx < 4; ++column_idx) {
         DumpHexLines(bytes, section + 24 + 24 * column_idx, 24,
-             "column " + std::to_string(column_idx) + " entry", &out);
+                     "column " + std::to_string(column_idx) + " entry", &out);
       }
     } else {
       DumpHexLines(bytes, section + 16, length, std::string(kSectionNames[tag]) + " payload", &out);
@@ -147,14 +151,15 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   out << "# Footer (64 bytes)\n";
   const size_t footer_offset = loaded->slot.footer_offset;
   DumpHexLines(bytes, footer_offset, 8, "magic \"\\x89MFSEND\\n\"", &out);
-  DumpHexLines(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64", &out);
+  DumpHexLines(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64",
+               &out);
   DumpHexLines(bytes, footer_offset + 16, 8, "generation 1", &out);
   DumpHexLines(bytes, footer_offset + 24, 8, "metadata_offset", &out);
   DumpHexLines(bytes, footer_offset + 32, 8, "metadata_bytes", &out);
   DumpHexLines(bytes, footer_offset + 40, 8, "metadata_checksum", &out);
   DumpHexLines(bytes, footer_offset + 48, 8, "reserved", &out);
-  DumpHexLines(bytes, footer_offset + 56, 8, "footer_checksum: XXH3-64 of the footer's first 56 bytes",
-       &out);
+  DumpHexLines(bytes, footer_offset + 56, 8,
+               "footer_checksum: XXH3-64 of the footer's first 56 bytes", &out);
   return out.str();
 }
 
@@ -185,10 +190,10 @@ TEST(FrameFileGolden, TheFixtureDecodesToTheWorkedExample) {
   ASSERT_TRUE((*reader)->ReadFrames(0, 3, &rows).ok());
   ASSERT_EQ(rows.size(), 24u);
   // The values the spec's decoding walk-through arrives at.
-  EXPECT_FLOAT_EQ(rows[4], 0.9f);       // height, frame 0: 9000 * 1e-4
-  EXPECT_FLOAT_EQ(rows[8 + 4], 0.91f);  // height, frame 1: 9100 * 1e-4
+  EXPECT_FLOAT_EQ(rows[4], 0.9f);         // height, frame 0: 9000 * 1e-4
+  EXPECT_FLOAT_EQ(rows[8 + 4], 0.91f);    // height, frame 1: 9100 * 1e-4
   EXPECT_FLOAT_EQ(rows[16 + 7], 0.025f);  // heading, frame 2: 2500 * 1e-5
-  EXPECT_EQ(rows[6], 1.5f);             // velocity z: 1500 * 1e-3
+  EXPECT_EQ(rows[6], 1.5f);               // velocity z: 1500 * 1e-3
 }
 
 }  // namespace

@@ -22,8 +22,7 @@ std::string MakeArchive(const TempDir& dir) {
   options.block_frames = 50;
   std::vector<ClipFrames> clips;
   for (int clip_idx = 0; clip_idx < 4; ++clip_idx) {
-    clips.push_back(MakeClip(Numbered("c", clip_idx), kReaderJoints, 61 + 17 * clip_idx,
-                             clip_idx));
+    clips.push_back(MakeClip(Numbered("c", clip_idx), kReaderJoints, 61 + 17 * clip_idx, clip_idx));
   }
   WriteArchive(path, MakeSkeleton(kReaderJoints), clips, options);
   AppendToArchive(path, {MakeClip("appended", kReaderJoints, 77, 99)}, options);
@@ -130,8 +129,7 @@ TEST(FrameFileReader, ClipOfFrameFindsTheClip) {
   const std::vector<ClipInfo>& clips = (*reader)->clips();
   for (size_t clip_idx = 0; clip_idx < clips.size(); ++clip_idx) {
     EXPECT_EQ((*reader)->ClipOfFrame(clips[clip_idx].first_frame), clip_idx);
-    EXPECT_EQ((*reader)->ClipOfFrame(clips[clip_idx].first_frame + clips[clip_idx].frame_count -
-                                     1),
+    EXPECT_EQ((*reader)->ClipOfFrame(clips[clip_idx].first_frame + clips[clip_idx].frame_count - 1),
               clip_idx);
   }
 }
@@ -160,9 +158,9 @@ TEST(FrameFileReader, VerifyReportsProgressForEveryBlock) {
   auto reader = FrameFileReader::Open(MakeArchive(dir));
   ASSERT_TRUE(reader.ok());
   std::vector<std::pair<uint64_t, uint64_t>> calls;
-  ASSERT_TRUE((*reader)->Verify([&](uint64_t done, uint64_t total) {
-                         calls.emplace_back(done, total);
-                       }).ok());
+  ASSERT_TRUE((*reader)
+                  ->Verify([&](uint64_t done, uint64_t total) { calls.emplace_back(done, total); })
+                  .ok());
   const uint64_t blocks = (*reader)->summary().block_count;
   ASSERT_EQ(calls.size(), blocks);
   EXPECT_EQ(calls.back(), std::make_pair(blocks, blocks));

@@ -26,12 +26,10 @@ Skeleton MakeSkeleton(uint32_t joint_count) {
     joint.has_end_site = joint_idx + 1 == joint_count;
     if (joint.has_end_site) joint.end_site = {0.0, 5.0, 1.25};
     if (joint_idx == 0) {
-      joint.channels = {ChannelType::kXPosition, ChannelType::kYPosition,
-                        ChannelType::kZPosition, ChannelType::kZRotation,
-                        ChannelType::kYRotation, ChannelType::kXRotation};
+      joint.channels = {ChannelType::kXPosition, ChannelType::kYPosition, ChannelType::kZPosition,
+                        ChannelType::kZRotation, ChannelType::kYRotation, ChannelType::kXRotation};
     } else {
-      joint.channels = {ChannelType::kZRotation, ChannelType::kXRotation,
-                        ChannelType::kYRotation};
+      joint.channels = {ChannelType::kZRotation, ChannelType::kXRotation, ChannelType::kYRotation};
     }
     joint.weight = joint_idx % 3 == 2 ? 0.0f : 1.0f;
   }
@@ -58,8 +56,7 @@ ClipFrames MakeClip(const std::string& name, uint32_t joint_count, uint64_t fram
   for (uint32_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
     const float scale = static_cast<float>(1.0 + 0.1 * uniform(random));
     clip.info.joint_offsets.push_back({0.0f, 10.0f * scale, 0.5f * joint_idx * scale});
-    clip.info.end_sites.push_back({0.0f, joint_idx + 1 == joint_count ? 5.0f * scale : 0.0f,
-                                   0.0f});
+    clip.info.end_sites.push_back({0.0f, joint_idx + 1 == joint_count ? 5.0f * scale : 0.0f, 0.0f});
   }
 
   struct JointMotion {
@@ -87,9 +84,9 @@ ClipFrames MakeClip(const std::string& name, uint32_t joint_count, uint64_t fram
         axis[component] = motion.axis[component] + motion.drift[component] * std::sin(0.4 * t);
       }
       const double norm = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-      const double angle = motion.amplitude * std::sin(6.283185307 * motion.frequency * t +
-                                                       motion.phase) +
-                           0.001 * noise(random);
+      const double angle =
+          motion.amplitude * std::sin(6.283185307 * motion.frequency * t + motion.phase) +
+          0.001 * noise(random);
       // |angle| < pi, so w = cos(angle / 2) > 0: signs are continuous.
       float* q = row + layout.quaternion_offset(joint_idx);
       q[0] = static_cast<float>(std::cos(angle / 2));

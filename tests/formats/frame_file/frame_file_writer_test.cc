@@ -24,8 +24,8 @@ std::vector<ClipFrames> SomeClips(int count, uint64_t frames, uint32_t seed = 1,
                                   const std::string& prefix = "clip") {
   std::vector<ClipFrames> clips;
   for (int clip_idx = 0; clip_idx < count; ++clip_idx) {
-    clips.push_back(MakeClip(prefix + std::to_string(clip_idx), kWriterJoints, frames + 13 * clip_idx,
-                             seed + clip_idx));
+    clips.push_back(MakeClip(prefix + std::to_string(clip_idx), kWriterJoints,
+                             frames + 13 * clip_idx, seed + clip_idx));
   }
   return clips;
 }
@@ -119,8 +119,8 @@ TEST(FrameFileWriter, StreamingClipCallsWriteTheSameFileAsAppendClip) {
   const std::vector<ClipFrames> clips = SomeClips(2, 170);
   WriteArchive(dir.File("whole.mfs"), MakeSkeleton(kWriterJoints), clips, SmallBlocks(50));
 
-  auto writer = FrameFileWriter::Create(dir.File("streamed.mfs"), MakeSkeleton(kWriterJoints), 120.0,
-                                        SmallBlocks(50));
+  auto writer = FrameFileWriter::Create(dir.File("streamed.mfs"), MakeSkeleton(kWriterJoints),
+                                        120.0, SmallBlocks(50));
   ASSERT_TRUE(writer.ok());
   const size_t stride = FrameLayout{kWriterJoints}.stride();
   for (const ClipFrames& clip : clips) {
@@ -191,9 +191,8 @@ TEST(FrameFileWriter, ManyAppendsAccumulate) {
   std::vector<ClipFrames> all = SomeClips(1, 60, 1, "c0_");
   WriteArchive(path, MakeSkeleton(kWriterJoints), all, SmallBlocks(40));
   for (int append_idx = 1; append_idx <= 6; ++append_idx) {
-    std::vector<ClipFrames> more =
-        SomeClips(append_idx % 3 + 1, 20 + append_idx, 10 * append_idx,
-                  Numbered("c", append_idx) + "_");
+    std::vector<ClipFrames> more = SomeClips(append_idx % 3 + 1, 20 + append_idx, 10 * append_idx,
+                                             Numbered("c", append_idx) + "_");
     AppendToArchive(path, more, SmallBlocks(40));
     all.insert(all.end(), more.begin(), more.end());
     auto reader = FrameFileReader::Open(path);
@@ -283,7 +282,8 @@ TEST(FrameFileWriter, RejectsValuesThatOverflowTheQuantisedRange) {
   ASSERT_TRUE(writer.ok());
   ClipFrames clip = MakeClip("spin", kWriterJoints, 10, 1);
   // Heading step 1e-5 rad: int32 holds +-21474 rad.
-  clip.rows[5 * FrameLayout{kWriterJoints}.stride() + FrameLayout{kWriterJoints}.heading_offset()] = 30000.0f;
+  clip.rows[5 * FrameLayout{kWriterJoints}.stride() + FrameLayout{kWriterJoints}.heading_offset()] =
+      30000.0f;
   Status status = (*writer)->AppendClip(clip);
   EXPECT_TRUE(status.IsInvalidArgument());
   EXPECT_NE(status.message().find("overflows int32"), std::string::npos) << status.message();
@@ -316,8 +316,7 @@ TEST(FrameFileWriter, CreateRejectsBadArguments) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
   EXPECT_TRUE(FrameFileWriter::Create(path, Skeleton(), 120.0).status().IsInvalidArgument());
-  EXPECT_TRUE(
-      FrameFileWriter::Create(path, MakeSkeleton(2), 0.0).status().IsInvalidArgument());
+  EXPECT_TRUE(FrameFileWriter::Create(path, MakeSkeleton(2), 0.0).status().IsInvalidArgument());
   FrameFileWriterOptions options;
   options.block_frames = 0;
   EXPECT_TRUE(
@@ -355,8 +354,8 @@ TEST(FrameFileWriter, CreateWritesATemporaryFileUntilCommit) {
 TEST(FrameFileWriter, AbandonedCreateLeavesNoFile) {
   TempDir dir;
   {
-    auto writer =
-        FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kWriterJoints), 120.0, SmallBlocks(16));
+    auto writer = FrameFileWriter::Create(dir.File("a.mfs"), MakeSkeleton(kWriterJoints), 120.0,
+                                          SmallBlocks(16));
     ASSERT_TRUE(writer.ok());
     ASSERT_TRUE((*writer)->AppendClip(MakeClip("c", kWriterJoints, 100, 1)).ok());
   }

@@ -8,11 +8,13 @@ namespace motif {
 namespace {
 
 const char* kBvhNames[] = {
-    "Hips", "LHipJoint", "LeftUpLeg", "LeftLeg", "LeftFoot", "LeftToeBase", "RHipJoint",
-    "RightUpLeg", "RightLeg", "RightFoot", "RightToeBase", "LowerBack", "Spine", "Spine1", "Neck",
-    "Neck1", "Head", "LeftShoulder", "LeftArm", "LeftForeArm", "LeftHand", "LeftFingerBase",
-    "LeftHandIndex1", "LThumb", "RightShoulder", "RightArm", "RightForeArm", "RightHand",
-    "RightFingerBase", "RightHandIndex1", "RThumb"};
+    "Hips",         "LHipJoint",      "LeftUpLeg",      "LeftLeg",         "LeftFoot",
+    "LeftToeBase",  "RHipJoint",      "RightUpLeg",     "RightLeg",        "RightFoot",
+    "RightToeBase", "LowerBack",      "Spine",          "Spine1",          "Neck",
+    "Neck1",        "Head",           "LeftShoulder",   "LeftArm",         "LeftForeArm",
+    "LeftHand",     "LeftFingerBase", "LeftHandIndex1", "LThumb",          "RightShoulder",
+    "RightArm",     "RightForeArm",   "RightHand",      "RightFingerBase", "RightHandIndex1",
+    "RThumb"};
 
 // The CMU skeleton under BVH names, with the right leg listed before the left one, and one
 // frame whose rotation of joint k is about X by k/100 radians (so reordering can be checked).

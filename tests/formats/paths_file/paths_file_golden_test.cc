@@ -72,9 +72,10 @@ TEST(PathsFileGolden, TheSpecsHexdumpIsTheEncodedExample) {
 TEST(PathsFileGolden, TheRecordsAreTheSpecsVarints) {
   std::string raw;
   paths_file::EncodeRecords(ExampleParams(), ExampleCandidates(), &raw);
-  const char expected[] = "\x64\xe8\x07\x14\x0a\x00\x00"
-                               "\x00\x00\x1e\x0f\x00\x00"
-                               "\x90\x03\x9f\x06\x0a\x14\x00\x00";
+  const char expected[] =
+      "\x64\xe8\x07\x14\x0a\x00\x00"
+      "\x00\x00\x1e\x0f\x00\x00"
+      "\x90\x03\x9f\x06\x0a\x14\x00\x00";
   EXPECT_EQ(raw, std::string(expected, sizeof(expected) - 1));
 }
 

@@ -31,8 +31,7 @@ PathsParams Params(uint64_t frame_count = 10000, uint64_t min_length = 60) {
   return params;
 }
 
-PathCandidate Make(uint64_t top_start, uint64_t top_end, uint64_t match_start,
-                   uint64_t match_end) {
+PathCandidate Make(uint64_t top_start, uint64_t top_end, uint64_t match_start, uint64_t match_end) {
   return {top_start, top_end, match_start, match_end, top_start, match_start};
 }
 
@@ -49,16 +48,18 @@ std::vector<PathCandidate> RandomCandidates(const PathsParams& params, size_t co
     c.top_start = rng() % (n - lambda);
     c.top_end = c.top_start + lambda + rng() % (n - lambda - c.top_start + 1);
     c.match_start = rng() % (n - lambda);
-    c.match_end = c.match_start + lambda + rng() % std::min<uint64_t>(400, n - lambda - c.match_start + 1);
+    c.match_end =
+        c.match_start + lambda + rng() % std::min<uint64_t>(400, n - lambda - c.match_start + 1);
     c.root_column = rng() % 8 == 0 ? c.top_start - std::min<uint64_t>(c.top_start, 3) : c.top_start;
     c.root_frame = rng() % 8 == 0 ? rng() % n : c.match_start;
     candidates.push_back(c);
   }
-  std::sort(candidates.begin(), candidates.end(), [](const PathCandidate& a, const PathCandidate& b) {
-    return std::tie(a.top_start, a.match_start, a.top_end, a.match_end, a.root_column,
-                    a.root_frame) < std::tie(b.top_start, b.match_start, b.top_end, b.match_end,
-                                             b.root_column, b.root_frame);
-  });
+  std::sort(candidates.begin(), candidates.end(),
+            [](const PathCandidate& a, const PathCandidate& b) {
+              return std::tie(a.top_start, a.match_start, a.top_end, a.match_end, a.root_column,
+                              a.root_frame) < std::tie(b.top_start, b.match_start, b.top_end,
+                                                       b.match_end, b.root_column, b.root_frame);
+            });
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   return candidates;
 }
@@ -86,9 +87,9 @@ TEST(PathsFile, RoundTripsNoCandidatesAndExtremeValues) {
   const PathsParams params = Params(uint64_t{1} << 32, 1);
   for (const std::vector<PathCandidate>& candidates :
        {std::vector<PathCandidate>{},
-        std::vector<PathCandidate>{Make(0, 1, (uint64_t{1} << 32) - 1, uint64_t{1} << 32),
-                                   Make((uint64_t{1} << 32) - 1, uint64_t{1} << 32, 0,
-                                        uint64_t{1} << 32)}}) {
+        std::vector<PathCandidate>{
+            Make(0, 1, (uint64_t{1} << 32) - 1, uint64_t{1} << 32),
+            Make((uint64_t{1} << 32) - 1, uint64_t{1} << 32, 0, uint64_t{1} << 32)}}) {
     auto bytes = EncodePathsFile(params, candidates);
     ASSERT_TRUE(bytes.ok()) << bytes.status().ToString();
     auto reader = PathsFileReader::FromBytes(*bytes, "x.mpa");
@@ -101,14 +102,14 @@ TEST(PathsFile, WriterRejectsCandidatesThatBreakTheRulesAndWritesNothing) {
   TempDir dir;
   const PathsParams params = Params(1000, 60);
   const std::vector<std::vector<PathCandidate>> bad = {
-      {Make(100, 200, 0, 100), Make(0, 100, 0, 100)},    // unsorted
-      {Make(0, 100, 0, 100), Make(0, 100, 0, 100)},      // duplicate
-      {Make(0, 59, 0, 100)},                             // top shorter than lambda
-      {Make(0, 100, 0, 59)},                             // match shorter than lambda
-      {Make(0, 1001, 0, 100)},                           // beyond the frames
+      {Make(100, 200, 0, 100), Make(0, 100, 0, 100)},  // unsorted
+      {Make(0, 100, 0, 100), Make(0, 100, 0, 100)},    // duplicate
+      {Make(0, 59, 0, 100)},                           // top shorter than lambda
+      {Make(0, 100, 0, 59)},                           // match shorter than lambda
+      {Make(0, 1001, 0, 100)},                         // beyond the frames
       {Make(0, 100, 950, 1010)},
-      {{10, 100, 0, 100, 11, 0}},                        // root after the start
-      {{10, 100, 0, 100, 10, 1000}},                     // root frame outside
+      {{10, 100, 0, 100, 11, 0}},     // root after the start
+      {{10, 100, 0, 100, 10, 1000}},  // root frame outside
   };
   for (size_t idx = 0; idx < bad.size(); ++idx) {
     const std::string path = dir.File("bad" + std::to_string(idx) + ".mpa");
@@ -119,12 +120,12 @@ TEST(PathsFile, WriterRejectsCandidatesThatBreakTheRulesAndWritesNothing) {
   // One path per tree unless all_branches is set.
   PathsParams longest = params;
   longest.all_branches = false;
-  EXPECT_TRUE(WritePathsFile(dir.File("t.mpa"), longest,
-                             {Make(0, 100, 0, 100), Make(0, 110, 0, 100)})
-                  .IsInvalidArgument());
-  EXPECT_TRUE(WritePathsFile(dir.File("t.mpa"), longest,
-                             {Make(0, 100, 0, 100), Make(0, 110, 1, 100)})
-                  .ok());
+  EXPECT_TRUE(
+      WritePathsFile(dir.File("t.mpa"), longest, {Make(0, 100, 0, 100), Make(0, 110, 0, 100)})
+          .IsInvalidArgument());
+  EXPECT_TRUE(
+      WritePathsFile(dir.File("t.mpa"), longest, {Make(0, 100, 0, 100), Make(0, 110, 1, 100)})
+          .ok());
   PathsParams zero_branch = params;
   zero_branch.branch = 0;
   EXPECT_TRUE(WritePathsFile(dir.File("b.mpa"), zero_branch, {}).IsInvalidArgument());

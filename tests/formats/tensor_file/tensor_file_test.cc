@@ -47,8 +47,7 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   DumpHexLines(bytes, 0x30, 8, "table_checksum: XXH3-64 of bytes [0x40, 0x130)", &out);
   DumpHexLines(bytes, 0x38, 8, "header_checksum: XXH3-64 of bytes [0x00, 0x38)", &out);
   const char* names[3] = {"\"centroids\"", "\"cluster.sizes\"", "\"word.motifs\""};
-  const char* shapes[3] = {"type 5 (f32), rank 2, reserved 0",
-                           "type 4 (u64), rank 1, reserved 0",
+  const char* shapes[3] = {"type 5 (f32), rank 2, reserved 0", "type 4 (u64), rank 1, reserved 0",
                            "type 2 (u16), rank 1, reserved 0"};
   const char* dims[3] = {"rows 2, cols 2", "rows 2, cols 1", "rows 3, cols 1"};
   const char* place[3] = {"offset 0x130, bytes 16", "offset 0x140, bytes 16",

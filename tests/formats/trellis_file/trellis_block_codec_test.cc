@@ -189,8 +189,8 @@ TEST(TrellisBlockCodec, EncodingDecodedColumnsGivesTheSameBytes) {
   EXPECT_EQ(EncodeBlock(1000, Columns(block), 1.02f).bytes, encoded.bytes);
 }
 
-// Trellis-shaped data (the model of docs/formats/trellis_file.md: runs of 3 to 30 frames, 100 to 500 neighbours) must
-// stay well under 2 bytes a neighbour; the spec's table has the figures.
+// Trellis-shaped data (the model of docs/formats/trellis_file.md: runs of 3 to 30 frames, 100 to
+// 500 neighbours) must stay well under 2 bytes a neighbour; the spec's table has the figures.
 TEST(TrellisBlockCodec, CompressesTrellisShapedColumnsBelowTwoBytesPerNeighbour) {
   const uint64_t frame_count = 8192;
   const TrellisColumns columns = MakeRunColumns(frame_count, 1.02f, 100, 500, 21);

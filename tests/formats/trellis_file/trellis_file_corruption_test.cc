@@ -218,8 +218,7 @@ TEST_F(TrellisFileCorruptionTest, RejectsACraftedIndexWithValidChecksums) {
   for (int field = 0; field < 6; ++field) {
     std::string crafted = bytes_;
     const uint64_t entry = index_offset + trellis_file::kBlockEntryBytes;
-    trellis_file::BlockHandle handle =
-        trellis_file::BlockHandle::DecodeFrom(data + entry);
+    trellis_file::BlockHandle handle = trellis_file::BlockHandle::DecodeFrom(data + entry);
     if (field == 0) handle.offset += 1;
     if (field == 1) handle.bytes += 1;
     if (field == 2) handle.first_column += 1;
@@ -231,8 +230,8 @@ TEST_F(TrellisFileCorruptionTest, RejectsACraftedIndexWithValidChecksums) {
     crafted.replace(entry, encoded.size(), encoded);
     trellis_file::Footer footer;
     ASSERT_TRUE(trellis_file::Footer::DecodeFrom(data + footer_offset, &footer).ok());
-    footer.index_checksum = trellis_file::Checksum64(crafted.data() + index_offset,
-                                                     footer_offset - index_offset);
+    footer.index_checksum =
+        trellis_file::Checksum64(crafted.data() + index_offset, footer_offset - index_offset);
     std::string footer_bytes;
     footer.EncodeTo(&footer_bytes);
     crafted.replace(footer_offset, footer_bytes.size(), footer_bytes);

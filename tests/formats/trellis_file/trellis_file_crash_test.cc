@@ -88,7 +88,8 @@ TEST_F(TrellisFileCrashTest, AFailureAtEveryStepLeavesNoWrongFileAndResumesToThe
         EXPECT_FALSE(FileExists(TrellisFileWriter::PartialPath(path)));
       }
       // Resume on a working disk: at least the blocks acknowledged before the failure are kept.
-      auto writer = TrellisFileWriter::OpenOrResume(path, params_, CrashOptions(NoSyncFileSystem()));
+      auto writer =
+          TrellisFileWriter::OpenOrResume(path, params_, CrashOptions(NoSyncFileSystem()));
       ASSERT_TRUE(writer.ok()) << writer.status().ToString();
       const uint64_t resumed = (*writer)->next_column();
       EXPECT_EQ(resumed % kCrashBlockColumns == 0 || resumed == kCrashFrames, true);
@@ -114,8 +115,10 @@ TEST_F(TrellisFileCrashTest, AFailureWhileResumingATornBuildIsResumableToo) {
     auto writer = TrellisFileWriter::OpenOrResume(path, params_, CrashOptions(NoSyncFileSystem()));
     ASSERT_TRUE(writer.ok());
     for (uint64_t block_idx = 0; block_idx < 3; ++block_idx) {
-      ASSERT_TRUE((*writer)->AppendBlock(Slice(columns_, block_idx * kCrashBlockColumns,
-                                               kCrashBlockColumns)).ok());
+      ASSERT_TRUE(
+          (*writer)
+              ->AppendBlock(Slice(columns_, block_idx * kCrashBlockColumns, kCrashBlockColumns))
+              .ok());
     }
   }
   const std::string torn = ReadBytes(partial);

@@ -79,8 +79,8 @@ TEST(TrellisFileFormat, HeaderRejectsNonZeroReservedFieldsAndBadValues) {
   uint64_t header_bytes = 0;
   const auto expect_corruption = [&](std::string bytes, const std::string& what) {
     Reseal(&bytes);
-    const Status status = FileHeader::DecodeFrom(Bytes(bytes), bytes.size(), &decoded,
-                                                 &header_bytes);
+    const Status status =
+        FileHeader::DecodeFrom(Bytes(bytes), bytes.size(), &decoded, &header_bytes);
     EXPECT_TRUE(status.IsCorruption()) << what << ": " << status.ToString();
   };
   std::string bytes = good;
@@ -108,8 +108,8 @@ TEST(TrellisFileFormat, HeaderRejectsNonZeroReservedFieldsAndBadValues) {
   // Not resealed: a checksum mismatch.
   bytes = good;
   bytes[0x30] ^= 1;
-  EXPECT_TRUE(FileHeader::DecodeFrom(Bytes(bytes), bytes.size(), &decoded, &header_bytes)
-                  .IsCorruption());
+  EXPECT_TRUE(
+      FileHeader::DecodeFrom(Bytes(bytes), bytes.size(), &decoded, &header_bytes).IsCorruption());
 }
 
 TEST(TrellisFileFormat, FooterRoundTripsAndChecksItself) {

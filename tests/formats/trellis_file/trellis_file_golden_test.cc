@@ -46,7 +46,7 @@ TrellisColumns TinyColumns() {
   return {
       {{3, 0.5f}, {4, 0.25f}, {5, 0.125f}},  // column 0: one run of three
       {{4, 0.25f}, {5, 0.5f}},               // column 1
-      {},                                     // column 2: no neighbour
+      {},                                    // column 2: no neighbour
       {{0, 0.5f}, {1, 0.75f}, {5, 1.0f}},    // column 3: two runs
       {{0, 0.25f}, {1, 0.0f}, {2, 0.125f}},  // column 4 (second block)
       {{0, 0.125f}, {3, 1.0f}},              // column 5
@@ -67,17 +67,19 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
   trellis_file::FileHeader header;
   uint64_t header_bytes = 0;
-  EXPECT_TRUE(trellis_file::FileHeader::DecodeFrom(data, bytes.size(), &header, &header_bytes).ok());
+  EXPECT_TRUE(
+      trellis_file::FileHeader::DecodeFrom(data, bytes.size(), &header, &header_bytes).ok());
   const uint64_t footer_offset = bytes.size() - trellis_file::kFooterBytes;
   trellis_file::Footer footer;
   EXPECT_TRUE(trellis_file::Footer::DecodeFrom(data + footer_offset, &footer).ok());
   std::ostringstream out;
   out << "# File header (" << header_bytes << " bytes)\n";
   DumpHexLines(bytes, 0x00, 8, "magic \"\\x89MTR\\r\\n\\x1a\\n\"", &out);
-  DumpHexLines(bytes, 0x08, 8, "format_major 1, format_minor 0, header_bytes " +
-                           std::to_string(header_bytes), &out);
-  DumpHexLines(bytes, 0x10, 8, "block_columns 4, params_bytes " +
-                           std::to_string(header_bytes - 40), &out);
+  DumpHexLines(bytes, 0x08, 8,
+               "format_major 1, format_minor 0, header_bytes " + std::to_string(header_bytes),
+               &out);
+  DumpHexLines(bytes, 0x10, 8, "block_columns 4, params_bytes " + std::to_string(header_bytes - 40),
+               &out);
   DumpHexLines(bytes, 0x18, 8, "reserved", &out);
   DumpHexLines(bytes, 0x20, 8, "params: frame_count 6", &out);
   DumpHexLines(bytes, 0x28, 8, "params: archive_identity", &out);
@@ -86,10 +88,11 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   DumpHexLines(bytes, 0x48, 8, "params: seed 42", &out);
   DumpHexLines(bytes, 0x50, 8, "params: weights_hash", &out);
   DumpHexLines(bytes, 0x58, 4 + header.params.search_params.size(),
-       "params: search_params \"" + header.params.search_params + "\"", &out);
-  DumpHexLines(bytes, header_bytes - 8, 8,
-       "header_checksum: XXH3-64 of bytes [0x00, " + trellis_file::Hex(header_bytes - 8) + ")",
-       &out);
+               "params: search_params \"" + header.params.search_params + "\"", &out);
+  DumpHexLines(
+      bytes, header_bytes - 8, 8,
+      "header_checksum: XXH3-64 of bytes [0x00, " + trellis_file::Hex(header_bytes - 8) + ")",
+      &out);
   std::vector<trellis_file::BlockHandle> blocks;
   for (uint64_t block_idx = 0; block_idx < footer.block_count; ++block_idx) {
     blocks.push_back(trellis_file::BlockHandle::DecodeFrom(
@@ -102,24 +105,25 @@ std::string AnnotatedHexdump(const std::string& bytes) {
     const uint64_t at = block.offset;
     out << "# Block " << block_idx << ": columns [" << block.first_column << ", "
         << block.first_column + block.column_count << "), " << block.bytes << " bytes\n";
-    DumpHexLines(bytes, at, 8, "\"MTBK\", column_count " + std::to_string(block.column_count), &out);
+    DumpHexLines(bytes, at, 8, "\"MTBK\", column_count " + std::to_string(block.column_count),
+                 &out);
     DumpHexLines(bytes, at + 8, 8, "first_column " + std::to_string(block.first_column), &out);
     DumpHexLines(bytes, at + 16, 8,
-         "neighbour_count " + std::to_string(block_header.neighbour_count) + ", ids_raw_bytes " +
-             std::to_string(block_header.ids_raw_bytes),
-         &out);
+                 "neighbour_count " + std::to_string(block_header.neighbour_count) +
+                     ", ids_raw_bytes " + std::to_string(block_header.ids_raw_bytes),
+                 &out);
     DumpHexLines(bytes, at + 24, 8,
-         "ids_bytes " + std::to_string(block_header.ids_bytes) + ", distances_bytes " +
-             std::to_string(block_header.distances_bytes),
-         &out);
+                 "ids_bytes " + std::to_string(block_header.ids_bytes) + ", distances_bytes " +
+                     std::to_string(block_header.distances_bytes),
+                 &out);
     DumpHexLines(bytes, at + 32, 8, "reserved", &out);
     DumpHexLines(bytes, at + 40, block_header.ids_bytes, "id section: zstd frame", &out);
     DumpHexLines(bytes, at + 40 + block_header.ids_bytes, block_header.distances_bytes,
-         "distance section: zstd frame", &out);
+                 "distance section: zstd frame", &out);
     DumpHexLines(bytes, at + block.bytes - 8, 8,
-         "block checksum: XXH3-64 of the block's first " + std::to_string(block.bytes - 8) +
-             " bytes",
-         &out);
+                 "block checksum: XXH3-64 of the block's first " + std::to_string(block.bytes - 8) +
+                     " bytes",
+                 &out);
   }
   out << "# Block index (" << blocks.size() << " entries of 40 bytes)\n";
   for (size_t block_idx = 0; block_idx < blocks.size(); ++block_idx) {
@@ -132,14 +136,15 @@ std::string AnnotatedHexdump(const std::string& bytes) {
   }
   out << "# Footer (64 bytes)\n";
   DumpHexLines(bytes, footer_offset, 8, "magic \"\\x89MTREND\\n\"", &out);
-  DumpHexLines(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64", &out);
+  DumpHexLines(bytes, footer_offset + 8, 8, "format_major 1, format_minor 0, footer_bytes 64",
+               &out);
   DumpHexLines(bytes, footer_offset + 16, 8, "index_offset", &out);
   DumpHexLines(bytes, footer_offset + 24, 8, "block_count", &out);
   DumpHexLines(bytes, footer_offset + 32, 8, "neighbour_count", &out);
   DumpHexLines(bytes, footer_offset + 40, 8, "index_checksum: XXH3-64 of the index", &out);
   DumpHexLines(bytes, footer_offset + 48, 8, "header_checksum (copy)", &out);
-  DumpHexLines(bytes, footer_offset + 56, 8, "footer_checksum: XXH3-64 of the footer's first 56 bytes",
-       &out);
+  DumpHexLines(bytes, footer_offset + 56, 8,
+               "footer_checksum: XXH3-64 of the footer's first 56 bytes", &out);
   return out.str();
 }
 
@@ -174,8 +179,8 @@ TEST(TrellisFileGolden, TheFixtureDecodesToTheWorkedExample) {
   EXPECT_EQ(columns[0][2].distance, static_cast<float>(8192.0 / 65535));   // 0.125: 0x2000
   EXPECT_FLOAT_EQ(columns[0][0].distance, 0.50000763f);
   EXPECT_FLOAT_EQ(columns[3][1].distance, 0.74999619f);
-  EXPECT_EQ(columns[3][2].distance, 1.0f);                 // eps is exact
-  EXPECT_EQ(columns[4][1].distance, 0.0f);                 // 0 is exact
+  EXPECT_EQ(columns[3][2].distance, 1.0f);  // eps is exact
+  EXPECT_EQ(columns[4][1].distance, 0.0f);  // 0 is exact
 }
 
 }  // namespace

@@ -77,8 +77,8 @@ class TrellisFileWriterTest : public ::testing::Test {
     const uint64_t footer = reference_.size() - trellis_file::kFooterBytes;
     const uint64_t index_offset = trellis_file::LoadU64(data + footer + 16);
     if (block_idx == 10) return index_offset;
-    return trellis_file::BlockHandle::DecodeFrom(
-               data + index_offset + block_idx * trellis_file::kBlockEntryBytes)
+    return trellis_file::BlockHandle::DecodeFrom(data + index_offset +
+                                                 block_idx * trellis_file::kBlockEntryBytes)
         .offset;
   }
 
@@ -121,8 +121,8 @@ TEST_F(TrellisFileWriterTest, DropsATornLastBlockCutAnywhere) {
   const uint64_t block3 = BlockOffset(3);
   const uint64_t block_bytes = partial.size() - block3;
   ASSERT_EQ(partial.size(), BlockOffset(4));
-  std::vector<uint64_t> cuts = {0, 1, 3, 4, 7, 8, 15, 16, 19, 20, 23, 24, 27, 28, 31, 32, 39, 40,
-                                41, 48};
+  std::vector<uint64_t> cuts = {0,  1,  3,  4,  7,  8,  15, 16, 19, 20,
+                                23, 24, 27, 28, 31, 32, 39, 40, 41, 48};
   for (uint64_t eighth = 1; eighth < 8; ++eighth) cuts.push_back(block_bytes * eighth / 8);
   for (uint64_t from_end : {9, 8, 7, 1}) cuts.push_back(block_bytes - from_end);
   for (uint64_t cut : cuts) {
@@ -187,17 +187,39 @@ TEST_F(TrellisFileWriterTest, EveryParamTakesPartInTheResumeDecision) {
     BuildAndStop(2);
     TrellisParams other = params_;
     switch (field) {
-      case 0: other.frame_count += 1; break;
-      case 1: other.archive_identity += 1; break;
-      case 2: other.eps = std::nextafter(other.eps, 2.0f); break;
-      case 3: other.mu += 0.5f; break;
-      case 4: other.sigma += 0.5f; break;
-      case 5: other.k_max += 1; break;
-      case 6: other.exclusion_frames += 1; break;
-      case 7: other.search_mode = 0; break;
-      case 8: other.seed += 1; break;
-      case 9: other.weights_hash += 1; break;
-      case 10: other.search_params += " "; break;
+      case 0:
+        other.frame_count += 1;
+        break;
+      case 1:
+        other.archive_identity += 1;
+        break;
+      case 2:
+        other.eps = std::nextafter(other.eps, 2.0f);
+        break;
+      case 3:
+        other.mu += 0.5f;
+        break;
+      case 4:
+        other.sigma += 0.5f;
+        break;
+      case 5:
+        other.k_max += 1;
+        break;
+      case 6:
+        other.exclusion_frames += 1;
+        break;
+      case 7:
+        other.search_mode = 0;
+        break;
+      case 8:
+        other.seed += 1;
+        break;
+      case 9:
+        other.weights_hash += 1;
+        break;
+      case 10:
+        other.search_params += " ";
+        break;
     }
     EXPECT_FALSE(other == params_);
     auto writer = TrellisFileWriter::OpenOrResume(path_, other, Options());
@@ -217,8 +239,8 @@ TEST_F(TrellisFileWriterTest, DifferentBlockColumnsStartOver) {
 }
 
 TEST_F(TrellisFileWriterTest, GarbagePartialFileStartsOver) {
-  for (const std::string& garbage : {std::string(), std::string("x"), std::string(5000, '\x89'),
-                                     reference_.substr(0, 30)}) {
+  for (const std::string& garbage :
+       {std::string(), std::string("x"), std::string(5000, '\x89'), reference_.substr(0, 30)}) {
     WriteBytes(partial_, garbage);
     ResumeAndExpectReference(0);
     std::filesystem::remove(path_);
@@ -316,9 +338,9 @@ TEST_F(TrellisFileWriterTest, RejectsInvalidBlocksAndStaysUsable) {
   expect_invalid(bad, "duplicate frame");
   bad[3] = {{static_cast<uint32_t>(kFrames), 0.1f}};
   expect_invalid(bad, "frame outside the archive");
-  for (float distance : {-0.001f, std::nextafter(1.0f, 2.0f),
-                         std::numeric_limits<float>::quiet_NaN(),
-                         std::numeric_limits<float>::infinity()}) {
+  for (float distance :
+       {-0.001f, std::nextafter(1.0f, 2.0f), std::numeric_limits<float>::quiet_NaN(),
+        std::numeric_limits<float>::infinity()}) {
     bad[3] = {{5, distance}};
     expect_invalid(bad, "distance " + std::to_string(distance));
   }
@@ -338,8 +360,8 @@ TEST_F(TrellisFileWriterTest, IsClosedAfterFinish) {
   while ((*writer)->next_column() < kFrames) {
     const uint64_t first = (*writer)->next_column();
     ASSERT_TRUE((*writer)
-                    ->AppendBlock(Slice(columns_, first,
-                                        std::min<uint64_t>(kBlockColumns, kFrames - first)))
+                    ->AppendBlock(
+                        Slice(columns_, first, std::min<uint64_t>(kBlockColumns, kFrames - first)))
                     .ok());
   }
   EXPECT_TRUE((*writer)->AppendBlock({}).IsInvalidArgument());

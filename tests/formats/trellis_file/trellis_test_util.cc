@@ -48,8 +48,8 @@ TrellisColumns MakeRunColumns(uint64_t frame_count, float eps, uint32_t min_k, u
       const double floor_fraction = 0.9 * unit(rng);
       for (uint64_t offset = 0; offset < length && entries.size() < target; ++offset) {
         const double x = (offset + 0.5) / length * 2 - 1;  // -1 .. 1 across the run
-        double fraction =
-            std::sqrt(floor_fraction * floor_fraction + (1 - floor_fraction * floor_fraction) * x * x);
+        double fraction = std::sqrt(floor_fraction * floor_fraction +
+                                    (1 - floor_fraction * floor_fraction) * x * x);
         fraction = std::clamp(fraction + (unit(rng) - 0.5) * 1e-3, 0.0, 1.0);
         entries.emplace(static_cast<uint32_t>(start + offset),
                         std::min(eps, static_cast<float>(fraction * eps)));

@@ -54,5 +54,4 @@ using ::motif::NoSyncFileSystem;
 // /proc/self/smaps cannot be read (not Linux).
 int64_t MappedResidentBytes(const std::string& path);
 
-
 }  // namespace motif::testing
