@@ -145,6 +145,14 @@ Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds
   return Status::Ok();
 }
 
+Status ParseSimilarity(const std::string& text, bool* warped) {
+  if (text != "warped" && text != "shared") {
+    return Status::InvalidArgument("--similarity must be warped or shared, not '" + text + "'");
+  }
+  *warped = text == "warped";
+  return Status::Ok();
+}
+
 Status ParseGroups(const std::string& text, uint32_t* groups) {
   if (text == "auto") {
     *groups = 0;

@@ -66,6 +66,9 @@ uint64_t PeakResidentBytes();
 Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds);
 // --groups: "auto" (*groups = 0) or a positive number. InvalidArgument otherwise.
 Status ParseGroups(const std::string& text, uint32_t* groups);
+// --similarity: "warped" (edge weights from the instances' time-warped distance) or "shared"
+// (the shared similar frames alone, as the paper scores instance pairs).
+Status ParseSimilarity(const std::string& text, bool* warped);
 // --eps-rule joint-angle|paper and --eps-angle DEG: how eps is chosen when --eps is not given
 // (engine/distance/epsilon_estimator.h). EpsilonRuleFrom reads them back into the trellis
 // options; InvalidArgument naming the flag for an unknown rule or an angle outside (0, 180].

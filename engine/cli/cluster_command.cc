@@ -84,6 +84,10 @@ int RunCluster(const std::vector<std::string>& args) {
       "truth", po::value<std::string>()->default_value(""),
       "a synthetic archive's truth file: print recall, precision and ARI")(
       "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
+      "similarity", po::value<std::string>()->default_value("warped"),
+      "how instance pairs are weighted for the normalized cut: warped (the time-warped distance of "
+      "their motions, each instance scaled by its nearest repetition) or shared (the similar "
+      "frames they share, as in the paper)")(
       "max-ncut", po::value<double>()->default_value(cut_defaults.max_ncut),
       "auto: stop cutting a group when its best cut's Ncut (0..2) is not below this")(
       "min-similarity", po::value<double>()->default_value(similarity_defaults.min_similarity),
@@ -117,6 +121,10 @@ int RunCluster(const std::vector<std::string>& args) {
   options.cut.max_ncut = vm["max-ncut"].as<double>();
   options.similarity.min_similarity = vm["min-similarity"].as<double>();
   options.max_length_ratio = vm["max-length-ratio"].as<double>();
+  if (Status status = ParseSimilarity(vm["similarity"].as<std::string>(), &options.warped.enabled);
+      !status.ok()) {
+    return ReportError("cluster", status);
+  }
   if (!(options.cut.max_ncut > 0) || !(options.similarity.min_similarity > 0) ||
       options.similarity.min_similarity > 1) {
     return ReportError("cluster", Status::InvalidArgument(
@@ -197,10 +205,11 @@ int RunCluster(const std::vector<std::string>& args) {
               WithCommas(similarity.edges).c_str(), WithCommas(similarity.similar_pairs).c_str(),
               WithCommas(similarity.linked_pairs).c_str());
   std::printf(
-      "  time         instances %.2fs, similarity %.2fs (%s blocks), cut %.2fs "
-      "(%s eigenvectors)\n",
+      "  time         instances %.2fs, similarity %.2fs (%s blocks), warped distance %.2fs, cut "
+      "%.2fs (%s eigenvectors)\n",
       report.instance_seconds, similarity.seconds, WithCommas(similarity.blocks_decoded).c_str(),
-      report.cut_seconds, WithCommas(report.cut_stats.eigen_solves).c_str());
+      report.warped_stats.seconds, report.cut_seconds,
+      WithCommas(report.cut_stats.eigen_solves).c_str());
   for (size_t rank = 0; rank < std::min<size_t>(5, document->motifs.size()); ++rank) {
     const MotifsJsonMotif& motif = document->motifs[rank];
     const MotifsJsonInstance& first = motif.instances.front();

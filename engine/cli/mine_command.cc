@@ -120,6 +120,10 @@ int RunMine(const std::vector<std::string>& args) {
                                                po::value<std::string>()->default_value("0.5s"),
                                                "least motif length: frames (60) or seconds (0.5s)")(
       "groups", po::value<std::string>()->default_value("auto"), "number of motifs, or auto")(
+      "similarity", po::value<std::string>()->default_value("warped"),
+      "how instance pairs are weighted for the normalized cut: warped (the time-warped distance of "
+      "their motions, each instance scaled by its nearest repetition) or shared (the similar "
+      "frames they share, as in the paper)")(
       "max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
       "drop an instance from its motif when its length is more than this factor from the "
       "motif's median (0 keeps all)")("seed", po::value<uint64_t>()->default_value(1),
@@ -175,6 +179,11 @@ int RunMine(const std::vector<std::string>& args) {
   cluster_options.threads = threads;
   const std::string groups_text = vm["groups"].as<std::string>();
   if (Status status = ParseGroups(groups_text, &cluster_options.cut.groups); !status.ok()) {
+    return fail(status);
+  }
+  if (Status status =
+          ParseSimilarity(vm["similarity"].as<std::string>(), &cluster_options.warped.enabled);
+      !status.ok()) {
     return fail(status);
   }
   cluster_options.max_length_ratio = vm["max-length-ratio"].as<double>();

@@ -11,7 +11,7 @@
 namespace motif {
 namespace {
 
-constexpr int kClusterRulesVersion = 2;
+constexpr int kClusterRulesVersion = 3;
 
 // What determines a clustering: the paths (through the trellis identity, itself tied to its
 // archive, and the grow parameters) and every option that changes the result.
@@ -24,7 +24,11 @@ std::string ClusterKey(const ClusterStageInput& input, const ClusterOptions& opt
       << " all_branches=" << input.paths_params.all_branches << " candidates=" << input.candidates
       << " groups=" << options.cut.groups << " max_ncut=" << options.cut.max_ncut
       << " min_similarity=" << options.similarity.min_similarity
-      << " max_length_ratio=" << options.max_length_ratio << " seed=" << options.seed;
+      << " max_length_ratio=" << options.max_length_ratio << " seed=" << options.seed
+      << " warped=" << options.warped.enabled << " warped_neighbours=" << options.warped.neighbours
+      << " warped_samples=" << options.warped.samples
+      << " warped_fallback=" << options.warped.fallback_scale
+      << " warped_floor=" << options.warped.floor_scale;
   return key.str();
 }
 

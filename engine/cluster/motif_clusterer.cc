@@ -227,6 +227,14 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
                          BuildSimilarityGraph(trellis, set.instances, set.links, similarity,
                                               &result.report.similarity_stats));
 
+  if (options.archive != nullptr) {
+    WarpedSimilarityOptions warped = options.warped;
+    warped.threads = options.threads;
+    MOTIF_ASSIGN_OR_RETURN(
+        graph, ReweightByWarpedDistance(*options.archive, set.instances, graph,
+                                        trellis.params().eps, warped, &result.report.warped_stats));
+  }
+
   started = std::chrono::steady_clock::now();
   NormalizedCutOptions cut = options.cut;
   cut.threads = options.threads;

@@ -27,6 +27,7 @@
 #include "engine/cluster/instance_similarity.h"
 #include "engine/cluster/motif_instance.h"
 #include "engine/cluster/normalized_cut.h"
+#include "engine/cluster/warped_similarity.h"
 #include "engine/grow/path_candidate.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
@@ -37,6 +38,8 @@ struct ClusterOptions {
   InstanceOptions instances;
   SimilarityOptions similarity;  // its threads and progress are set from the fields below
   NormalizedCutOptions cut;      // its threads and seed are set from the fields below
+  // With the archive set: edge weights from the instances' time-warped distance.
+  WarpedSimilarityOptions warped;  // its threads are set from the field below
   // Keep an instance in its motif only when typical / r <= length <= typical * r, typical being
   // the length-weighted median of the group's lengths; 0 keeps every instance. Warps of 0.7-1.4x
   // differ by 2x at most; 3 leaves room for a typical length pulled down by split instances
@@ -78,7 +81,8 @@ struct ClusterReport {
   uint64_t clustered_instances = 0;  // in a kept motif
   uint64_t length_outliers = 0;      // fragments dropped by the split by length
   uint64_t held_poses = 0;           // instances kept out as held poses
-  uint64_t covered_frames = 0;       // distinct frames inside some motif instance
+  WarpedSimilarityStats warped_stats;
+  uint64_t covered_frames = 0;  // distinct frames inside some motif instance
   double instance_seconds = 0;
   double cut_seconds = 0;
 };

@@ -1,0 +1,170 @@
+#include "engine/cluster/warped_similarity.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "common/seconds_since.h"
+#include "engine/distance/pose_features.h"
+
+namespace motif {
+
+namespace {
+
+// The sampled frames of every instance, one after another, as pose features; first[i] is the
+// first sample of instance i (first.back() the total).
+struct SampledInstances {
+  PoseFeatures features;
+  std::vector<uint64_t> first;
+};
+
+Result<SampledInstances> SampleInstances(const FrameFileReader& archive,
+                                         const std::vector<MotifInstance>& instances,
+                                         uint32_t samples) {
+  MOTIF_ASSIGN_OR_RETURN(const std::vector<float> weights,
+                         LoadDistanceWeights(archive.skeleton(), ""));
+  const uint64_t stride = archive.layout().stride();
+  std::vector<uint64_t> first = {0};
+  std::vector<float> sampled;
+  std::vector<float> rows;
+  for (const MotifInstance& instance : instances) {
+    if (instance.end > archive.frame_count() || instance.end <= instance.start) {
+      return Status::InvalidArgument(
+          "warped similarity: instance [" + std::to_string(instance.start) + ", " +
+          std::to_string(instance.end) + ") is not a frame range of the archive");
+    }
+    MOTIF_RETURN_IF_ERROR(archive.ReadFrames(instance.start, instance.length(), &rows));
+    const uint64_t count = std::min<uint64_t>(samples, instance.length());
+    for (uint64_t sample = 0; sample < count; ++sample) {
+      // Evenly spaced, first and last frame included.
+      const uint64_t frame = count == 1 ? 0 : sample * (instance.length() - 1) / (count - 1);
+      sampled.insert(sampled.end(), rows.begin() + static_cast<std::ptrdiff_t>(frame * stride),
+                     rows.begin() + static_cast<std::ptrdiff_t>((frame + 1) * stride));
+    }
+    first.push_back(first.back() + count);
+  }
+  PoseFeatures features = PoseFeatures::FromRows(sampled.data(), first.back(),
+                                                 archive.layout().joint_count, weights, {0});
+  return SampledInstances{std::move(features), std::move(first)};
+}
+
+// Mean pose distance along the cheapest warping path between sample ranges [a0, a1) and
+// [b0, b1) (steps (1,0), (0,1), (1,1); ties keep the shorter path).
+double MeanWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1, uint64_t b0,
+                          uint64_t b1) {
+  const uint64_t n = a1 - a0;
+  const uint64_t m = b1 - b0;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> cost((n + 1) * (m + 1), kInf);
+  std::vector<uint32_t> steps((n + 1) * (m + 1), 0);
+  auto at = [m](uint64_t i, uint64_t j) { return i * (m + 1) + j; };
+  cost[at(0, 0)] = 0;
+  for (uint64_t i = 1; i <= n; ++i) {
+    for (uint64_t j = 1; j <= m; ++j) {
+      uint64_t best = at(i - 1, j - 1);
+      if (cost[at(i - 1, j)] < cost[best]) best = at(i - 1, j);
+      if (cost[at(i, j - 1)] < cost[best]) best = at(i, j - 1);
+      cost[at(i, j)] = cost[best] + PoseDistance(features, a0 + i - 1, b0 + j - 1);
+      steps[at(i, j)] = steps[best] + 1;
+    }
+  }
+  return cost[at(n, m)] / steps[at(n, m)];
+}
+
+// d(a, b) of every edge, in parallel.
+std::vector<double> EdgeDistances(const SampledInstances& sampled,
+                                  const std::vector<WeightedEdge>& edges, int threads) {
+  std::vector<double> distances(edges.size());
+  auto measure = [&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 16), [&](const auto& range) {
+      for (size_t idx = range.begin(); idx != range.end(); ++idx) {
+        const uint32_t a = edges[idx].a;
+        const uint32_t b = edges[idx].b;
+        distances[idx] =
+            MeanWarpedDistance(sampled.features, sampled.first[a], sampled.first[a + 1],
+                               sampled.first[b], sampled.first[b + 1]);
+      }
+    });
+  };
+  if (threads > 0) {
+    tbb::task_arena(threads).execute(measure);
+  } else {
+    measure();
+  }
+  return distances;
+}
+
+// Each instance's own scale: d to its k-th nearest instance that shares no frame with it (an
+// overlapping one is close because it is partly the same frames); `fallback` without one.
+std::vector<double> LocalScales(const std::vector<MotifInstance>& instances,
+                                const std::vector<WeightedEdge>& edges,
+                                const std::vector<double>& distances, uint32_t k, double fallback) {
+  std::vector<std::vector<double>> near(instances.size());
+  for (size_t idx = 0; idx < edges.size(); ++idx) {
+    const uint32_t a = edges[idx].a;
+    const uint32_t b = edges[idx].b;
+    if (OverlapFrames(instances[a], instances[b]) > 0) continue;
+    near[a].push_back(distances[idx]);
+    near[b].push_back(distances[idx]);
+  }
+  std::vector<double> scales(instances.size(), fallback);
+  for (size_t node = 0; node < instances.size(); ++node) {
+    std::vector<double>& list = near[node];
+    if (list.empty()) continue;
+    std::sort(list.begin(), list.end());
+    // A floor: two identical instances would make a zero scale.
+    scales[node] = std::max(list[std::min<size_t>(k, list.size()) - 1], 1e-6);
+  }
+  return scales;
+}
+
+}  // namespace
+
+Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
+                                                 const std::vector<MotifInstance>& instances,
+                                                 const SimilarityGraph& graph, float eps,
+                                                 const WarpedSimilarityOptions& options,
+                                                 WarpedSimilarityStats* stats) {
+  const auto started = std::chrono::steady_clock::now();
+  if (!options.enabled || graph.edge_count() == 0) return graph;
+  if (options.neighbours == 0) {
+    return Status::InvalidArgument("warped similarity: the local scale needs neighbours >= 1");
+  }
+  if (graph.node_count() != instances.size()) {
+    return Status::InvalidArgument("warped similarity: the graph's nodes are not the instances");
+  }
+  MOTIF_ASSIGN_OR_RETURN(const SampledInstances sampled,
+                         SampleInstances(archive, instances, std::max(options.samples, 2u)));
+  std::vector<WeightedEdge> edges;
+  edges.reserve(graph.edge_count());
+  for (uint32_t a = 0; a < graph.node_count(); ++a) {
+    for (uint32_t b : graph.Targets(a)) {
+      if (b > a) edges.push_back({a, b, 0.0});
+    }
+  }
+  const std::vector<double> distances = EdgeDistances(sampled, edges, options.threads);
+  std::vector<double> scales =
+      LocalScales(instances, edges, distances, options.neighbours, options.fallback_scale * eps);
+  for (double& scale : scales) scale = std::max(scale, options.floor_scale * eps);  // noise
+  for (size_t idx = 0; idx < edges.size(); ++idx) {
+    const double squared =
+        distances[idx] * distances[idx] / (scales[edges[idx].a] * scales[edges[idx].b]);
+    // A floor keeps every edge of the graph an edge (FromEdges drops weights <= 0).
+    edges[idx].weight = std::max(std::exp(-squared), 1e-12);
+  }
+  if (stats != nullptr) {
+    stats->edges = edges.size();
+    double total = 0;
+    for (double distance : distances) total += distance;
+    stats->mean_distance = total / static_cast<double>(edges.size());
+    stats->seconds = SecondsSince(started);
+  }
+  return SimilarityGraph::FromEdges(graph.node_count(), std::move(edges));
+}
+
+}  // namespace motif

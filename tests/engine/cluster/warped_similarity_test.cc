@@ -1,0 +1,201 @@
+// ReweightByWarpedDistance: edge weights from the time-warped distance of instances, with each
+// instance scaled by its nearest non-overlapping repetition. On a small procedural archive
+// with planted motifs (known occurrences).
+#include "engine/cluster/warped_similarity.h"
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/synth/motion_synthesizer.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/frame_file/frame_file_writer.h"
+#include "tests/testing/temp_dir.h"
+
+namespace motif {
+namespace {
+
+struct PlantedArchive {
+  std::unique_ptr<FrameFileReader> reader;
+  std::vector<MotifInstance> instances;  // the planted occurrences, global frames
+  std::vector<uint32_t> motif_of;        // planted motif of each
+};
+
+PlantedArchive MakePlantedArchive(const testing::TempDir& dir) {
+  SynthOptions options;
+  options.frames = 24000;
+  options.motifs = 3;
+  options.seed = 3;
+  options.threads = 1;
+  auto synthesizer = MotionSynthesizer::Create(options);
+  EXPECT_TRUE(synthesizer.ok());
+  const std::string path = dir.File("planted.mfs");
+  auto writer = FrameFileWriter::Create(path, (*synthesizer)->skeleton(), options.fps);
+  EXPECT_TRUE(writer.ok());
+  EXPECT_TRUE((*synthesizer)
+                  ->Run([&](const ClipFrames& clip) { return (*writer)->AppendClip(clip); })
+                  .ok());
+  EXPECT_TRUE((*writer)->Commit().ok());
+  auto reader = FrameFileReader::Open(path);
+  EXPECT_TRUE(reader.ok());
+  PlantedArchive archive;
+  std::map<std::string, uint64_t> first_frame;
+  for (const ClipInfo& clip : (*reader)->clips()) first_frame[clip.name] = clip.first_frame;
+  for (const PlantedInstance& planted : (*synthesizer)->truth()) {
+    const uint64_t offset = first_frame.at(planted.clip);
+    archive.instances.push_back({offset + planted.start, offset + planted.end});
+    archive.motif_of.push_back(planted.motif);
+  }
+  archive.reader = std::move(reader.value());
+  return archive;
+}
+
+SimilarityGraph CompleteGraph(uint32_t nodes) {
+  std::vector<WeightedEdge> edges;
+  for (uint32_t a = 0; a < nodes; ++a) {
+    for (uint32_t b = a + 1; b < nodes; ++b) edges.push_back({a, b, 1.0});
+  }
+  return SimilarityGraph::FromEdges(nodes, std::move(edges));
+}
+
+double Weight(const SimilarityGraph& graph, uint32_t a, uint32_t b) {
+  for (size_t k = 0; k < graph.Targets(a).size(); ++k) {
+    if (graph.Targets(a)[k] == b) return graph.Weights(a)[k];
+  }
+  return 0;
+}
+
+constexpr float kEps = 1.256f;
+
+TEST(WarpedSimilarityTest, EveryInstanceWeighsMostWithARepetitionOfItsOwnMotif) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  const uint32_t nodes = static_cast<uint32_t>(archive.instances.size());
+  ASSERT_GE(nodes, 6u);
+  const SimilarityGraph graph = CompleteGraph(nodes);
+  WarpedSimilarityStats stats;
+  auto warped =
+      ReweightByWarpedDistance(*archive.reader, archive.instances, graph, kEps, {}, &stats);
+  ASSERT_TRUE(warped.ok()) << warped.status().ToString();
+  EXPECT_EQ(warped->edge_count(), graph.edge_count());
+  EXPECT_EQ(stats.edges, graph.edge_count());
+  EXPECT_GT(stats.mean_distance, 0);
+  for (uint32_t a = 0; a < nodes; ++a) {
+    uint32_t heaviest = a;
+    for (uint32_t b = 0; b < nodes; ++b) {
+      if (b != a && (heaviest == a || Weight(*warped, a, b) > Weight(*warped, a, heaviest))) {
+        heaviest = b;
+      }
+    }
+    EXPECT_EQ(archive.motif_of[heaviest], archive.motif_of[a]) << "instance " << a;
+  }
+}
+
+TEST(WarpedSimilarityTest, TwoInstancesThatAreEachOthersNearestWeighExactlyOneOverE) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  const uint32_t nodes = static_cast<uint32_t>(archive.instances.size());
+  WarpedSimilarityOptions local_only;
+  local_only.floor_scale = 0;
+  auto warped = ReweightByWarpedDistance(*archive.reader, archive.instances, CompleteGraph(nodes),
+                                         kEps, local_only);
+  ASSERT_TRUE(warped.ok());
+  // With one scale per instance (its nearest), the heaviest edge of the whole graph joins two
+  // instances that are each other's nearest: d^2 / (d · d) = 1.
+  double heaviest = 0;
+  for (uint32_t a = 0; a < nodes; ++a) {
+    for (double weight : warped->Weights(a)) heaviest = std::max(heaviest, weight);
+  }
+  EXPECT_NEAR(heaviest, std::exp(-1.0), 1e-12);
+}
+
+TEST(WarpedSimilarityTest, AnOverlappingInstanceDoesNotSetTheScale) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  // Two occurrences of one motif, and the first shifted by two frames (nearly the same frames).
+  uint32_t second = 1;
+  while (archive.motif_of[second] != archive.motif_of[0]) ++second;
+  const MotifInstance first = archive.instances[0];
+  const std::vector<MotifInstance> instances = {
+      first, archive.instances[second], {first.start + 2, first.end + 2}};
+  WarpedSimilarityOptions local_only;
+  local_only.floor_scale = 0;
+  auto warped =
+      ReweightByWarpedDistance(*archive.reader, instances, CompleteGraph(3), kEps, local_only);
+  ASSERT_TRUE(warped.ok());
+  // Were the shifted copy its scale, the first would weigh e^-1 to it and almost nothing to the
+  // real repetition; scaled by the repetition, the shifted copy weighs near 1.
+  EXPECT_GT(Weight(*warped, 0, 2), 0.9);
+  EXPECT_LE(Weight(*warped, 0, 1), std::exp(-1.0) + 1e-12);
+  EXPECT_GT(Weight(*warped, 0, 1), 0.1);
+}
+
+TEST(WarpedSimilarityTest, NoScaleIsBelowTheFloor) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  const uint32_t nodes = static_cast<uint32_t>(archive.instances.size());
+  auto lightest = [&](double floor_scale) {
+    WarpedSimilarityOptions options;
+    options.floor_scale = floor_scale;
+    auto warped = ReweightByWarpedDistance(*archive.reader, archive.instances, CompleteGraph(nodes),
+                                           kEps, options);
+    EXPECT_TRUE(warped.ok());
+    double least = 1;
+    for (uint32_t a = 0; a < nodes; ++a) {
+      for (double weight : warped->Weights(a)) least = std::min(least, weight);
+    }
+    return least;
+  };
+  // Different planted motifs are far apart on their own scales; on a scale of 10 eps (more than
+  // any two poses are apart) every pair is alike.
+  EXPECT_LT(lightest(0), 0.1);
+  EXPECT_GT(lightest(10), 0.9);
+}
+
+TEST(WarpedSimilarityTest, SameWeightsForAnyThreadCount) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  const uint32_t nodes = static_cast<uint32_t>(archive.instances.size());
+  WarpedSimilarityOptions one;
+  one.threads = 1;
+  WarpedSimilarityOptions two;
+  two.threads = 2;
+  auto a =
+      ReweightByWarpedDistance(*archive.reader, archive.instances, CompleteGraph(nodes), kEps, one);
+  auto b =
+      ReweightByWarpedDistance(*archive.reader, archive.instances, CompleteGraph(nodes), kEps, two);
+  ASSERT_TRUE(a.ok() && b.ok());
+  for (uint32_t node = 0; node < nodes; ++node) {
+    ASSERT_EQ(std::vector<double>(a->Weights(node).begin(), a->Weights(node).end()),
+              std::vector<double>(b->Weights(node).begin(), b->Weights(node).end()));
+  }
+}
+
+TEST(WarpedSimilarityTest, DisabledKeepsTheWeightsAndBadInputIsRefused) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  const SimilarityGraph graph = CompleteGraph(2);
+  const std::vector<MotifInstance> two = {archive.instances[0], archive.instances[1]};
+  WarpedSimilarityOptions off;
+  off.enabled = false;
+  auto same = ReweightByWarpedDistance(*archive.reader, two, graph, kEps, off);
+  ASSERT_TRUE(same.ok());
+  EXPECT_EQ(Weight(*same, 0, 1), 1.0);
+
+  WarpedSimilarityOptions no_neighbours;
+  no_neighbours.neighbours = 0;
+  EXPECT_TRUE(ReweightByWarpedDistance(*archive.reader, two, graph, kEps, no_neighbours)
+                  .status()
+                  .IsInvalidArgument());
+  const uint64_t frames = archive.reader->frame_count();
+  const std::vector<MotifInstance> outside = {archive.instances[0], {frames - 10, frames + 10}};
+  EXPECT_TRUE(ReweightByWarpedDistance(*archive.reader, outside, graph, kEps, {})
+                  .status()
+                  .IsInvalidArgument());
+}
+
+}  // namespace
+}  // namespace motif
