@@ -24,6 +24,7 @@
 #include "engine/cluster/truth_score.h"
 #include "engine/grow/paths_builder.h"
 #include "engine/synth/motion_synthesizer.h"
+#include "engine/synth/segment_insertion.h"
 #include "engine/trellis/trellis_builder.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
@@ -119,67 +120,6 @@ TEST(PlantedMotifs, ProceduralArchiveWithTenMotifsIsMinedWithHighRecallPrecision
 }
 
 // ---- The paper's check on real takes --------------------------------------------------------
-
-// The segment [start, start + frames) of `source` played through the time map `source_time`
-// (output frame k -> fractional source frame, from 0 to frames - 1), `out_frames` long:
-// rotations by slerp, root positions linearly, then moved so the segment starts at `origin`.
-struct Segment {
-  std::vector<Eigen::Quaterniond> rotations;  // frame-major
-  std::vector<Eigen::Vector3d> root_positions;
-};
-
-template <typename TimeMap>
-Segment WarpSegment(const Take& source, size_t start, size_t frames, size_t out_frames,
-                    TimeMap source_time) {
-  const size_t joints = source.joint_count();
-  Segment segment;
-  for (size_t out = 0; out < out_frames; ++out) {
-    const double time = std::clamp(source_time(out), 0.0, static_cast<double>(frames - 1)) +
-                        static_cast<double>(start);
-    const size_t lo = std::min(static_cast<size_t>(time), source.frame_count() - 2);
-    const double weight = time - static_cast<double>(lo);
-    for (size_t joint = 0; joint < joints; ++joint) {
-      const Eigen::Quaterniond a = source.rotation(lo, joint);
-      const Eigen::Quaterniond b = AlignSign(source.rotation(lo + 1, joint), a);
-      segment.rotations.push_back(a.slerp(weight, b).normalized());
-    }
-    segment.root_positions.push_back((1 - weight) * source.root_positions[lo] +
-                                     weight * source.root_positions[lo + 1]);
-  }
-  return segment;
-}
-
-// `host` with `segment` inserted before its frame `at`. The segment's root path is moved to start
-// where the host is at `at` (horizontally; heights kept), and the rest of the host to start
-// where the segment ends, so the root does not jump.
-Take InsertSegment(const Take& host, size_t at, const Segment& segment) {
-  Take result = host;
-  const size_t joints = host.joint_count();
-  const size_t inserted = segment.root_positions.size();
-  result.rotations.clear();
-  result.root_positions.clear();
-  result.rotations.insert(result.rotations.end(), host.rotations.begin(),
-                          host.rotations.begin() + static_cast<std::ptrdiff_t>(at * joints));
-  result.root_positions.insert(result.root_positions.end(), host.root_positions.begin(),
-                               host.root_positions.begin() + static_cast<std::ptrdiff_t>(at));
-  Eigen::Vector3d shift = host.root_positions[at] - segment.root_positions.front();
-  shift.y() = 0;
-  result.rotations.insert(result.rotations.end(), segment.rotations.begin(),
-                          segment.rotations.end());
-  for (const Eigen::Vector3d& position : segment.root_positions) {
-    result.root_positions.push_back(position + shift);
-  }
-  Eigen::Vector3d rest_shift = result.root_positions.back() - host.root_positions[at];
-  rest_shift.y() = 0;
-  result.rotations.insert(result.rotations.end(),
-                          host.rotations.begin() + static_cast<std::ptrdiff_t>(at * joints),
-                          host.rotations.end());
-  for (size_t frame = at; frame < host.frame_count(); ++frame) {
-    result.root_positions.push_back(host.root_positions[frame] + rest_shift);
-  }
-  EXPECT_EQ(result.frame_count(), host.frame_count() + inserted);
-  return result;
-}
 
 TEST(PlantedMotifs, RealSegmentInsertedThreeTimesAtDifferentSpeedsIsFoundAsOneMotif) {
   MOTIF_REQUIRE_MOCAP_DATA();
