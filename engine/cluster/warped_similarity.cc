@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "common/seconds_since.h"
+#include "engine/cluster/instance_rows.h"
 #include "engine/distance/pose_features.h"
 
 namespace motif {
@@ -30,24 +31,21 @@ Result<SampledInstances> SampleInstances(const FrameFileReader& archive,
                          LoadDistanceWeights(archive.skeleton(), ""));
   const uint64_t stride = archive.layout().stride();
   std::vector<uint64_t> first = {0};
-  std::vector<float> sampled;
-  std::vector<float> rows;
   for (const MotifInstance& instance : instances) {
-    if (instance.end > archive.frame_count() || instance.end <= instance.start) {
-      return Status::InvalidArgument(
-          "warped similarity: instance [" + std::to_string(instance.start) + ", " +
-          std::to_string(instance.end) + ") is not a frame range of the archive");
-    }
-    MOTIF_RETURN_IF_ERROR(archive.ReadFrames(instance.start, instance.length(), &rows));
-    const uint64_t count = std::min<uint64_t>(samples, instance.length());
+    first.push_back(first.back() + std::min<uint64_t>(samples, instance.length()));
+  }
+  std::vector<float> sampled(first.back() * stride);
+  MOTIF_RETURN_IF_ERROR(ForEachInstanceRows(archive, instances, [&](size_t idx, const float* rows) {
+    const uint64_t length = instances[idx].length();
+    const uint64_t count = first[idx + 1] - first[idx];
     for (uint64_t sample = 0; sample < count; ++sample) {
       // Evenly spaced, first and last frame included.
-      const uint64_t frame = count == 1 ? 0 : sample * (instance.length() - 1) / (count - 1);
-      sampled.insert(sampled.end(), rows.begin() + static_cast<std::ptrdiff_t>(frame * stride),
-                     rows.begin() + static_cast<std::ptrdiff_t>((frame + 1) * stride));
+      const uint64_t frame = count == 1 ? 0 : sample * (length - 1) / (count - 1);
+      std::copy(rows + frame * stride, rows + (frame + 1) * stride,
+                sampled.begin() + static_cast<std::ptrdiff_t>((first[idx] + sample) * stride));
     }
-    first.push_back(first.back() + count);
-  }
+    return Status::Ok();
+  }));
   PoseFeatures features = PoseFeatures::FromRows(sampled.data(), first.back(),
                                                  archive.layout().joint_count, weights, {0});
   return SampledInstances{std::move(features), std::move(first)};

@@ -3,6 +3,7 @@
 // with planted motifs (known occurrences).
 #include "engine/cluster/warped_similarity.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/cluster/instance_rows.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
@@ -195,6 +197,46 @@ TEST(WarpedSimilarityTest, DisabledKeepsTheWeightsAndBadInputIsRefused) {
   EXPECT_TRUE(ReweightByWarpedDistance(*archive.reader, outside, graph, kEps, {})
                   .status()
                   .IsInvalidArgument());
+}
+
+// The reader warped similarity and held poses share: every instance's rows, each block decoded once
+// per span, the same as reading the instance alone.
+TEST(InstanceRowsTest, EveryInstanceGetsItsOwnRowsWhateverTheOrderAndOverlap) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  const uint64_t frames = archive.reader->frame_count();
+  // Out of order, overlapping, one far away (a span of its own), one at the very end.
+  const std::vector<MotifInstance> instances = {
+      {5000, 5100}, {100, 400}, {300, 350}, {100, 400}, {frames - 70, frames}, {2500, 2600}};
+  const uint64_t stride = archive.reader->layout().stride();
+  std::vector<int> visits(instances.size(), 0);
+  std::vector<size_t> order;
+  const Status status =
+      ForEachInstanceRows(*archive.reader, instances, [&](size_t idx, const float* rows) {
+        std::vector<float> alone;
+        EXPECT_TRUE(
+            archive.reader->ReadFrames(instances[idx].start, instances[idx].length(), &alone).ok());
+        EXPECT_TRUE(std::equal(alone.begin(), alone.end(), rows)) << "instance " << idx;
+        EXPECT_EQ(alone.size(), instances[idx].length() * stride);
+        ++visits[idx];
+        order.push_back(idx);
+        return Status::Ok();
+      });
+  ASSERT_TRUE(status.ok()) << status.ToString();
+  EXPECT_EQ(visits, std::vector<int>(instances.size(), 1));
+  EXPECT_EQ(order, (std::vector<size_t>{1, 3, 2, 5, 0, 4}));  // by start, ties by index
+
+  EXPECT_TRUE(
+      ForEachInstanceRows(*archive.reader, {{frames - 10, frames + 1}}, [](size_t, const float*) {
+        return Status::Ok();
+      }).IsInvalidArgument());
+  EXPECT_TRUE(ForEachInstanceRows(*archive.reader, {{10, 10}}, [](size_t, const float*) {
+                return Status::Ok();
+              }).IsInvalidArgument());
+  // An error of the visitor stops the walk and comes back.
+  EXPECT_TRUE(ForEachInstanceRows(*archive.reader, instances, [](size_t, const float*) {
+                return Status::Corruption("stop");
+              }).IsCorruption());
 }
 
 }  // namespace
