@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "engine/cluster/warped_similarity.h"
 #include "engine/distance/pose_features.h"
 #include "formats/frame_file/frame_file_reader.h"
 
@@ -24,28 +24,6 @@ struct Range {
   uint64_t start = 0;
   uint64_t end = 0;
 };
-
-// Mean pose distance along the cheapest warping path (steps (1,0), (0,1), (1,1)).
-double MeanDtw(const motif::PoseFeatures& features, const Range& a, const Range& b) {
-  const uint64_t n = a.end - a.start;
-  const uint64_t m = b.end - b.start;
-  const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> cost((n + 1) * (m + 1), inf);
-  std::vector<uint32_t> steps((n + 1) * (m + 1), 0);
-  auto at = [&](uint64_t i, uint64_t j) { return i * (m + 1) + j; };
-  cost[at(0, 0)] = 0;
-  for (uint64_t i = 1; i <= n; ++i) {
-    for (uint64_t j = 1; j <= m; ++j) {
-      const double d = motif::PoseDistance(features, a.start + i - 1, b.start + j - 1);
-      uint64_t best = at(i - 1, j - 1);
-      if (cost[at(i - 1, j)] < cost[best]) best = at(i - 1, j);
-      if (cost[at(i, j - 1)] < cost[best]) best = at(i, j - 1);
-      cost[at(i, j)] = cost[best] + d;
-      steps[at(i, j)] = steps[best] + 1;
-    }
-  }
-  return cost[at(n, m)] / steps[at(n, m)];
-}
 
 }  // namespace
 
@@ -87,7 +65,8 @@ int main(int argc, char** argv) {
   for (const Range& a : ranges) {
     std::printf("%-28s [%5llu,%5llu)", a.label.c_str(), static_cast<unsigned long long>(a.start),
                 static_cast<unsigned long long>(a.end));
-    for (const Range& b : ranges) std::printf(" %5.3f", MeanDtw(*features, a, b));
+    for (const Range& b : ranges)
+      std::printf(" %5.3f", motif::MeanWarpedDistance(*features, a.start, a.end, b.start, b.end));
     std::printf("\n");
   }
   return 0;

@@ -51,29 +51,6 @@ Result<SampledInstances> SampleInstances(const FrameFileReader& archive,
   return SampledInstances{std::move(features), std::move(first)};
 }
 
-// Mean pose distance along the cheapest warping path between sample ranges [a0, a1) and
-// [b0, b1) (steps (1,0), (0,1), (1,1); ties keep the shorter path).
-double MeanWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1, uint64_t b0,
-                          uint64_t b1) {
-  const uint64_t n = a1 - a0;
-  const uint64_t m = b1 - b0;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  std::vector<double> cost((n + 1) * (m + 1), kInf);
-  std::vector<uint32_t> steps((n + 1) * (m + 1), 0);
-  auto at = [m](uint64_t i, uint64_t j) { return i * (m + 1) + j; };
-  cost[at(0, 0)] = 0;
-  for (uint64_t i = 1; i <= n; ++i) {
-    for (uint64_t j = 1; j <= m; ++j) {
-      uint64_t best = at(i - 1, j - 1);
-      if (cost[at(i - 1, j)] < cost[best]) best = at(i - 1, j);
-      if (cost[at(i, j - 1)] < cost[best]) best = at(i, j - 1);
-      cost[at(i, j)] = cost[best] + PoseDistance(features, a0 + i - 1, b0 + j - 1);
-      steps[at(i, j)] = steps[best] + 1;
-    }
-  }
-  return cost[at(n, m)] / steps[at(n, m)];
-}
-
 // d(a, b) of every edge, in parallel.
 std::vector<double> EdgeDistances(const SampledInstances& sampled,
                                   const std::vector<WeightedEdge>& edges, int threads) {
@@ -122,6 +99,27 @@ std::vector<double> LocalScales(const std::vector<MotifInstance>& instances,
 }
 
 }  // namespace
+
+double MeanWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1, uint64_t b0,
+                          uint64_t b1) {
+  const uint64_t n = a1 - a0;
+  const uint64_t m = b1 - b0;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> cost((n + 1) * (m + 1), kInf);
+  std::vector<uint32_t> steps((n + 1) * (m + 1), 0);
+  auto at = [m](uint64_t i, uint64_t j) { return i * (m + 1) + j; };
+  cost[at(0, 0)] = 0;
+  for (uint64_t i = 1; i <= n; ++i) {
+    for (uint64_t j = 1; j <= m; ++j) {
+      uint64_t best = at(i - 1, j - 1);
+      if (cost[at(i - 1, j)] < cost[best]) best = at(i - 1, j);
+      if (cost[at(i, j - 1)] < cost[best]) best = at(i, j - 1);
+      cost[at(i, j)] = cost[best] + PoseDistance(features, a0 + i - 1, b0 + j - 1);
+      steps[at(i, j)] = steps[best] + 1;
+    }
+  }
+  return cost[at(n, m)] / steps[at(n, m)];
+}
 
 Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
                                                  const std::vector<MotifInstance>& instances,

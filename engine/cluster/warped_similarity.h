@@ -25,6 +25,7 @@
 #include "common/status.h"
 #include "engine/cluster/motif_instance.h"
 #include "engine/cluster/similarity_graph.h"
+#include "engine/distance/pose_features.h"
 #include "formats/frame_file/frame_file_reader.h"
 
 namespace motif {
@@ -46,6 +47,12 @@ struct WarpedSimilarityStats {
   double mean_distance = 0;  // d over the edges
   double seconds = 0;
 };
+
+// d: the mean pose distance along the cheapest warping path between frames [a0, a1) and
+// [b0, b1) of `features` (steps (1,0), (0,1), (1,1); ties keep the shorter path). Both ranges
+// non-empty. O((a1 - a0)(b1 - b0)) time and memory.
+double MeanWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1, uint64_t b0,
+                          uint64_t b1);
 
 // `graph`'s nodes are `instances` (global frame ranges of `archive`); distances with the
 // skeleton's default joint weights. InvalidArgument for an instance outside the archive or
