@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # Installs the Debian packages motifmine builds on, if any is missing. Safe to run repeatedly.
-# Why each: Boost (iostreams, interprocess mmap, program_options for the CLI), Eigen (pose math),
-# oneTBB (parallel import and LSH shards), zstd (block compression), xxHash (XXH3 block
-# checksums), nlohmann-json (motifs.json, truth files, --json output), Spectra (header-only
-# sparse Lanczos eigensolver: normalized cut on large instance graphs, engine/cluster/), Google
-# Benchmark and GoogleTest/GoogleMock (bench/ and tests/), chromium (headless: the test that
-# opens report.html in a browser, tests/engine/cli/report_browser_test.cc, checks that its script
-# runs without errors and draws every figure, and saves a screenshot; it skips without it).
+# Why each: ninja-build (the build scripts' generator when present: it builds the same tree
+# faster than Make, docs/reliability.md), Boost (iostreams, interprocess mmap, program_options
+# for the CLI), Eigen (pose math), oneTBB (parallel import and LSH shards), zstd (block
+# compression), xxHash (XXH3 block checksums), nlohmann-json (motifs.json, truth files, --json
+# output), Spectra (header-only sparse Lanczos eigensolver: normalized cut on large instance
+# graphs, engine/cluster/), Google Benchmark and GoogleTest/GoogleMock (bench/ and tests/),
+# chromium (headless: the test that opens report.html in a browser,
+# tests/engine/cli/report_browser_test.cc, checks that its script runs without errors and draws
+# every figure, and saves a screenshot; it skips without it).
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libboost-dev libboost-iostreams-dev libboost-program-options-dev
   libeigen3-dev libtbb-dev libzstd-dev libxxhash-dev nlohmann-json3-dev
   libspectra-dev

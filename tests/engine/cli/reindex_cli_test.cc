@@ -12,6 +12,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -44,17 +45,22 @@ using testing::RunTool;
 // Two batches of BVH takes with 3 planted motifs, made once for all tests.
 class ReindexCliTest : public ::testing::Test {
  protected:
+  // How the takes are made; part of the shared inputs' key, so that new options make new takes.
+  static constexpr const char* kSynthOptions =
+      "--frames 12000 --motifs 3 --seed 4 --motif-seconds-max 2.5 --clip-seconds-min 5 "
+      "--clip-seconds-max 12";
+
   static void SetUpTestSuite() {
-    takes_ = testing::SharedInputs("reindex-cli-takes-" + testing::ExecutableStamp(MOTIF_TOOL),
+    const size_t options_hash = std::hash<std::string>{}(kSynthOptions);
+    takes_ = testing::SharedInputs("reindex-cli-takes-" + std::to_string(options_hash) + "-" +
+                                       testing::ExecutableStamp(MOTIF_TOOL),
                                    MakeTakes);
   }
 
   // The takes of both nights, as BVH files in batch1/ and batch2/, and the archive they came from.
   static bool MakeTakes(const std::string& dir) {
     const std::string synth = dir + "/synth.mfs";
-    RunResult made = RunTool("synth " + synth +
-                             " --frames 24000 --motifs 3 --seed 4 --clip-seconds-min 10 "
-                             "--clip-seconds-max 25 --quiet");
+    RunResult made = RunTool("synth " + synth + " " + kSynthOptions + " --quiet");
     EXPECT_EQ(made.exit_code, 0) << made.output;
     auto reader = FrameFileReader::Open(synth);
     EXPECT_TRUE(reader.ok());
@@ -180,12 +186,10 @@ TEST_F(ReindexCliTest, ExactIncrementalResultIsTheFromScratchMineByteForByte) {
 }
 
 // A night's takes are a small share of a grown archive: here every take but one is mined
-// first, then the first 240 frames of the remaining one (1 % of the frames) arrive. The LSH
+// first, then the first 240 frames of the remaining one (2 % of the frames) arrive. The LSH
 // columns are approximate either way; what differs is which new frames each old column gets:
 // the from-scratch build finds them with the old column's own query, the update with the new
-// frames' queries (docs/reliability.md, "Agreement"). Measured on this archive with the whole
-// last take (5 % of the frames): 0.981 shared, recall against the exact trellis 0.902 for the
-// update and 0.890 from scratch.
+// frames' queries (docs/reliability.md, "Agreement").
 TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSameMotifs) {
   std::vector<fs::path> takes;
   for (const char* batch : {"batch1", "batch2"}) {
@@ -260,8 +264,10 @@ TEST_F(ReindexCliTest, LshIncrementalResultSharesAlmostAllEntriesAndFindsTheSame
   // The same planted motifs recovered, with the same quality.
   const PlantedMotifScore ours = Score(out_ + "/motifs.json");
   const PlantedMotifScore theirs = Score(scratch + "/motifs.json");
+  std::printf("planted recall %.3f incremental, %.3f from scratch\n", ours.recall, theirs.recall);
   EXPECT_EQ(ours.planted_hit, theirs.planted_hit);
-  EXPECT_GE(ours.recall, 0.9);
+  EXPECT_GE(ours.recall, theirs.recall - 0.05);
+  EXPECT_GE(ours.recall, 0.8);
   EXPECT_GE(ours.adjusted_rand_index, theirs.adjusted_rand_index - 0.05);
 }
 

@@ -240,15 +240,19 @@ TEST_F(LshSearchTest, KeepsAtMostKMaxNearest) {
   }
 }
 
-TEST_F(LshSearchTest, SameColumnsForOneAndTwoThreads) {
+// On an archive of its own, a third the size of the suite's, because ThreadSanitizer runs this
+// test (docs/reliability.md, "Build and test time"): 2 shards of 5,000 frames against 1.
+TEST(LshSearchThreads, SameColumnsForOneAndTwoThreads) {
+  const PoseFeatures features = testing::SyntheticFeatures(10000, 7);
+  const NeighbourRules rules = testing::RulesWithEstimatedEps(features);
   LshOptions one;
   one.threads = 1;
   one.shard_frames = 5000;
   LshOptions two = one;
   two.threads = 2;
   two.shard_frames = 1 << 16;
-  auto serial = CreateSearch(*features_, *rules_, one);
-  auto parallel = CreateSearch(*features_, *rules_, two);
+  auto serial = CreateSearch(features, rules, one);
+  auto parallel = CreateSearch(features, rules, two);
   ASSERT_NE(serial, nullptr);
   ASSERT_NE(parallel, nullptr);
   EXPECT_EQ(serial->options().bucket_width, parallel->options().bucket_width);
@@ -269,7 +273,7 @@ TEST_F(LshSearchTest, SameColumnsForOneAndTwoThreads) {
   // Another seed draws other functions.
   LshOptions reseeded = two;
   reseeded.seed = 12345;
-  auto other = CreateSearch(*features_, *rules_, reseeded);
+  auto other = CreateSearch(features, rules, reseeded);
   ASSERT_NE(other, nullptr);
   EXPECT_NE(other->index().table(0).keys, parallel->index().table(0).keys);
   EXPECT_NE(serial->DescribeParams(), other->DescribeParams());

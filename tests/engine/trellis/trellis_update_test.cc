@@ -117,7 +117,7 @@ float EstimateEps(const PoseFeatures& features) {
 
 class TrellisUpdateTest : public ::testing::Test {
  protected:
-  void SetUp() override { full_ = testing::SynthArchive(14000, /*seed=*/5); }
+  void SetUp() override { full_ = testing::SynthArchive(7000, /*seed=*/5); }
 
   // Builds the exact trellis of `old_rows` at old.mtr, updates it to `new_rows` and compares
   // the result with the full build over `new_rows`.

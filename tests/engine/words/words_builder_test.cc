@@ -14,7 +14,7 @@ namespace {
 class WordsBuilderTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const SynthClips synth = MakeSynthClips(20000, 17);
+    const SynthClips synth = MakeSynthClips(12000, 17);
     archive_ = dir_.File("a.mfs");
     WriteClips(archive_, synth.skeleton, synth.clips, 120.0);
   }
