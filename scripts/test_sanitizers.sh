@@ -45,6 +45,7 @@ asan_skip=(
   'RealData\.'                                      # (the parsers' tests; every real take)
   'EpsilonEstimator\.ReproducesTheMeasuredFiguresOnTheRealTakes'
   'DtwNeighbours\.DefaultSearchFindsMostTrueNeighbours'  # (DtwNeighbours.* on fewer words)
+  'EmbeddingTrainer\.TrainingLowersTheLoss'        # (EmbeddingTrainer.*, which train too)
   'crash_harness'                                   # (a Python harness around the tool)
 )
 # The tests ThreadSanitizer runs: the parallel parts, by test name, and the test executables

@@ -36,7 +36,7 @@ bool StageReused(const std::string& output, const std::string& stage) {
 TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   testing::TempDir dir;
   const std::string out = dir.File("out");
-  const std::string small = "--synth-frames 24000 --synth-motifs 3 --seed 4 --kmax 64 ";
+  const std::string small = "--synth-frames 14000 --synth-motifs 3 --seed 4 --kmax 64 ";
   RunResult first = RunTool("mine --out " + out + " " + small + "--progress json");
   ASSERT_EQ(first.exit_code, 0) << first.output;
   for (const char* name : {"archive.mfs", "archive.truth.json", "trellis.mtr", "paths.mpa",
@@ -55,7 +55,7 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   EXPECT_NE(first.output.find("peak resident"), std::string::npos);
   auto document = ReadMotifsJson(out + "/motifs.json");
   ASSERT_TRUE(document.ok()) << document.status().ToString();
-  EXPECT_EQ(document->frames, 24000u);
+  EXPECT_EQ(document->frames, 14000u);
   EXPECT_EQ(document->params.kmax, 64u);
   EXPECT_FALSE(document->motifs.empty());
 

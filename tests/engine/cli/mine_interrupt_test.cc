@@ -41,7 +41,7 @@ namespace {
 // Small enough for the whole test to take well under a minute, big enough that the exact
 // trellis has several column blocks (4096 columns each) to interrupt between.
 const std::vector<std::string> kMineArgs = {"mine",  "--out",          "out", "--synth-frames",
-                                            "16000", "--synth-motifs", "2",   "--seed",
+                                            "10000", "--synth-motifs", "2",   "--seed",
                                             "4",     "--kmax",         "64"};
 
 struct ChildRun {

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -31,13 +32,13 @@ namespace fs = std::filesystem;
 // Takes with two planted motifs as BVH files: batch1/ (the first two thirds) and batch2/.
 void MakeTakes(const std::string& dir) {
   SynthOptions options;
-  options.frames = 4800;
+  options.frames = 3600;
   options.motifs = 2;
   options.instances_min = 2;
   options.instances_max = 3;
   options.motif_seconds_max = 1.5;
-  options.clip_seconds_min = 8;
-  options.clip_seconds_max = 14;
+  options.clip_seconds_min = 6;
+  options.clip_seconds_max = 10;
   options.seed = 6;
   auto synthesizer = MotionSynthesizer::Create(options);
   ASSERT_TRUE(synthesizer.ok()) << synthesizer.status().ToString();
@@ -203,7 +204,9 @@ TEST_F(ReindexFailureTest, AFullFileSystemGivesAClearErrorAndLeavesTheVersionInt
   ASSERT_TRUE(Reindex(Options(root)).ok());
   Arrive(root, "batch2");
   // Little room: the archive append fails. Some room: the append fits, the trellis does not.
-  for (uint64_t room : {uint64_t{16} << 10, uint64_t{1} << 20}) {
+  const std::pair<uint64_t, const char*> cases[] = {{uint64_t{16} << 10, "archive.mfs"},
+                                                    {uint64_t{256} << 10, "trellis.mtr"}};
+  for (const auto& [room, failing_file] : cases) {
     SCOPED_TRACE("room " + std::to_string(room));
     ASSERT_TRUE(tmpfs.LeaveRoom(room));
     auto failed = Reindex(Options(root));
@@ -214,6 +217,8 @@ TEST_F(ReindexFailureTest, AFullFileSystemGivesAClearErrorAndLeavesTheVersionInt
         << failed.status().ToString();
     std::printf("room %llu bytes: %s\n", (unsigned long long)room,
                 failed.status().ToString().c_str());
+    EXPECT_NE(failed.status().message().find(failing_file), std::string::npos)
+        << "expected the write of " << failing_file << " to fail";
     ExpectIntact(root, 1);
   }
   ASSERT_TRUE(tmpfs.LeaveRoom(uint64_t{64} << 20));

@@ -18,7 +18,7 @@ struct CopyArchive {
 
 CopyArchive MakeCopyArchive(const TempDir& dir, const std::string& name, uint64_t at) {
   SynthOptions options;
-  options.frames = 30000;
+  options.frames = 15000;
   options.seed = 23;
   options.motifs = 0;
   options.clip_seconds_min = 25;
