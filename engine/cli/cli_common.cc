@@ -8,6 +8,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "engine/cli/numeric_options.h"
+
 namespace motif::cli {
 
 namespace po = boost::program_options;
@@ -57,12 +59,16 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
     std::fprintf(out, "%s", text.str().c_str());
   };
   try {
-    po::store(po::command_line_parser(args).options(all).positional(positional).run(), *vm);
+    const po::parsed_options parsed =
+        po::command_line_parser(args).options(all).positional(positional).run();
+    po::store(parsed, *vm);
     if (vm->count("help")) {
       print_help(stdout);
       return kExitOk;
     }
     po::notify(*vm);
+    const Status numbers = CheckNumericOptions(parsed, *vm);
+    if (!numbers.ok()) throw po::error(numbers.message());
   } catch (const po::error& error) {
     std::fprintf(stderr, "motifmine %s: %s\nusage: %s\n(see motifmine %s --help)\n",
                  spec.name.c_str(), error.what(), spec.usage.c_str(), spec.name.c_str());

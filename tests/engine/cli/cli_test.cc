@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -31,6 +33,44 @@ TEST(MotifmineTool, HelpForEveryCommand) {
   EXPECT_EQ(RunTool("frobnicate").exit_code, 2);
   EXPECT_EQ(RunTool("info").exit_code, 2);  // missing ARCHIVE
   EXPECT_EQ(RunTool("synth x.mfs --frames").exit_code, 2);
+}
+
+// A negative count, a negative thread count, a number that is not finite or an impossible
+// frame rate is a usage error naming the flag and the value, before anything is read or
+// written; boost's parser alone turned --kmax=-1 into 4294967295 and --fps 5e7 into an
+// allocation that failed.
+TEST(MotifmineTool, NumbersOutOfRangeAreUsageErrorsNamingTheFlag) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  const std::string out = dir.File("out");
+  const std::string mine = "mine " + archive + " --out " + out + " --quiet --no-report ";
+  const std::pair<std::string, std::string> cases[] = {
+      {mine + "--kmax=-1", "--kmax must be a whole number >= 0, not '-1'"},
+      {mine + "--kmax -1", "--kmax must be a whole number >= 0, not '-1'"},
+      {mine + "--exclusion=-5", "--exclusion must be a whole number >= 0, not '-5'"},
+      {mine + "--threads -1", "--threads must be >= 0 (0: all cores), not '-1'"},
+      {mine + "--eps nan", "--eps must be a finite number, not 'nan'"},
+      {mine + "--eps inf", "--eps must be a finite number, not 'inf'"},
+      {"export " + archive + " --clip c --start=-1 --out " + dir.File("x.bvh"),
+       "--start must be a whole number >= 0, not '-1'"},
+      {"import " + archive + " " + dir.path() + " --fps 5e7",
+       "--fps must be between 1 and 10000 frames a second, not '5e7'"},
+      {"import " + archive + " " + dir.path() + " --fps nan",
+       "--fps must be a finite number, not 'nan'"},
+      {"import " + archive + " " + dir.path() + " --bvh-fps 1e-9",
+       "--bvh-fps must be between 1 and 10000 frames a second, not '1e-9'"},
+      {"synth " + archive + " --frames=-3000", "--frames must be a whole number >= 0, not '-3000'"},
+  };
+  for (const auto& [args, message] : cases) {
+    const RunResult result = RunTool(args);
+    EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;
+    EXPECT_NE(result.output.find(message), std::string::npos) << args << "\n" << result.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(archive)) << "nothing is written";
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // 0 still means "not given" for the rates, and in-range values still parse.
+  EXPECT_EQ(RunTool("synth " + archive + " --frames 2000 --motifs 0 --fps 60 --quiet").exit_code,
+            0);
 }
 
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
