@@ -1,31 +1,55 @@
 #include "common/file_util.h"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 
 #include <atomic>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <system_error>
 
 namespace motif {
 
 Result<std::string> ReadFileToString(const std::string& path) {
-  std::error_code error;
-  if (!std::filesystem::exists(path, error)) return Status::NotFound(path + ": no such file");
-  if (std::filesystem::is_directory(path, error)) {
-    return Status::InvalidArgument(path + ": is a directory, not a file");
+  // Opened without blocking and checked on the open descriptor: a FIFO named as a file would
+  // block the open until a writer came, and a device (/dev/zero) would be read without end.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) return Status::NotFound(path + ": no such file");
+    return Status::IOError(path + ": cannot open for reading: " + std::strerror(errno));
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::IOError(path + ": cannot open for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) return Status::IOError(path + ": read failed");
-  return buffer.str();
+  std::string bytes;
+  Status status = [&]() -> Status {
+    struct stat info {};
+    if (::fstat(fd, &info) != 0) {
+      return Status::IOError(path + ": cannot stat: " + std::strerror(errno));
+    }
+    if (S_ISDIR(info.st_mode))
+      return Status::InvalidArgument(path + ": is a directory, not a file");
+    if (!S_ISREG(info.st_mode)) {
+      return Status::InvalidArgument(path + ": not a regular file (a FIFO, device or socket)");
+    }
+    bytes.resize(static_cast<size_t>(info.st_size));
+    size_t done = 0;
+    for (;;) {
+      if (done == bytes.size()) bytes.resize(bytes.size() + 65536);  // grew since the stat
+      const ssize_t got = ::read(fd, bytes.data() + done, bytes.size() - done);
+      if (got < 0 && errno == EINTR) continue;
+      if (got < 0) return Status::IOError(path + ": read failed: " + std::strerror(errno));
+      if (got == 0) break;
+      done += static_cast<size_t>(got);
+    }
+    bytes.resize(done);
+    return Status::Ok();
+  }();
+  ::close(fd);
+  if (!status.ok()) return status;
+  return bytes;
 }
 
 Result<std::string> ReadRegularFile(const std::string& path) {

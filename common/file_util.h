@@ -12,7 +12,9 @@
 
 namespace motif {
 
-// Reads the whole file. NotFound if it does not exist, IOError otherwise.
+// Reads the whole file. NotFound if it does not exist; InvalidArgument "<path>: is a directory,
+// not a file" or "<path>: not a regular file (a FIFO, device or socket)" without blocking or
+// reading it; IOError otherwise.
 Result<std::string> ReadFileToString(const std::string& path);
 // The same, for a file that must be a regular file: NotFound "<path>: no such file", IOError
 // "<path>: not a regular file" (a folder, a device), or ReadFileToString's errors.

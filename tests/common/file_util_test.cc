@@ -1,6 +1,9 @@
 #include "common/file_util.h"
 
+#include <sys/stat.h>
+
 #include <filesystem>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -53,6 +56,30 @@ TEST(AtomicWriteFile, FailureAtAnyStepKeepsTheOldContent) {
 TEST(ReadFileToString, MissingFileIsNotFound) {
   testing::TempDir dir;
   EXPECT_TRUE(ReadFileToString(dir.File("absent")).status().IsNotFound());
+}
+
+TEST(ReadFileToString, ReadsAWholeFileAndRefusesFoldersFifosAndDevicesWithoutBlocking) {
+  testing::TempDir dir;
+  const std::string text(200000, 'x');  // more than one read
+  ASSERT_TRUE(AtomicWriteFile(dir.File("big"), text).ok());
+  EXPECT_EQ(ReadFileToString(dir.File("big")).value(), text);
+  ASSERT_TRUE(AtomicWriteFile(dir.File("empty"), "").ok());
+  EXPECT_EQ(ReadFileToString(dir.File("empty")).value(), "");
+
+  auto folder = ReadFileToString(dir.path());
+  ASSERT_FALSE(folder.ok());
+  EXPECT_TRUE(folder.status().IsInvalidArgument()) << folder.status().ToString();
+  // A FIFO with no writer would block a plain open forever; /dev/zero would never end.
+  const std::string fifo = dir.File("take.bvh");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::filesystem::create_symlink("/dev/zero", dir.File("zero.bvh"));
+  for (const std::string& path : {fifo, dir.File("zero.bvh")}) {
+    auto read = ReadFileToString(path);
+    ASSERT_FALSE(read.ok()) << path;
+    EXPECT_TRUE(read.status().IsInvalidArgument()) << read.status().ToString();
+    EXPECT_NE(read.status().message().find(path + ": not a regular file"), std::string::npos)
+        << read.status().ToString();
+  }
 }
 
 }  // namespace

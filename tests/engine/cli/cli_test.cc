@@ -1,5 +1,7 @@
 // End-to-end tests of the motifmine tool: runs the built binary as a user would.
 
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -71,6 +73,28 @@ TEST(MotifmineTool, NumbersOutOfRangeAreUsageErrorsNamingTheFlag) {
   // 0 still means "not given" for the rates, and in-range values still parse.
   EXPECT_EQ(RunTool("synth " + archive + " --frames 2000 --motifs 0 --fps 60 --quiet").exit_code,
             0);
+}
+
+// A FIFO or a device named as a take is refused at once (exit 13, the file named): a plain open
+// of a FIFO waits for a writer forever, holding the archive's lock, and /dev/zero never ends.
+TEST(MotifmineTool, AFifoOrADeviceNamedAsATakeIsRefusedAtOnce) {
+  testing::TempDir dir;
+  const std::string fifo = dir.File("fifo.bvh");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string zero = dir.File("zero.bvh");
+  std::filesystem::create_symlink("/dev/zero", zero);
+  const std::string archive = dir.File("a.mfs");
+  for (const std::string& take : {fifo, zero}) {
+    for (const std::string& command : {"import " + archive + " " + take,
+                                       "mine " + take + " --out " + dir.File("out") +
+                                           " --quiet --no-report"}) {
+      const RunResult result = RunTool(command);
+      EXPECT_EQ(result.exit_code, 13) << command << "\n" << result.output;
+      EXPECT_NE(result.output.find(take + ": not a regular file"), std::string::npos)
+          << command << "\n" << result.output;
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists(archive));
 }
 
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
