@@ -222,6 +222,31 @@ Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisO
   return Status::Ok();
 }
 
+void AddPauseOptions(CommandSpec& spec) {
+  namespace po = boost::program_options;
+  spec.options.add_options()(
+      "pause-speed", po::value<double>()->default_value(PauseOptions{}.max_speed),
+      "instances are trimmed to their movement: a pause, at least --pause-seconds in which the "
+      "joints turn slower than this (degrees per second, on average), is never an instance's "
+      "head or tail (0: no trimming)")(
+      "pause-seconds", po::value<double>()->default_value(PauseOptions{}.min_seconds),
+      "the shortest pause, seconds");
+}
+
+Status PauseOptionsFrom(const boost::program_options::variables_map& vm, PauseOptions* options) {
+  options->max_speed = vm["pause-speed"].as<double>();
+  options->min_seconds = vm["pause-seconds"].as<double>();
+  if (!(options->max_speed >= 0) || !std::isfinite(options->max_speed)) {
+    return Status::InvalidArgument("--pause-speed must be >= 0 degrees per second, not " +
+                                   std::to_string(options->max_speed));
+  }
+  if (!(options->min_seconds > 0) || !(options->min_seconds <= 3600)) {
+    return Status::InvalidArgument("--pause-seconds must be in (0, 3600], not " +
+                                   std::to_string(options->min_seconds));
+  }
+  return Status::Ok();
+}
+
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy) {
   if (text == "auto") {
     *policy = FirstFramePolicy::kAuto;

@@ -15,6 +15,7 @@
 
 #include "common/status.h"
 #include "engine/cli/progress_reporter.h"
+#include "engine/cluster/pauses.h"
 #include "engine/trellis/trellis_builder.h"
 #include "formats/import/take_importer.h"
 
@@ -74,6 +75,10 @@ Status ParseSimilarity(const std::string& text, bool* warped);
 // options; InvalidArgument naming the flag for an unknown rule or an angle outside (0, 180].
 void AddEpsilonRuleOptions(CommandSpec& spec);
 Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisOptions* options);
+// --pause-speed DEG_PER_S and --pause-seconds S: the pauses instances are trimmed at
+// (engine/cluster/pauses.h). PauseOptionsFrom reads them back; InvalidArgument naming the flag.
+void AddPauseOptions(CommandSpec& spec);
+Status PauseOptionsFrom(const boost::program_options::variables_map& vm, PauseOptions* options);
 // --first-frame: "auto", "keep" or "drop". InvalidArgument otherwise.
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy);
 

@@ -95,6 +95,7 @@ int RunCluster(const std::vector<std::string>& args) {
       "max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
       "drop an instance from its motif when its length is more than this factor from the "
       "motif's median (a fragment or a run-on; 0 keeps all)");
+  AddPauseOptions(spec);
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -118,6 +119,9 @@ int RunCluster(const std::vector<std::string>& args) {
   }
   options.seed = vm["seed"].as<uint64_t>();
   options.threads = vm["threads"].as<int>();
+  if (Status status = PauseOptionsFrom(vm, &options.pauses); !status.ok()) {
+    return ReportError("cluster", status);
+  }
   options.cut.max_ncut = vm["max-ncut"].as<double>();
   options.similarity.min_similarity = vm["min-similarity"].as<double>();
   options.max_length_ratio = vm["max-length-ratio"].as<double>();
@@ -169,6 +173,11 @@ int RunCluster(const std::vector<std::string>& args) {
   params.min_length = paths->params.min_length;
   params.groups = options.cut.groups;
   params.seed = options.seed;
+  params.similarity = options.warped.enabled ? "warped" : "shared";
+  if (options.archive != nullptr) {  // trimmed only with the archive
+    params.pause_speed = options.pauses.max_speed;
+    params.pause_seconds = options.pauses.min_seconds;
+  }
   Result<MotifsDocument> document =
       MakeMotifsDocument(*result, archive, (*frames)->frame_count(), (*frames)->clips(), params);
   if (!document.ok()) return ReportError("cluster", document.status());
@@ -198,6 +207,11 @@ int RunCluster(const std::vector<std::string>& args) {
       WithCommas(report.clustered_instances).c_str(), WithCommas(report.length_outliers).c_str(),
       WithCommas(instances.instances).c_str(), WithCommas(instances.raw_instances).c_str(),
       WithCommas(instances.kept_paths).c_str(), WithCommas(instances.candidates).c_str());
+  std::printf(
+      "  pauses       %s near the paths: %s segments trimmed to their movement, %s still "
+      "(dropped)\n",
+      WithCommas(report.pauses).c_str(), WithCommas(instances.trimmed_instances).c_str(),
+      WithCommas(instances.still_instances).c_str());
   std::printf("  coverage     %s frames, %s of the archive\n",
               WithCommas(report.covered_frames).c_str(),
               Percent(report.covered_frames, (*frames)->frame_count()).c_str());

@@ -136,6 +136,7 @@ int RunMine(const std::vector<std::string>& args) {
       "skip-bad", "import: report malformed takes and import the others")(
       "no-report", "do not write report.html");
   AddEpsilonRuleOptions(spec);
+  AddPauseOptions(spec);
   AddProgressOptions(spec);
   spec.positional = {{"input", -1}};
   po::variables_map vm;
@@ -184,6 +185,9 @@ int RunMine(const std::vector<std::string>& args) {
   if (Status status =
           ParseSimilarity(vm["similarity"].as<std::string>(), &cluster_options.warped.enabled);
       !status.ok()) {
+    return fail(status);
+  }
+  if (Status status = PauseOptionsFrom(vm, &cluster_options.pauses); !status.ok()) {
     return fail(status);
   }
   cluster_options.max_length_ratio = vm["max-length-ratio"].as<double>();

@@ -43,6 +43,10 @@ Status CheckOne(const std::string& flag, const std::string& given, const boost::
   if (is_rate && number != 0 && (number < 1 || number > kMaxFps)) {
     return Bad(flag, given, "between 1 and 10000 frames a second");
   }
+  if (flag == "pause-speed" && number < 0) return Bad(flag, given, ">= 0 (0: no trimming)");
+  if (flag == "pause-seconds" && !(number > 0 && number <= 3600)) {
+    return Bad(flag, given, "in (0, 3600] seconds");
+  }
   return Status::Ok();
 }
 

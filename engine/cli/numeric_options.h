@@ -12,8 +12,8 @@ namespace motif::cli {
 
 // Every option of `parsed` that the user gave: an unsigned option must not be negative, a
 // floating-point one must be finite, --threads must be >= 0 and a frame rate (--fps, --bvh-fps,
-// --amc-fps) 0 where 0 means "not given", else within [1, 10000]. The message names the flag
-// and the value.
+// --amc-fps) 0 where 0 means "not given", else within [1, 10000]; --pause-speed >= 0 and
+// --pause-seconds in (0, 3600]. The message names the flag and the value.
 Status CheckNumericOptions(const boost::program_options::parsed_options& parsed,
                            const boost::program_options::variables_map& vm);
 

@@ -11,7 +11,7 @@
 namespace motif {
 namespace {
 
-constexpr int kClusterRulesVersion = 3;
+constexpr int kClusterRulesVersion = 4;
 
 // What determines a clustering: the paths (through the trellis identity, itself tied to its
 // archive, and the grow parameters) and every option that changes the result.
@@ -28,7 +28,9 @@ std::string ClusterKey(const ClusterStageInput& input, const ClusterOptions& opt
       << " warped=" << options.warped.enabled << " warped_neighbours=" << options.warped.neighbours
       << " warped_samples=" << options.warped.samples
       << " warped_fallback=" << options.warped.fallback_scale
-      << " warped_floor=" << options.warped.floor_scale;
+      << " warped_floor=" << options.warped.floor_scale
+      << " pause_speed=" << options.pauses.max_speed
+      << " pause_seconds=" << options.pauses.min_seconds;
   return key.str();
 }
 
@@ -80,6 +82,11 @@ Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
   params.min_length = input.paths_params.min_length;
   params.groups = options.cut.groups;
   params.seed = options.seed;
+  params.similarity = options.warped.enabled ? "warped" : "shared";
+  if (with_length.archive != nullptr) {  // trimmed only with the archive
+    params.pause_speed = options.pauses.max_speed;
+    params.pause_seconds = options.pauses.min_seconds;
+  }
   MOTIF_ASSIGN_OR_RETURN(result.document,
                          MakeMotifsDocument(clustered, input.archive_path, archive.frame_count(),
                                             archive.clips(), params));

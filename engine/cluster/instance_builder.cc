@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <tuple>
 
 namespace motif {
@@ -45,7 +46,59 @@ bool IsLongerPath(const PathCandidate& a, const PathCandidate& b) {
                                                         a.match_end);
 }
 
+// Trims the raw instances to their movement (MovingSpan) and carries the links: an instance
+// with no movement left is dropped with its links (BuildInstances, step 2).
+void TrimToMovement(const std::vector<MotifInstance>& pauses, uint64_t min_length,
+                    std::vector<MotifInstance>* raw, std::vector<std::pair<size_t, size_t>>* links,
+                    uint64_t* trimmed, uint64_t* still) {
+  constexpr size_t kDropped = static_cast<size_t>(-1);
+  std::vector<size_t> new_index(raw->size(), kDropped);
+  std::vector<MotifInstance> kept;
+  for (size_t idx = 0; idx < raw->size(); ++idx) {
+    const std::optional<MotifInstance> span = MovingSpan((*raw)[idx], pauses, min_length);
+    if (!span) {
+      ++*still;
+      continue;
+    }
+    if (*span != (*raw)[idx]) ++*trimmed;
+    new_index[idx] = kept.size();
+    kept.push_back(*span);
+  }
+  std::vector<std::pair<size_t, size_t>> kept_links;
+  for (const auto& [a, b] : *links) {
+    if (new_index[a] != kDropped && new_index[b] != kDropped) {
+      kept_links.emplace_back(new_index[a], new_index[b]);
+    }
+  }
+  *raw = std::move(kept);
+  *links = std::move(kept_links);
+}
+
 }  // namespace
+
+std::optional<MotifInstance> MovingSpan(const MotifInstance& range,
+                                        const std::vector<MotifInstance>& pauses,
+                                        uint64_t min_length) {
+  auto pause =
+      std::lower_bound(pauses.begin(), pauses.end(), range.start,
+                       [](const MotifInstance& p, uint64_t frame) { return p.end <= frame; });
+  if (pause == pauses.end() || pause->start >= range.end) return range;
+  // The moving stretches between the pauses, the first and last of at least min_length kept.
+  const uint64_t least = std::max<uint64_t>(min_length, 1);
+  std::optional<MotifInstance> span;
+  uint64_t from = range.start;
+  auto moving = [&](uint64_t end) {
+    if (end <= from || end - from < least) return;
+    if (!span) span = MotifInstance{from, end};
+    span->end = end;
+  };
+  for (; pause != pauses.end() && pause->start < range.end; ++pause) {
+    moving(std::max(from, pause->start));
+    from = std::max(from, pause->end);
+  }
+  moving(range.end);
+  return span;
+}
 
 std::vector<PathCandidate> KeepLongestPathPerRoot(std::vector<PathCandidate> candidates) {
   std::sort(candidates.begin(), candidates.end(),
@@ -119,6 +172,10 @@ InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
       if (piece_idx > 0) raw_links.emplace_back(raw.size() - 1, raw.size());
       raw.push_back(pieces[piece_idx]);
     }
+  }
+  if (!options.pauses.empty()) {
+    TrimToMovement(options.pauses, options.min_length, &raw, &raw_links,
+                   &set.stats.trimmed_instances, &set.stats.still_instances);
   }
   set.stats.raw_instances = raw.size();
 

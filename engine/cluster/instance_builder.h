@@ -9,6 +9,9 @@
 //     each at least min_length frames (one period, or the fewest that reach min_length), and
 //     each piece is linked to the next. So a walk gives one instance per gait cycle rather than
 //     one per take, and ten jumps in a row ten instances.
+//     Each raw instance is then trimmed to its movement (options.pauses): its still head and
+//     tail go, and with them a stretch shorter than lambda cut off by a pause (the end of the
+//     movement before). An instance that is all pauses and short stretches is dropped.
 //  3. Instances that overlap by at least 3/4 of the LONGER one (so each covers 3/4 of the
 //     other) are merged: a union-find over an interval sweep (instances by start; each is
 //     compared only with the earlier instances that still reach it), so the cost is
@@ -23,6 +26,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "engine/cluster/motif_instance.h"
@@ -33,16 +37,21 @@ namespace motif {
 struct InstanceOptions {
   double merge_overlap = 0.75;  // merge when the overlap is at least this fraction of the longer
   uint64_t min_length = 0;      // the least piece of a periodic path, frames (the grower's lambda)
+  // Still stretches of the archive (pauses.h), ascending global ranges: each raw instance is
+  // trimmed to its movement (MovingSpan). Empty: nothing is trimmed.
+  std::vector<MotifInstance> pauses;
 };
 
 struct InstanceSetStats {
-  uint64_t candidates = 0;      // paths given
-  uint64_t kept_paths = 0;      // after keeping the longest per root
-  uint64_t raw_instances = 0;   // 2 per kept path
-  uint64_t instances = 0;       // after merging
-  uint64_t links = 0;           // distinct links between merged instances
-  uint64_t self_links = 0;      // kept paths whose two segments merged into one instance
-  uint64_t periodic_paths = 0;  // kept paths cut into periods (their segments overlapped)
+  uint64_t candidates = 0;         // paths given
+  uint64_t kept_paths = 0;         // after keeping the longest per root
+  uint64_t raw_instances = 0;      // 2 per kept path
+  uint64_t instances = 0;          // after merging
+  uint64_t links = 0;              // distinct links between merged instances
+  uint64_t self_links = 0;         // kept paths whose two segments merged into one instance
+  uint64_t periodic_paths = 0;     // kept paths cut into periods (their segments overlapped)
+  uint64_t trimmed_instances = 0;  // raw instances trimmed to their movement
+  uint64_t still_instances = 0;    // raw instances with no movement of min_length, dropped
 };
 
 struct InstanceSet {
@@ -60,6 +69,13 @@ bool OverlapsEnough(const MotifInstance& a, const MotifInstance& b, double fract
 // The pieces of a periodic path (its segments overlap; step 2 above), in order; empty when its
 // segments do not overlap.
 std::vector<MotifInstance> PeriodicPieces(const PathCandidate& path, uint64_t min_length);
+
+// `range` trimmed to its movement: from the start of its first moving stretch (a stretch between
+// `pauses`, ascending and disjoint) of at least min_length frames to the end of its last one;
+// `range` itself when no pause overlaps it, nullopt when no stretch is long enough.
+std::optional<MotifInstance> MovingSpan(const MotifInstance& range,
+                                        const std::vector<MotifInstance>& pauses,
+                                        uint64_t min_length);
 
 // Steps 1 to 4 above. Candidates with an empty segment are skipped (the grower never makes them).
 InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,

@@ -212,7 +212,23 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
   }
   ClusterResult result;
   auto started = std::chrono::steady_clock::now();
-  InstanceSet set = BuildInstances(candidates, options.instances);
+  InstanceOptions instance_options = options.instances;
+  if (options.archive != nullptr) {
+    std::vector<MotifInstance> segments;
+    segments.reserve(2 * candidates.size());
+    for (const PathCandidate& candidate : candidates) {
+      if (candidate.top_end > candidate.top_start) {
+        segments.push_back({candidate.top_start, candidate.top_end});
+      }
+      if (candidate.match_end > candidate.match_start) {
+        segments.push_back({candidate.match_start, candidate.match_end});
+      }
+    }
+    MOTIF_ASSIGN_OR_RETURN(instance_options.pauses,
+                           FindPausesNear(*options.archive, options.pauses, std::move(segments)));
+  }
+  result.report.pauses = instance_options.pauses.size();
+  InstanceSet set = BuildInstances(candidates, instance_options);
   result.report.instance_stats = set.stats;
   result.report.instance_seconds = SecondsSince(started);
 

@@ -27,6 +27,7 @@
 #include "engine/cluster/instance_similarity.h"
 #include "engine/cluster/motif_instance.h"
 #include "engine/cluster/normalized_cut.h"
+#include "engine/cluster/pauses.h"
 #include "engine/cluster/warped_similarity.h"
 #include "engine/grow/path_candidate.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -46,6 +47,9 @@ struct ClusterOptions {
   // (2 dropped a whole planted instance on one archive), while the fragments seen are 4-10x
   // shorter than their motif (60-90 frames against 300-800).
   double max_length_ratio = 3.0;
+  // With the archive set: instances are cut at the archive's pauses (pauses.h); max_speed 0
+  // cuts nothing.
+  PauseOptions pauses;
   uint64_t seed = 1;
   int threads = 0;  // 0: all cores
   // The archive the trellis was built from: when set, instances that are held poses
@@ -81,6 +85,7 @@ struct ClusterReport {
   uint64_t clustered_instances = 0;  // in a kept motif
   uint64_t length_outliers = 0;      // fragments dropped by the split by length
   uint64_t held_poses = 0;           // instances kept out as held poses
+  uint64_t pauses = 0;               // still stretches of the archive (pauses.h)
   WarpedSimilarityStats warped_stats;
   uint64_t covered_frames = 0;  // distinct frames inside some motif instance
   double instance_seconds = 0;

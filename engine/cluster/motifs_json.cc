@@ -122,6 +122,9 @@ std::string MotifsJsonText(const MotifsDocument& document) {
     params["groups"] = document.params.groups;
   }
   params["seed"] = document.params.seed;
+  params["similarity"] = document.params.similarity;
+  params["pause_speed"] = document.params.pause_speed;
+  params["pause_seconds"] = document.params.pause_seconds;
   text += "  \"params\": " + Dump(params) + ",\n";
   Json summary;
   summary["motifs"] = document.motifs.size();
@@ -232,6 +235,14 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
   MOTIF_RETURN_IF_ERROR(Get(params, "branch", params_where, &document.params.branch));
   MOTIF_RETURN_IF_ERROR(Get(params, "min_length", params_where, &document.params.min_length));
   MOTIF_RETURN_IF_ERROR(Get(params, "seed", params_where, &document.params.seed));
+  if (params.contains("similarity")) {
+    MOTIF_RETURN_IF_ERROR(Get(params, "similarity", params_where, &document.params.similarity));
+  }
+  if (params.contains("pause_speed")) {
+    MOTIF_RETURN_IF_ERROR(Get(params, "pause_speed", params_where, &document.params.pause_speed));
+    MOTIF_RETURN_IF_ERROR(
+        Get(params, "pause_seconds", params_where, &document.params.pause_seconds));
+  }
   if (params.contains("groups") && params["groups"].is_string() && params["groups"] == "auto") {
     document.params.groups = 0;
   } else {

@@ -11,6 +11,8 @@
 // (source file stems). Motifs are listed most important first (id = rank); instances by
 // position. "groups" is the number asked for, or "auto". "min_length" is the grower's lambda in
 // frames (as in the paths file; "min_length_seconds" gives it at the archive's rate).
+// "similarity" ("warped" or "shared"), "pause_speed" and "pause_seconds" say how the instances
+// were weighed and trimmed (mine's options of those names); files written before them lack them.
 // Fields beyond the contract: per motif "instance_count", "mean_length" (frames),
 // "mean_seconds", "score" (instance count × mean length, in frames); per instance "frame" (its
 // global first frame) and "length"; at the top "summary" {"motifs", "instances",
@@ -48,6 +50,10 @@ struct MotifsJsonParams {
   uint64_t min_length = 0;  // lambda, frames
   uint32_t groups = 0;      // 0: "auto"
   uint64_t seed = 0;
+  // How the motifs were clustered (optional in files: older ones lack them).
+  std::string similarity = "warped";  // "warped" or "shared"
+  double pause_speed = 0;             // degrees per second; 0: instances not trimmed
+  double pause_seconds = 0;
   bool operator==(const MotifsJsonParams&) const = default;
 };
 

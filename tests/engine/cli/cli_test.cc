@@ -62,6 +62,10 @@ TEST(MotifmineTool, NumbersOutOfRangeAreUsageErrorsNamingTheFlag) {
       {"import " + archive + " " + dir.path() + " --bvh-fps 1e-9",
        "--bvh-fps must be between 1 and 10000 frames a second, not '1e-9'"},
       {"synth " + archive + " --frames=-3000", "--frames must be a whole number >= 0, not '-3000'"},
+      {"mine " + archive + " --out " + dir.File("m") + " --pause-speed=-3",
+       "--pause-speed must be >= 0 (0: no trimming), not '-3'"},
+      {"cluster " + archive + " --out " + dir.File("m") + " --pause-seconds 0",
+       "--pause-seconds must be in (0, 3600] seconds, not '0'"},
   };
   for (const auto& [args, message] : cases) {
     const RunResult result = RunTool(args);
@@ -85,13 +89,14 @@ TEST(MotifmineTool, AFifoOrADeviceNamedAsATakeIsRefusedAtOnce) {
   std::filesystem::create_symlink("/dev/zero", zero);
   const std::string archive = dir.File("a.mfs");
   for (const std::string& take : {fifo, zero}) {
-    for (const std::string& command : {"import " + archive + " " + take,
-                                       "mine " + take + " --out " + dir.File("out") +
-                                           " --quiet --no-report"}) {
+    for (const std::string& command :
+         {"import " + archive + " " + take,
+          "mine " + take + " --out " + dir.File("out") + " --quiet --no-report"}) {
       const RunResult result = RunTool(command);
       EXPECT_EQ(result.exit_code, 13) << command << "\n" << result.output;
       EXPECT_NE(result.output.find(take + ": not a regular file"), std::string::npos)
-          << command << "\n" << result.output;
+          << command << "\n"
+          << result.output;
     }
   }
   EXPECT_FALSE(std::filesystem::exists(archive));

@@ -165,5 +165,47 @@ TEST(BuildInstancesTest, SweepMatchesAllPairsOnRandomPaths) {
   }
 }
 
+TEST(MovingSpanTest, StillHeadsAndTailsGoAndSoDoShortStretchesCutOffByAPause) {
+  const std::vector<MotifInstance> pauses = {{0, 50}, {300, 340}, {400, 420}, {700, 800}};
+  // No pause inside: unchanged.
+  EXPECT_EQ(MovingSpan({100, 290}, pauses, 60), (MotifInstance{100, 290}));
+  EXPECT_EQ(MovingSpan({50, 300}, pauses, 60), (MotifInstance{50, 300}));  // touching only
+  // A still head, a still tail.
+  EXPECT_EQ(MovingSpan({20, 200}, pauses, 60), (MotifInstance{50, 200}));
+  EXPECT_EQ(MovingSpan({200, 330}, pauses, 60), (MotifInstance{200, 300}));
+  // A pause inside stays: only the ends are trimmed.
+  EXPECT_EQ(MovingSpan({100, 720}, pauses, 60), (MotifInstance{100, 700}));
+  // A stretch shorter than lambda before the first pause (the end of the movement before) goes;
+  // [340, 400) is 60 frames, long enough.
+  EXPECT_EQ(MovingSpan({250, 600}, pauses, 60), (MotifInstance{340, 600}));
+  EXPECT_EQ(MovingSpan({250, 600}, pauses, 61), (MotifInstance{420, 600}));
+  // Nothing but pauses and short stretches: no movement.
+  EXPECT_EQ(MovingSpan({290, 425}, pauses, 61), std::nullopt);
+  EXPECT_EQ(MovingSpan({710, 790}, pauses, 1), std::nullopt);
+  // No pauses at all.
+  EXPECT_EQ(MovingSpan({710, 790}, {}, 60), (MotifInstance{710, 790}));
+}
+
+TEST(BuildInstancesTest, InstancesAreTrimmedToTheirMovementAndStillOnesDropWithTheirLinks) {
+  InstanceOptions options;
+  options.min_length = 60;
+  options.pauses = {{180, 260}, {1000, 1200}};
+  InstanceSet set = BuildInstances(
+      {
+          Path(100, 260, 500, 660, 100, 500),        // a still tail: [100, 180) and [500, 660)
+          Path(1000, 1200, 1500, 1700, 1000, 1500),  // all still on top: both dropped
+      },
+      options);
+  ASSERT_EQ(set.instances.size(), 3u);
+  EXPECT_EQ(set.instances[0], (MotifInstance{100, 180}));
+  EXPECT_EQ(set.instances[1], (MotifInstance{500, 660}));
+  EXPECT_EQ(set.instances[2], (MotifInstance{1500, 1700}));  // alone: its link went
+  ASSERT_EQ(set.links.size(), 1u);
+  EXPECT_EQ(set.links[0], (InstanceLink{0, 1}));
+  EXPECT_EQ(set.stats.trimmed_instances, 1u);
+  EXPECT_EQ(set.stats.still_instances, 1u);
+  EXPECT_EQ(set.stats.raw_instances, 3u);
+}
+
 }  // namespace
 }  // namespace motif

@@ -34,7 +34,7 @@ ClusterResult SmallResult() {
   return result;
 }
 
-MotifsJsonParams Params() { return {1.05, 256, 4, 60, 0, 7}; }
+MotifsJsonParams Params() { return {1.05, 256, 4, 60, 0, 7, "warped", 15.0, 0.2}; }
 
 TEST(MotifsJsonTest, DocumentMapsGlobalFramesToClips) {
   auto document = MakeMotifsDocument(SmallResult(), "a.mfs", 1500, TwoClips(), Params());
@@ -74,6 +74,9 @@ TEST(MotifsJsonTest, ExactFieldNamesOfTheContract) {
   EXPECT_EQ(params["min_length"], 60);
   EXPECT_EQ(params["groups"], "auto");
   EXPECT_EQ(params["seed"], 7);
+  EXPECT_EQ(params["similarity"], "warped");
+  EXPECT_EQ(params["pause_speed"], 15.0);
+  EXPECT_EQ(params["pause_seconds"], 0.2);
   const nlohmann::json& motif = json["motifs"][0];
   EXPECT_EQ(motif["id"], 0);
   EXPECT_EQ(motif["instance_count"], 2);
@@ -99,12 +102,22 @@ TEST(MotifsJsonTest, WritesAtomicallyAndReadsBack) {
   ASSERT_TRUE(document.ok());
   for (uint32_t groups : {0u, 5u}) {
     document->params.groups = groups;
+    document->params.similarity = groups == 0 ? "warped" : "shared";
     ASSERT_TRUE(WriteMotifsJson(dir.File("motifs.json"), *document).ok());
     auto read = ReadMotifsJson(dir.File("motifs.json"));
     ASSERT_TRUE(read.ok()) << read.status().ToString();
     EXPECT_EQ(*read, *document);
     EXPECT_EQ(read->covered_frames, 360u);
   }
+  // A file written before the clustering fields: read with their defaults.
+  nlohmann::json older = nlohmann::json::parse(MotifsJsonText(*document));
+  for (const char* field : {"similarity", "pause_speed", "pause_seconds"})
+    older["params"].erase(field);
+  ASSERT_TRUE(AtomicWriteFile(dir.File("older.json"), older.dump()).ok());
+  auto older_read = ReadMotifsJson(dir.File("older.json"));
+  ASSERT_TRUE(older_read.ok()) << older_read.status().ToString();
+  EXPECT_EQ(older_read->params.similarity, "warped");
+  EXPECT_EQ(older_read->params.pause_speed, 0.0);
   // An empty result is a valid file too.
   MotifsDocument empty;
   empty.archive = "e.mfs";
