@@ -6,9 +6,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <mutex>
+#include <set>
 #include <sstream>
 
 #include "engine/cli/numeric_options.h"
+#include "formats/frame_file/frame_file_reader.h"
 
 namespace motif::cli {
 
@@ -38,8 +41,39 @@ ProgressMode ProgressModeFrom(const po::variables_map& vm) {
   return mode;
 }
 
+namespace {
+
+// Every archive this run opens: refused when its newest commit is damaged, unless --allow-older
+// is given; then used at its previous version, with one warning per archive on stderr.
+void InstallOlderVersionPolicy(const std::string& command, bool allow_older) {
+  SetOlderVersionHandler(
+      [command, allow_older](const std::string& path, const FrameFileSummary& opened) -> Status {
+        const std::string previous = "the previous version (generation " +
+                                     std::to_string(opened.generation) + ", " +
+                                     std::to_string(opened.file_bytes) + " bytes)";
+        if (!allow_older) {
+          return Status::Corruption(opened.fallback_reason + "; not reading " + previous +
+                                    " in its place: run `motifmine verify " + path +
+                                    "`, or give --allow-older to work on it");
+        }
+        static std::mutex mutex;
+        static std::set<std::string> warned;
+        std::lock_guard<std::mutex> lock(mutex);
+        if (warned.insert(path).second) {
+          std::fprintf(stderr, "motifmine %s: warning: %s; working on %s, as --allow-older asks\n",
+                       command.c_str(), opened.fallback_reason.c_str(), previous.c_str());
+        }
+        return Status::Ok();
+      });
+}
+
+}  // namespace
+
 int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::variables_map* vm) {
-  spec.options.add_options()("help,h", "show this help");
+  spec.options.add_options()("help,h", "show this help")(
+      "allow-older",
+      "an archive whose newest commit is damaged is read at its previous version, with a "
+      "warning (without it the command refuses, exit 12)");
   po::options_description hidden("hidden");
   po::positional_options_description positional;
   for (const auto& [name, count] : spec.positional) {
@@ -69,6 +103,8 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
     po::notify(*vm);
     const Status numbers = CheckNumericOptions(parsed, *vm);
     if (!numbers.ok()) throw po::error(numbers.message());
+    // verify reads the previous version to report on it: the damage is its finding.
+    if (spec.name != "verify") InstallOlderVersionPolicy(spec.name, vm->count("allow-older") > 0);
   } catch (const po::error& error) {
     std::fprintf(stderr, "motifmine %s: %s\nusage: %s\n(see motifmine %s --help)\n",
                  spec.name.c_str(), error.what(), spec.usage.c_str(), spec.name.c_str());

@@ -1,6 +1,7 @@
 #include "formats/frame_file/frame_file_reader.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include "common/mapped_file.h"
 #include "formats/frame_file/archive_loader.h"
@@ -95,6 +96,21 @@ class FrameFileReader::Impl::Stream final : public FrameStream {
   const float* run_rows_ = nullptr;
 };
 
+namespace {
+
+std::mutex older_version_mutex;
+OlderVersionHandler& OlderVersionHandlerSlot() {
+  static OlderVersionHandler handler;
+  return handler;
+}
+
+}  // namespace
+
+void SetOlderVersionHandler(OlderVersionHandler handler) {
+  std::lock_guard<std::mutex> lock(older_version_mutex);
+  OlderVersionHandlerSlot() = std::move(handler);
+}
+
 Result<std::unique_ptr<FrameFileReader>> FrameFileReader::Open(const std::string& path) {
   auto impl = std::make_unique<Impl>();
   impl->path = path;
@@ -102,7 +118,16 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::Open(const std::string
   impl->data = impl->file->data();
   impl->size = impl->file->size();
   MOTIF_ASSIGN_OR_RETURN(impl->archive, frame_file::LoadArchive(path, impl->data, impl->size));
-  return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
+  std::unique_ptr<FrameFileReader> reader(new FrameFileReader(std::move(impl)));
+  if (!reader->impl_->archive.fallback_reason.empty()) {
+    OlderVersionHandler handler;
+    {
+      std::lock_guard<std::mutex> lock(older_version_mutex);
+      handler = OlderVersionHandlerSlot();
+    }
+    if (handler) MOTIF_RETURN_IF_ERROR(handler(path, reader->summary()));
+  }
+  return reader;
 }
 
 Result<std::unique_ptr<FrameFileReader>> FrameFileReader::OpenCommit(const std::string& path,

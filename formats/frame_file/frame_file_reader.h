@@ -38,11 +38,21 @@ struct FrameFileSummary {
 
 class FrameStream;
 
+// What Open() does when the newest commit does not validate and it opened the previous version
+// (summary().fallback_reason non-empty). Without a handler it returns that version, and the
+// caller checks the summary. A program sets one handler, once, before opening archives; the
+// motifmine tool's refuses with Corruption unless --allow-older is given, and warns on stderr
+// when it is (docs/guide.md, "Damaged archives"). An error the handler returns is Open's result.
+using OlderVersionHandler =
+    std::function<Status(const std::string& path, const FrameFileSummary& opened)>;
+void SetOlderVersionHandler(OlderVersionHandler handler);
+
 class FrameFileReader {
  public:
   // Opens and validates. NotFound: no file. Corruption: bad magic, unknown major version, a
   // checksum mismatch in the header slots, footer or metadata, an index pointing outside the
-  // file. IOError: cannot open or map. Messages name the file and the offset.
+  // file. IOError: cannot open or map. Messages name the file and the offset. When only an older
+  // version validates, the OlderVersionHandler decides (above).
   static Result<std::unique_ptr<FrameFileReader>> Open(const std::string& path);
   // Opens an earlier version of the archive: the one committed as `generation` with
   // `committed_length` bytes (FrameFileSummary::generation and file_bytes when it was

@@ -146,6 +146,43 @@ TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
   EXPECT_EQ(missing.exit_code, 11) << missing.output;
 }
 
+// An archive whose newest commit is damaged (a flipped byte in its footer): no command reads the
+// previous version in its place unless --allow-older is given, and none appends to it.
+TEST(MotifmineTool, ADamagedNewestCommitIsRefusedUnlessAllowOlder) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
+            0);
+  const std::string take = dir.File("t.bvh");
+  ASSERT_EQ(RunTool("export " + archive + " --clip synth_000000 --out " + take).exit_code, 0);
+  ASSERT_EQ(RunTool("import " + archive + " " + take + " --quiet").exit_code, 0);
+  std::string bytes = ReadFileToString(archive).value();
+  bytes[bytes.size() - 20] ^= 0x01;  // inside the newest footer
+  ASSERT_TRUE(AtomicWriteFile(archive, bytes).ok());
+
+  for (const std::string& command :
+       {"info " + archive, "mine " + archive + " --out " + dir.File("m") + " --quiet --no-report",
+        "export " + archive + " --clip synth_000000 --out " + dir.File("x.bvh")}) {
+    const RunResult refused = RunTool(command);
+    EXPECT_EQ(refused.exit_code, 12) << command << "\n" << refused.output;
+    EXPECT_NE(refused.output.find("footer checksum mismatch"), std::string::npos) << refused.output;
+    EXPECT_NE(refused.output.find("--allow-older"), std::string::npos) << refused.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.File("m/motifs.json")));
+  EXPECT_FALSE(std::filesystem::exists(dir.File("x.bvh")));
+
+  const RunResult older = RunTool("info " + archive + " --json --allow-older");
+  ASSERT_EQ(older.exit_code, 0) << older.output;
+  EXPECT_NE(older.output.find("warning: "), std::string::npos) << older.output;
+  EXPECT_NE(older.output.find("generation 1"), std::string::npos) << older.output;
+  EXPECT_EQ(RunTool("verify " + archive + " --quiet").exit_code, 12);
+
+  // No append over the damaged version: the file stays byte for byte.
+  const RunResult import = RunTool("import " + archive + " " + take + " --allow-older --quiet");
+  EXPECT_EQ(import.exit_code, 12) << import.output;
+  EXPECT_EQ(ReadFileToString(archive).value(), bytes);
+}
+
 TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string source = testing::MocapDir() + "/bvh/05_01.bvh";
