@@ -44,6 +44,7 @@ int RunInfo(const std::vector<std::string>& args) {
     out["block_frames"] = summary.block_frames;
     out["uncommitted_bytes"] = summary.uncommitted_bytes;
     out["fallback_reason"] = summary.fallback_reason;
+    out["damaged_slot_reason"] = summary.damaged_slot_reason;
     nlohmann::json joints = nlohmann::json::array();
     for (const Joint& joint : skeleton.joints()) {
       joints.push_back({{"name", joint.name}, {"parent", joint.parent}, {"weight", joint.weight}});
@@ -86,6 +87,10 @@ int RunInfo(const std::vector<std::string>& args) {
         "note         %s bytes after the last commit (an interrupted import); the next "
         "import discards them\n",
         WithCommas(summary.uncommitted_bytes).c_str());
+  }
+  if (!summary.damaged_slot_reason.empty()) {
+    std::printf("WARNING      %s; its data is whole. Run motifmine verify.\n",
+                summary.damaged_slot_reason.c_str());
   }
   if (!summary.fallback_reason.empty()) {
     std::printf(

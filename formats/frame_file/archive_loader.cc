@@ -53,6 +53,28 @@ Status LoadCommit(const uint8_t* data, uint64_t size, int slot_idx, const Commit
   return Status::Ok();
 }
 
+// The version whose footer ends the file, named by no valid slot: its slot `slot_idx` is
+// damaged. A slot is one 40-byte write after the version's bytes are synced, so a bit flip (or a
+// power loss in that write) leaves the newest version whole but unnamed; opening the older one
+// in its place, and appending over it, would lose it. OK only for a version newer than
+// `newer_than` that validates like any other.
+Status LoadFromEndOfFile(const uint8_t* data, uint64_t size, int slot_idx, uint64_t newer_than,
+                         LoadedArchive* archive) {
+  if (size < kHeaderBytes + kFooterBytes) return Status::Corruption("no version ends the file");
+  Footer footer;
+  MOTIF_RETURN_IF_ERROR(Footer::DecodeFrom(data + size - kFooterBytes, &footer));
+  if (footer.generation <= newer_than) return Status::Corruption("no newer version ends the file");
+  CommitSlot slot;
+  slot.generation = footer.generation;
+  slot.committed_length = size;
+  slot.footer_offset = size - kFooterBytes;
+  LoadedArchive recovered = *archive;
+  MOTIF_RETURN_IF_ERROR(LoadCommit(data, size, slot_idx, slot, &recovered));
+  recovered.max_generation = std::max(recovered.max_generation, slot.generation);
+  *archive = std::move(recovered);
+  return Status::Ok();
+}
+
 }  // namespace
 
 Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, uint64_t size) {
@@ -68,6 +90,7 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
   };
   std::vector<Candidate> candidates;
   std::string slot_errors;
+  int damaged_slot = -1;
   for (int slot_idx = 0; slot_idx < 2; ++slot_idx) {
     CommitSlot slot;
     bool is_empty = false;
@@ -77,6 +100,7 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
       // previous version.
       slot_errors += "; commit slot " + std::to_string(slot_idx) + " at offset " +
                      Hex(kSlotOffsets[slot_idx]) + ": " + decoded.message();
+      damaged_slot = slot_idx;
       continue;
     }
     if (is_empty) continue;
@@ -84,7 +108,19 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
     candidates.push_back({slot_idx, slot});
     archive.max_generation = std::max(archive.max_generation, slot.generation);
   }
+  // The version at the file's end when the slot naming it is damaged (the message for Verify).
+  auto recover_newest = [&](uint64_t newer_than) {
+    if (damaged_slot < 0 ||
+        !LoadFromEndOfFile(data, size, damaged_slot, newer_than, &archive).ok()) {
+      return false;
+    }
+    archive.damaged_slot_reason = path + ": " + slot_errors.substr(2) + "; generation " +
+                                  std::to_string(archive.slot.generation) +
+                                  " was read from its footer at the end of the file";
+    return true;
+  };
   if (candidates.empty()) {
+    if (recover_newest(0)) return archive;
     return Status::Corruption(path + ": no committed version (both commit slots are empty or " +
                               "damaged" + slot_errors + ")");
   }
@@ -95,6 +131,9 @@ Result<LoadedArchive> LoadArchive(const std::string& path, const uint8_t* data, 
   for (const Candidate& candidate : candidates) {
     Status loaded = LoadCommit(data, size, candidate.slot_idx, candidate.slot, &archive);
     if (loaded.ok()) {
+      if (archive.slot.committed_length < size && recover_newest(archive.slot.generation)) {
+        return archive;
+      }
       if (!newest_error.ok()) archive.fallback_reason = path + ": " + newest_error.message();
       return archive;
     }

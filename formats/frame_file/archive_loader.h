@@ -26,6 +26,10 @@ struct LoadedArchive {
   uint64_t file_bytes = 0;      // the whole file, including any uncommitted tail
   uint64_t max_generation = 0;  // the highest generation of any slot with a valid checksum
   std::string fallback_reason;  // non-empty if a newer valid slot failed validation
+  // Non-empty if the version opened ends the file but its commit slot is damaged (it was read
+  // from its footer): the data is whole, the damage is reported by Verify, and the next commit
+  // goes to the other slot.
+  std::string damaged_slot_reason;
 };
 
 // `data` holds the file's `size` bytes; `path` is used in messages only. Corruption naming the

@@ -176,6 +176,7 @@ FrameFileSummary FrameFileReader::summary() const {
   summary.identity = archive.footer.metadata_checksum;
   summary.uncommitted_bytes = archive.file_bytes - archive.slot.committed_length;
   summary.fallback_reason = archive.fallback_reason;
+  summary.damaged_slot_reason = archive.damaged_slot_reason;
   return summary;
 }
 
@@ -218,6 +219,10 @@ Status FrameFileReader::Verify(const std::function<void(uint64_t, uint64_t)>& pr
     return Status::Corruption(impl_->archive.fallback_reason + " (opened generation " +
                               std::to_string(impl_->archive.slot.generation) +
                               " from the other commit slot instead)");
+  }
+  if (!impl_->archive.damaged_slot_reason.empty()) {
+    return Status::Corruption(impl_->archive.damaged_slot_reason +
+                              " (its data is whole; the next import writes the other slot)");
   }
   std::vector<float> rows;
   const auto& blocks = impl_->metadata().blocks;

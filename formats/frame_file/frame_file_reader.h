@@ -34,6 +34,10 @@ struct FrameFileSummary {
   // Non-empty if the newest commit slot did not validate and the previous version was opened
   // instead (Verify() then returns Corruption with this reason).
   std::string fallback_reason;
+  // Non-empty if the newest version's commit slot is damaged and it was read from its footer at
+  // the end of the file instead (its data validated as usual; Verify() returns Corruption with
+  // this reason, and the next commit goes to the other slot).
+  std::string damaged_slot_reason;
 };
 
 class FrameStream;
@@ -86,8 +90,9 @@ class FrameFileReader {
                                       uint64_t end_frame = UINT64_MAX) const;
 
   // Checks every block's checksum and that it decodes. `progress(done, total)` is called after
-  // each block if given. Corruption naming the first bad block and its offset, or the reason
-  // the newest commit was passed over (summary().fallback_reason).
+  // each block if given. Corruption naming the first bad block and its offset, the reason
+  // the newest commit was passed over (summary().fallback_reason), or the damaged slot of the
+  // version opened (summary().damaged_slot_reason).
   Status Verify(const std::function<void(uint64_t, uint64_t)>& progress = nullptr) const;
 
  private:

@@ -183,6 +183,37 @@ TEST(MotifmineTool, ADamagedNewestCommitIsRefusedUnlessAllowOlder) {
   EXPECT_EQ(ReadFileToString(archive).value(), bytes);
 }
 
+// A flipped bit in the commit slot that names the newest version (bytes 0x58-0x7f of a
+// two-commit archive): the version is read from its footer, verify reports the slot, and the
+// next import keeps every clip.
+TEST(MotifmineTool, AFlippedBitInTheActiveCommitSlotLosesNothing) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
+            0);
+  const std::string take = dir.File("t.bvh");
+  ASSERT_EQ(RunTool("export " + archive + " --clip synth_000000 --out " + take).exit_code, 0);
+  ASSERT_EQ(RunTool("import " + archive + " " + take + " --quiet").exit_code, 0);
+  std::string bytes = ReadFileToString(archive).value();
+  bytes[0x60] ^= 0x10;
+  ASSERT_TRUE(AtomicWriteFile(archive, bytes).ok());
+
+  const RunResult verify = RunTool("verify " + archive + " --quiet");
+  EXPECT_EQ(verify.exit_code, 12) << verify.output;
+  EXPECT_NE(verify.output.find("commit slot 1"), std::string::npos) << verify.output;
+  const RunResult info = RunTool("info " + archive + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_EQ(nlohmann::json::parse(info.output)["clips"].size(), 3u);
+
+  const std::string second = dir.File("u.bvh");
+  ASSERT_EQ(RunTool("export " + archive + " --clip synth_000001 --out " + second).exit_code, 0);
+  const RunResult import = RunTool("import " + archive + " " + second + " --quiet");
+  ASSERT_EQ(import.exit_code, 0) << import.output;
+  EXPECT_EQ(nlohmann::json::parse(RunTool("info " + archive + " --json").output)["clips"].size(),
+            4u);
+  EXPECT_EQ(RunTool("verify " + archive + " --quiet").exit_code, 0);
+}
+
 TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string source = testing::MocapDir() + "/bvh/05_01.bvh";

@@ -106,7 +106,11 @@ class ReindexFailureTest : public ::testing::Test {
     EXPECT_EQ(manifest->version, version);
     auto archive = FrameFileReader::Open(root + "/archive.mfs");
     ASSERT_TRUE(archive.ok()) << archive.status().ToString();
-    EXPECT_TRUE((*archive)->Verify().ok());
+    // A failure in the write of the archive's commit slot leaves the new version whole, read
+    // from its footer, and Verify names the slot (tests/formats/frame_file/); nothing else.
+    const Status archive_verified = (*archive)->Verify();
+    EXPECT_TRUE(archive_verified.ok() || !(*archive)->summary().damaged_slot_reason.empty())
+        << archive_verified.ToString();
   }
 
   static testing::TempDir* takes_;

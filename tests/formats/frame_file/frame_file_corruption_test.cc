@@ -329,25 +329,63 @@ TEST(FrameFileCorruption, FallsBackToThePreviousVersionWhenTheNewestFooterIsDama
   EXPECT_TRUE(writer.status().IsCorruption());
 }
 
-TEST(FrameFileCorruption, ATornSlotWriteOpensThePreviousVersion) {
+TEST(FrameFileCorruption, ATornSlotWriteKeepsTheNewestVersionAndReportsTheSlot) {
   TempDir dir;
   const std::string path = MakeSmallArchive(dir);
-  auto previous = ReadContents(path);
-  ASSERT_TRUE(previous.ok());
   const std::string before = ReadBytes(path);
   AppendToArchive(path, {MakeClip("three", kCorruptionJoints, 30, 3)}, Options());
+  auto current = ReadContents(path);
+  ASSERT_TRUE(current.ok());
   std::string bytes = ReadBytes(path);
-  // Only the first half of the new slot reached the disk.
+  // Only the first half of the new slot reached the disk (a power loss in that one write).
   bytes.replace(kSlotOffsets[1] + kSlotBytes / 2, kSlotBytes / 2,
                 before.substr(kSlotOffsets[1] + kSlotBytes / 2, kSlotBytes / 2));
   WriteBytes(path, bytes);
   auto reader = FrameFileReader::Open(path);
-  ASSERT_TRUE(reader.ok());
-  EXPECT_TRUE((*reader)->Verify().ok());
-  EXPECT_EQ((*reader)->summary().uncommitted_bytes, bytes.size() - before.size());
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  EXPECT_EQ((*reader)->summary().generation, 2u);
+  EXPECT_EQ((*reader)->summary().uncommitted_bytes, 0u);
+  EXPECT_TRUE((*reader)->summary().fallback_reason.empty());
+  Status verified = (*reader)->Verify();
+  EXPECT_TRUE(verified.IsCorruption());
+  EXPECT_NE(verified.message().find("commit slot 1"), std::string::npos) << verified.message();
   auto contents = ReadContents(path);
   ASSERT_TRUE(contents.ok());
-  ExpectSameContents(*previous, *contents);
+  ExpectSameContents(*current, *contents);
+}
+
+// A flipped bit in the slot that names the newest version (bytes 0x58-0x7f of a two-commit
+// archive) must not hide that version, nor let an append write over it.
+TEST(FrameFileCorruption, AFlippedBitInTheActiveSlotLosesNoVersion) {
+  TempDir dir;
+  const std::string path = MakeSmallArchive(dir);
+  AppendToArchive(path, {MakeClip("three", kCorruptionJoints, 30, 3)}, Options());
+  auto current = ReadContents(path);
+  ASSERT_TRUE(current.ok());
+  const std::string bytes = ReadBytes(path);
+  ASSERT_EQ(Structure(bytes).active_slot, 1);
+  for (size_t offset = kSlotOffsets[1]; offset < kSlotOffsets[1] + kSlotBytes; ++offset) {
+    for (uint8_t mask : {0x01, 0x80}) {
+      const std::string context = "byte " + std::to_string(offset) + " ^ " + std::to_string(mask);
+      std::string damaged = bytes;
+      damaged[offset] = static_cast<char>(damaged[offset] ^ mask);
+      WriteBytes(path, damaged);
+      auto reader = FrameFileReader::Open(path);
+      ASSERT_TRUE(reader.ok()) << context << ": " << reader.status().ToString();
+      EXPECT_EQ((*reader)->clips().size(), 3u) << context;
+      EXPECT_TRUE((*reader)->Verify().IsCorruption()) << context;
+      // The next commit goes to the other slot; every version stays.
+      AppendToArchive(path, {MakeClip("four", kCorruptionJoints, 17, 4)}, Options());
+      auto appended = FrameFileReader::Open(path);
+      ASSERT_TRUE(appended.ok()) << context;
+      EXPECT_EQ((*appended)->clips().size(), 4u) << context;
+      EXPECT_TRUE((*appended)->Verify().ok()) << context;
+      auto second = FrameFileReader::OpenCommit(path, 2, bytes.size());
+      ASSERT_TRUE(second.ok()) << context << ": " << second.status().ToString();
+      EXPECT_EQ((*second)->clips().size(), 3u) << context;
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
 }
 
 }  // namespace
