@@ -354,7 +354,11 @@ class FrameFileWriter::Impl {
       MOTIF_RETURN_IF_ERROR(file_->Close());
       std::error_code error;
       if (std::filesystem::exists(path_, error)) {
-        return Invalid("appeared while the archive was being written; not replacing it");
+        // Another writer created it meanwhile (two imports starting one archive): this run
+        // changed nothing, and retried it appends.
+        return Status::Busy(path_ +
+                            ": created by another writer while this one was writing it; not "
+                            "replacing it (run again to append)");
       }
       MOTIF_RETURN_IF_ERROR(fs_->Rename(write_path_, path_));
       // The archive is in place (a failed directory sync only risks its durability).

@@ -249,6 +249,27 @@ TEST(FrameFileWriter, RejectsClipNamesAlreadyInTheArchive) {
   EXPECT_EQ(contents->clips.size(), 2u);
 }
 
+// Two writers creating one archive (two imports starting it at once): the one that finishes
+// second is busy (exit 17: retried, it appends), and the first one's archive stays.
+TEST(FrameFileWriter, CreatingAnArchiveAnotherWriterCreatedMeanwhileIsBusy) {
+  TempDir dir;
+  const std::string path = dir.File("a.mfs");
+  auto late = FrameFileWriter::Create(path, MakeSkeleton(kWriterJoints), 120.0);
+  ASSERT_TRUE(late.ok());
+  ASSERT_TRUE((*late)->AppendClip(MakeClip("late", kWriterJoints, 30, 1)).ok());
+  WriteArchive(path, MakeSkeleton(kWriterJoints), {MakeClip("first", kWriterJoints, 20, 2)});
+  const Status committed = (*late)->Commit();
+  EXPECT_TRUE(committed.IsBusy()) << committed.ToString();
+  EXPECT_NE(committed.message().find("created by another writer"), std::string::npos);
+  auto contents = ReadContents(path);
+  ASSERT_TRUE(contents.ok());
+  ASSERT_EQ(contents->clips.size(), 1u);
+  EXPECT_EQ(contents->clips[0].name, "first");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
+                          std::filesystem::directory_iterator()),
+            1);  // no temporary file left
+}
+
 TEST(FrameFileWriter, RejectsNonFiniteValuesAndLeavesTheWriterUsable) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
