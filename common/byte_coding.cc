@@ -66,8 +66,8 @@ Status CheckMagicAndMajor(const uint8_t* bytes, size_t size, const uint8_t* magi
   }
   const uint16_t found = LoadU16(bytes + 8);
   if (found != major) {
-    return Status::Corruption("unsupported format major version " + std::to_string(found) +
-                              " (this reader knows " + std::to_string(major) + ")");
+    return Status::NotSupported("unsupported format major version " + std::to_string(found) +
+                                " (this reader knows " + std::to_string(major) + ")");
   }
   return Status::Ok();
 }

@@ -35,8 +35,9 @@ std::string Hex(uint64_t value);
 
 // The first checks of a file format's reader, in this order: the file is not empty, starts with
 // the 8-byte `magic` (Corruption "bad magic at offset 0x0: not a <what>"), holds the u16 major
-// version at offset 8, and that version is `major` (Corruption "unsupported format major version
-// N (this reader knows M)"). `size` bytes are available at `bytes`.
+// version at offset 8, and that version is `major` (NotSupported "unsupported format major
+// version N (this reader knows M)": exit code 15, a newer tool's file). `size` bytes are available
+// at `bytes`.
 Status CheckMagicAndMajor(const uint8_t* bytes, size_t size, const uint8_t* magic,
                           const std::string& what, uint16_t major);
 

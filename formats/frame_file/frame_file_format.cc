@@ -146,9 +146,9 @@ Status FileHeader::DecodeFixedFrom(const uint8_t* bytes, size_t size, FileHeader
   header->format_major = LoadU16(bytes + 8);
   header->format_minor = LoadU16(bytes + 10);
   if (header->format_major != kFormatMajor) {
-    return Status::Corruption("unsupported format major version " +
-                              std::to_string(header->format_major) + " (this reader knows " +
-                              std::to_string(kFormatMajor) + ")");
+    return Status::NotSupported("unsupported format major version " +
+                                std::to_string(header->format_major) + " (this reader knows " +
+                                std::to_string(kFormatMajor) + ")");
   }
   if (LoadU64(bytes + 40) != Checksum64(bytes, 40)) {
     return Status::Corruption("header at offset 0x0: checksum mismatch");

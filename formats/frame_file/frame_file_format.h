@@ -111,7 +111,8 @@ struct FileHeader {
   void EncodeTo(std::string* out) const;  // 128 bytes
   // Checks the fixed part (bytes [0, 48)): magic, major version, header size, checksum, reserved
   // fields. Slots are decoded separately (CommitSlot::DecodeFrom): a damaged slot is not fatal.
-  // `size` >= kHeaderBytes. Corruption on any failed check.
+  // `size` >= kHeaderBytes. NotSupported for another major version, Corruption on any other
+  // failed check.
   static Status DecodeFixedFrom(const uint8_t* bytes, size_t size, FileHeader* header);
 };
 

@@ -53,10 +53,10 @@ void SetOlderVersionHandler(OlderVersionHandler handler);
 
 class FrameFileReader {
  public:
-  // Opens and validates. NotFound: no file. Corruption: bad magic, unknown major version, a
-  // checksum mismatch in the header slots, footer or metadata, an index pointing outside the
-  // file. IOError: cannot open or map. Messages name the file and the offset. When only an older
-  // version validates, the OlderVersionHandler decides (above).
+  // Opens and validates. NotFound: no file. NotSupported: another major version. Corruption:
+  // bad magic, a checksum mismatch in the header slots, footer or metadata, an index pointing
+  // outside the file. IOError: cannot open or map. Messages name the file and the offset. When
+  // only an older version validates, the OlderVersionHandler decides (above).
   static Result<std::unique_ptr<FrameFileReader>> Open(const std::string& path);
   // Opens an earlier version of the archive: the one committed as `generation` with
   // `committed_length` bytes (FrameFileSummary::generation and file_bytes when it was

@@ -113,9 +113,9 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
   header->format_major = LoadU16(bytes + 8);
   header->format_minor = LoadU16(bytes + 10);
   if (header->format_major != kFormatMajor) {
-    return Status::Corruption("unsupported format major version " +
-                              std::to_string(header->format_major) + " (this reader knows " +
-                              std::to_string(kFormatMajor) + ")");
+    return Status::NotSupported("unsupported format major version " +
+                                std::to_string(header->format_major) + " (this reader knows " +
+                                std::to_string(kFormatMajor) + ")");
   }
   const uint32_t declared_bytes = LoadU32(bytes + 12);
   const uint32_t params_bytes = LoadU32(bytes + 20);

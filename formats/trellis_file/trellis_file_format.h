@@ -87,8 +87,8 @@ struct FileHeader {
 
   // header_bytes = kHeaderFixedBytes + params bytes + 8 (the checksum).
   void EncodeTo(std::string* out) const;
-  // `size` bytes are available from `bytes`; sets *header_bytes. Corruption: bad magic,
-  // unsupported major version, checksum, header size, reserved field, block_columns out of
+  // `size` bytes are available from `bytes`; sets *header_bytes. NotSupported: another major
+  // version. Corruption: bad magic, checksum, header size, reserved field, block_columns out of
   // [1, 2^20], params (DecodeParams).
   static Status DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* header,
                            uint64_t* header_bytes);

@@ -45,9 +45,10 @@ class TrellisFileReader::Impl {
       return Corrupt("bad magic at offset 0x0: not a trellis file");
     }
     if (size >= 10 && trellis_file::LoadU16(data + 8) != trellis_file::kFormatMajor) {
-      return Corrupt("unsupported format major version " +
-                     std::to_string(trellis_file::LoadU16(data + 8)) + " (this reader knows " +
-                     std::to_string(trellis_file::kFormatMajor) + ")");
+      return Status::NotSupported(path + ": unsupported format major version " +
+                                  std::to_string(trellis_file::LoadU16(data + 8)) +
+                                  " (this reader knows " +
+                                  std::to_string(trellis_file::kFormatMajor) + ")");
     }
     if (size < trellis_file::kMinHeaderBytes + trellis_file::kFooterBytes) {
       return Corrupt("file of " + std::to_string(size) +

@@ -214,6 +214,23 @@ TEST(MotifmineTool, AFlippedBitInTheActiveCommitSlotLosesNothing) {
   EXPECT_EQ(RunTool("verify " + archive + " --quiet").exit_code, 0);
 }
 
+// A file of a newer format major version is not supported (exit 15), not damaged (12).
+TEST(MotifmineTool, ANewerFormatVersionIsNotSupported) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
+            0);
+  std::string bytes = ReadFileToString(archive).value();
+  bytes[8] = 2;  // format_major, checked before the header checksum
+  ASSERT_TRUE(AtomicWriteFile(archive, bytes).ok());
+  for (const std::string& command : {"verify " + archive, "info " + archive}) {
+    const RunResult result = RunTool(command);
+    EXPECT_EQ(result.exit_code, 15) << command << "\n" << result.output;
+    EXPECT_NE(result.output.find("unsupported format major version 2"), std::string::npos)
+        << result.output;
+  }
+}
+
 TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string source = testing::MocapDir() + "/bvh/05_01.bvh";

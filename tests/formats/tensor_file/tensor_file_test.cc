@@ -146,7 +146,9 @@ class TensorFileCorruptionTest : public ::testing::Test {
     auto file = DecodeTensorFile(bytes, "damaged.mwm");
     EXPECT_FALSE(file.ok()) << what;
     if (!file.ok()) {
-      EXPECT_TRUE(file.status().IsCorruption()) << what << ": " << file.status().ToString();
+      // A damaged major version reads as a future one (NotSupported, exit 15).
+      EXPECT_TRUE(file.status().IsCorruption() || file.status().IsNotSupported())
+          << what << ": " << file.status().ToString();
       EXPECT_NE(file.status().message().find("damaged.mwm"), std::string::npos) << what;
     }
   }
