@@ -258,6 +258,14 @@ Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisO
   return Status::Ok();
 }
 
+void ReportSkippedTakes(const std::string& command, const std::vector<std::string>& failures,
+                        ProgressMode mode) {
+  if (mode != ProgressMode::kQuiet) return;  // the progress display named them already
+  for (const std::string& failure : failures) {
+    std::fprintf(stderr, "motifmine %s: skipped: %s\n", command.c_str(), failure.c_str());
+  }
+}
+
 void AddPauseOptions(CommandSpec& spec) {
   namespace po = boost::program_options;
   spec.options.add_options()(

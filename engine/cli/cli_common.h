@@ -25,6 +25,10 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitInternal = 1;
 inline constexpr int kExitUsage = 2;
 inline constexpr int kExitWarnings = 3;
+// Names every take --skip-bad passed over on stderr, even under --quiet (the progress display
+// names them as they happen otherwise): a skipped take is a warning, never silent.
+void ReportSkippedTakes(const std::string& command, const std::vector<std::string>& failures,
+                        ProgressMode mode);
 inline constexpr int kExitStatusBase = 10;
 
 // 10 + the status code for a failure, 0 for OK.

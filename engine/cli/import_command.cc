@@ -95,7 +95,9 @@ int RunImport(const std::vector<std::string>& args) {
   std::printf("; the archive now holds %s clips, %s frames at %g fps\n",
               WithCommas(result->archive_clips).c_str(), WithCommas(result->archive_frames).c_str(),
               result->fps);
-  return result->takes_failed ? ExitCodeFor(Status::InvalidArgument("")) : kExitOk;
+  if (result->takes_failed == 0) return kExitOk;
+  ReportSkippedTakes("import", result->failures, ProgressModeFrom(vm));
+  return kExitWarnings;  // the good takes are stored; the bad ones are named
 }
 
 }  // namespace motif::cli

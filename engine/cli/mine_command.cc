@@ -226,6 +226,7 @@ int RunMine(const std::vector<std::string>& args) {
   std::string archive = Join(out_dir, "archive.mfs");
   std::string truth_path;
   Clock::time_point start = Clock::now();
+  std::vector<std::string> skipped_takes;  // --skip-bad: the takes passed over
   if (inputs.empty()) {
     SynthOptions synth;
     synth.frames = vm["synth-frames"].as<uint64_t>();
@@ -259,6 +260,7 @@ int RunMine(const std::vector<std::string>& args) {
     if (began) progress.EndStage();
     if (!imported.ok()) return fail(imported.status());
     times.push_back({"import", SecondsSince(start), imported->takes_imported == 0});
+    skipped_takes = imported->failures;
   }
   Result<std::unique_ptr<FrameFileReader>> frames = FrameFileReader::Open(archive);
   if (!frames.ok()) return fail(frames.status());
@@ -415,7 +417,11 @@ int RunMine(const std::vector<std::string>& args) {
   std::printf("  wrote        %s", motifs_path.c_str());
   if (!vm.count("no-report")) std::printf(", %s (open it in a browser)", report_path.c_str());
   std::printf("\n");
-  return kExitOk;
+  if (skipped_takes.empty()) return kExitOk;
+  std::printf("  skipped      %s bad takes (--skip-bad; named on stderr)\n",
+              WithCommas(skipped_takes.size()).c_str());
+  ReportSkippedTakes("mine", skipped_takes, ProgressModeFrom(vm));
+  return kExitWarnings;  // mined the good takes
 }
 
 }  // namespace motif::cli

@@ -231,6 +231,39 @@ TEST(MotifmineTool, ANewerFormatVersionIsNotSupported) {
   }
 }
 
+// --skip-bad: the good takes are stored and mined, each bad one is named on stderr even under
+// --quiet, and the exit code is 3 (done, with warnings).
+TEST(MotifmineTool, SkipBadStoresTheGoodTakesNamesTheBadOnesAndExitsThree) {
+  testing::TempDir dir;
+  const std::string synth = dir.File("s.mfs");
+  ASSERT_EQ(RunTool("synth " + synth + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code, 0);
+  std::filesystem::create_directories(dir.File("takes"));
+  ASSERT_EQ(RunTool("export " + synth + " --clip synth_000000 --out " + dir.File("takes/good.bvh"))
+                .exit_code,
+            0);
+  const std::string bad = dir.File("takes/bad.bvh");
+  ASSERT_TRUE(AtomicWriteFile(bad, "garbage\n").ok());
+
+  const std::string archive = dir.File("a.mfs");
+  const RunResult import =
+      RunTool("import " + archive + " " + dir.File("takes") + " --skip-bad --quiet");
+  EXPECT_EQ(import.exit_code, 3) << import.output;
+  EXPECT_NE(import.output.find("skipped: " + bad), std::string::npos) << import.output;
+  const RunResult info = RunTool("info " + archive + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_EQ(nlohmann::json::parse(info.output)["clips"].size(), 1u);
+
+  const RunResult mine = RunTool("mine " + dir.File("takes") + " --out " + dir.File("m") +
+                                 " --skip-bad --quiet --no-report");
+  EXPECT_EQ(mine.exit_code, 3) << mine.output;
+  EXPECT_NE(mine.output.find("skipped: " + bad), std::string::npos) << mine.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.File("m/motifs.json")));
+  // Without --skip-bad one bad take stops the import, and nothing is stored.
+  EXPECT_EQ(RunTool("import " + dir.File("b.mfs") + " " + dir.File("takes") + " --quiet").exit_code,
+            13);
+  EXPECT_FALSE(std::filesystem::exists(dir.File("b.mfs")));
+}
+
 TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string source = testing::MocapDir() + "/bvh/05_01.bvh";
