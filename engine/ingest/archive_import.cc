@@ -154,6 +154,18 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
                     clip.info.name = name;
                   }
                   Status status = writer->AppendClip(clip);
+                  if (status.IsInvalidArgument()) {
+                    // The take's own values (a root position of 1e308 gives an infinite
+                    // velocity): a bad take like any other, named by its file. The writer
+                    // refused it before storing anything and stays usable.
+                    status = status.WithContext(clip.info.source_path);
+                    ++result.takes_failed;
+                    result.failures.push_back(status.message());
+                    if (options.skip_bad) {
+                      note("skipped: " + status.message());
+                      return;
+                    }
+                  }
                   if (!status.ok()) {
                     first_error = status;
                     stop.store(true);

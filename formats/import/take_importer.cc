@@ -110,7 +110,14 @@ class TakeCollector {
       source.format = TakeFormat::kBvh;
     } else if (HasExtension(path, ".amc")) {
       source.format = TakeFormat::kAmc;
-      MOTIF_ASSIGN_OR_RETURN(source.asf_path, finder_.FindFor(source.path));
+      Result<std::string> asf = finder_.FindFor(source.path);
+      if (asf.ok()) {
+        source.asf_path = *asf;
+      } else if (asf.status().IsInvalidArgument()) {
+        source.unpaired_reason = asf.status().message();
+      } else {
+        return asf.status();
+      }
     } else {
       return Status::InvalidArgument(
           source.path +
@@ -176,6 +183,9 @@ Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& optio
     MOTIF_ASSIGN_OR_RETURN(take, ParseBvh(text, source.path, options.bvh_fps));
   } else {
     const std::string& asf_path = source.asf_path.empty() ? options.asf_path : source.asf_path;
+    if (asf_path.empty() && !source.unpaired_reason.empty()) {
+      return Status::InvalidArgument(source.unpaired_reason);
+    }
     if (asf_path.empty()) {
       return Status::InvalidArgument(source.path +
                                      ": no ASF skeleton given for this AMC file (--asf)");

@@ -48,13 +48,17 @@ struct TakeSource {
   TakeFormat format = TakeFormat::kBvh;
   std::string path;      // the .bvh or .amc file
   std::string asf_path;  // for kAmc: the paired skeleton
+  // For kAmc with no skeleton found: why (ImportTake fails with it, so that --skip-bad passes
+  // over this take alone).
+  std::string unpaired_reason;
 };
 
 // Expands files and folders (recursively, sorted by path) into takes. A folder contributes its
 // .bvh and .amc files (case-insensitive extensions); .asf files are used only as skeletons.
 // Arguments keep their order; a file reached twice is listed once.
-// NotFound for a missing path; InvalidArgument for a file that is not .bvh/.amc, or an AMC file
-// with no ASF to pair (the message says how to name one with --asf).
+// NotFound for a missing path; InvalidArgument for a file that is not .bvh/.amc. An AMC file
+// with no ASF to pair is listed with its unpaired_reason (the message says how to name one with
+// --asf), and fails when imported.
 Result<std::vector<TakeSource>> DiscoverTakes(const std::vector<std::string>& paths,
                                               const ImportOptions& options);
 

@@ -243,12 +243,23 @@ TEST(MotifmineTool, SkipBadStoresTheGoodTakesNamesTheBadOnesAndExitsThree) {
             0);
   const std::string bad = dir.File("takes/bad.bvh");
   ASSERT_TRUE(AtomicWriteFile(bad, "garbage\n").ok());
+  // A root position of 1e308 (a parsed take whose velocity is not finite) and an AMC take with no
+  // ASF to pair fail alone too.
+  std::string text = ReadFileToString(dir.File("takes/good.bvh")).value();
+  const size_t first_frame = text.find('\n', text.find("Frame Time:")) + 1;
+  text.replace(first_frame, text.find(' ', first_frame) - first_frame, "1e308");
+  const std::string huge = dir.File("takes/huge.bvh");
+  ASSERT_TRUE(AtomicWriteFile(huge, text).ok());
+  const std::string lonely = dir.File("takes/lonely.amc");
+  ASSERT_TRUE(AtomicWriteFile(lonely, ":FULLY-SPECIFIED\n:DEGREES\n").ok());
 
   const std::string archive = dir.File("a.mfs");
   const RunResult import =
       RunTool("import " + archive + " " + dir.File("takes") + " --skip-bad --quiet");
   EXPECT_EQ(import.exit_code, 3) << import.output;
-  EXPECT_NE(import.output.find("skipped: " + bad), std::string::npos) << import.output;
+  for (const std::string& file : {bad, huge, lonely}) {
+    EXPECT_NE(import.output.find("skipped: " + file), std::string::npos) << import.output;
+  }
   const RunResult info = RunTool("info " + archive + " --json");
   ASSERT_EQ(info.exit_code, 0) << info.output;
   EXPECT_EQ(nlohmann::json::parse(info.output)["clips"].size(), 1u);
