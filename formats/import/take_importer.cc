@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "common/file_util.h"
+#include "common/utf8.h"
 #include "formats/import/amc_parser.h"
 #include "formats/import/asf_parser.h"
 #include "formats/import/bvh_parser.h"
@@ -176,7 +177,22 @@ Result<std::vector<TakeSource>> DiscoverTakesImpl(const std::vector<std::string>
   return collector.Take();
 }
 
+// Names that reach the JSON outputs (the clip name and source path from the file's path, the
+// joint names) must be UTF-8: refused here, named, rather than written into every file after.
+Status CheckNamesAreUtf8(const std::string& path, const Skeleton& skeleton) {
+  if (!IsValidUtf8(path)) {
+    return Status::InvalidArgument(path + ": the file's path is not valid UTF-8; rename it");
+  }
+  for (const Joint& joint : skeleton.joints()) {
+    if (!IsValidUtf8(joint.name)) {
+      return Status::InvalidArgument(path + ": a joint name is not valid UTF-8");
+    }
+  }
+  return Status::Ok();
+}
+
 Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& options) {
+  if (!IsValidUtf8(source.path)) return CheckNamesAreUtf8(source.path, Skeleton());
   MOTIF_ASSIGN_OR_RETURN(std::string text, ReadFileToString(source.path));
   Take take;
   if (source.format == TakeFormat::kBvh) {
@@ -194,6 +210,7 @@ Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& optio
     MOTIF_ASSIGN_OR_RETURN(AsfSkeleton asf, ParseAsf(asf_text, asf_path));
     MOTIF_ASSIGN_OR_RETURN(take, ParseAmc(asf, text, source.path, options.amc_fps));
   }
+  MOTIF_RETURN_IF_ERROR(CheckNamesAreUtf8(source.path, take.skeleton));
   take.name = fs::path(source.path).stem().string();
   take.source_path = source.path;
   take.content_hash = XXH3_64bits(text.data(), text.size());

@@ -174,6 +174,28 @@ TEST(ImportTake, BvhTakeCarriesNameHashRateAndWeights) {
   EXPECT_EQ(take->frame_count(), 3u);               // frame 0 continues into frame 1: kept
 }
 
+// Names that reach JSON outputs must be UTF-8: a file name or a joint name that is not is
+// refused, naming the file.
+TEST(ImportTake, NamesThatAreNotUtf8AreRefused) {
+  TempDir dir;
+  TakeSource source;
+  source.path = dir.File("take\xff.bvh");
+  std::filesystem::copy_file(FixturePath("custom_zxy.bvh"), source.path);
+  Result<Take> take = ImportTake(source, {});
+  EXPECT_TRUE(take.status().IsInvalidArgument());
+  EXPECT_NE(take.status().message().find("path is not valid UTF-8"), std::string::npos);
+
+  source.path = dir.File("joint.bvh");
+  std::string text = ReadText(FixturePath("custom_zxy.bvh"));
+  const size_t name = text.find("spine");
+  ASSERT_NE(name, std::string::npos);
+  text.replace(name, 5, "sp\xc3ne");  // a lead byte without its continuation
+  Touch(source.path, text);
+  take = ImportTake(source, {});
+  EXPECT_TRUE(take.status().IsInvalidArgument()) << take.status().ToString();
+  EXPECT_EQ(take.status().message(), source.path + ": a joint name is not valid UTF-8");
+}
+
 TEST(ImportTake, AmcTakeUsesTheAmcRateAndHashesTheAmcBytes) {
   TempDir dir;  // the take's name is its file stem: give the fixture its real name
   TakeSource source;
