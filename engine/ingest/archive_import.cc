@@ -49,7 +49,14 @@ Result<ArchiveImportResult> ImportIntoArchive(const std::string& archive_path,
                                               const ArchiveImportOptions& options) {
   MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources, DiscoverTakes(inputs, options.import));
   if (sources.empty()) {
-    return Status::InvalidArgument("no .bvh or .amc takes found under the given paths");
+    // Name what was searched: "x.bvh" may be a folder, searched as one.
+    std::string searched;
+    for (const std::string& input : inputs) {
+      searched += (searched.empty() ? "" : ", ") + input;
+      std::error_code error;
+      if (std::filesystem::is_directory(input, error)) searched += " (a folder)";
+    }
+    return Status::InvalidArgument("no .bvh or .amc takes found in " + searched);
   }
   return ImportTakesIntoArchive(archive_path, sources, options);
 }

@@ -100,6 +100,14 @@ TEST(MotifmineTool, AFifoOrADeviceNamedAsATakeIsRefusedAtOnce) {
     }
   }
   EXPECT_FALSE(std::filesystem::exists(archive));
+  // A folder named like a take is searched as a folder, and the error says so.
+  const std::string folder = dir.File("x.bvh");
+  std::filesystem::create_directories(folder);
+  const RunResult empty = RunTool("import " + archive + " " + folder);
+  EXPECT_EQ(empty.exit_code, 13) << empty.output;
+  EXPECT_NE(empty.output.find("no .bvh or .amc takes found in " + folder + " (a folder)"),
+            std::string::npos)
+      << empty.output;
 }
 
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
