@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -201,12 +203,16 @@ class BvhParser {
     Joint joint;
     joint.parent = parent;
     MOTIF_RETURN_IF_ERROR(ReadJointName(keyword, &joint.name));
-    for (size_t joint_idx = 0; joint_idx < joints_.size(); ++joint_idx) {
-      if (joints_[joint_idx].name == joint.name) {
-        return Error(keyword.line, "joint name '" + Printable(joint.name) +
-                                       "' is used twice (first at line " +
-                                       std::to_string(joint_lines_[joint_idx]) + ")");
-      }
+    if (joints_.size() >= kMaxSkeletonJoints) {
+      return Error(keyword.line, "more than " + std::to_string(kMaxSkeletonJoints) +
+                                     " joints, the most an archive holds");
+    }
+    // A map, not a scan: a hostile file of 100,000 joints took 19 s with the scan.
+    const auto [seen, inserted] = joint_index_.emplace(joint.name, joints_.size());
+    if (!inserted) {
+      return Error(keyword.line, "joint name '" + Printable(joint.name) +
+                                     "' is used twice (first at line " +
+                                     std::to_string(joint_lines_[seen->second]) + ")");
     }
     MOTIF_RETURN_IF_ERROR(
         Expect("{", "after " + std::string(keyword.text) + " " + Printable(joint.name)));
@@ -425,6 +431,7 @@ class BvhParser {
   Tokenizer tokenizer_;
   const std::string& file_name_;
   std::vector<Joint> joints_;
+  std::unordered_map<std::string, size_t> joint_index_;  // name -> index into joints_
   std::vector<int> joint_lines_;
   std::vector<OpenJoint> stack_;
   int motion_line_ = 0;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,6 +18,10 @@
 #include "common/status.h"
 
 namespace motif {
+
+// The most joints a skeleton may have: the archive format's limit (formats/frame_file,
+// kMaxJoints). Parsers stop as soon as a take crosses it, before reading the rest.
+inline constexpr size_t kMaxSkeletonJoints = 4096;
 
 // The family name of CMU's 31-joint skeleton in canonical (ASF bone) names.
 inline constexpr char kCmuFamily[] = "cmu31";
