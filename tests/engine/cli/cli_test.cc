@@ -154,16 +154,22 @@ TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
   EXPECT_EQ(missing.exit_code, 11) << missing.output;
 }
 
+// A small archive of two commits: a synthetic one, then one of its clips exported to `take` and
+// imported back.
+void MakeTwoCommitArchive(const std::string& archive, const std::string& take) {
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
+            0);
+  ASSERT_EQ(RunTool("export " + archive + " --clip synth_000000 --out " + take).exit_code, 0);
+  ASSERT_EQ(RunTool("import " + archive + " " + take + " --quiet").exit_code, 0);
+}
+
 // An archive whose newest commit is damaged (a flipped byte in its footer): no command reads the
 // previous version in its place unless --allow-older is given, and none appends to it.
 TEST(MotifmineTool, ADamagedNewestCommitIsRefusedUnlessAllowOlder) {
   testing::TempDir dir;
   const std::string archive = dir.File("a.mfs");
-  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
-            0);
   const std::string take = dir.File("t.bvh");
-  ASSERT_EQ(RunTool("export " + archive + " --clip synth_000000 --out " + take).exit_code, 0);
-  ASSERT_EQ(RunTool("import " + archive + " " + take + " --quiet").exit_code, 0);
+  ASSERT_NO_FATAL_FAILURE(MakeTwoCommitArchive(archive, take));
   std::string bytes = ReadFileToString(archive).value();
   bytes[bytes.size() - 20] ^= 0x01;  // inside the newest footer
   ASSERT_TRUE(AtomicWriteFile(archive, bytes).ok());
@@ -197,11 +203,8 @@ TEST(MotifmineTool, ADamagedNewestCommitIsRefusedUnlessAllowOlder) {
 TEST(MotifmineTool, AFlippedBitInTheActiveCommitSlotLosesNothing) {
   testing::TempDir dir;
   const std::string archive = dir.File("a.mfs");
-  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
-            0);
   const std::string take = dir.File("t.bvh");
-  ASSERT_EQ(RunTool("export " + archive + " --clip synth_000000 --out " + take).exit_code, 0);
-  ASSERT_EQ(RunTool("import " + archive + " " + take + " --quiet").exit_code, 0);
+  ASSERT_NO_FATAL_FAILURE(MakeTwoCommitArchive(archive, take));
   std::string bytes = ReadFileToString(archive).value();
   bytes[0x60] ^= 0x10;
   ASSERT_TRUE(AtomicWriteFile(archive, bytes).ok());
