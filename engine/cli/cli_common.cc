@@ -278,17 +278,10 @@ void AddPauseOptions(CommandSpec& spec) {
 }
 
 Status PauseOptionsFrom(const boost::program_options::variables_map& vm, PauseOptions* options) {
+  // The flags' ranges were checked with the other numbers (numeric_options.h, exit 2).
   options->max_speed = vm["pause-speed"].as<double>();
   options->min_seconds = vm["pause-seconds"].as<double>();
-  if (!(options->max_speed >= 0) || !std::isfinite(options->max_speed)) {
-    return Status::InvalidArgument("--pause-speed must be >= 0 degrees per second, not " +
-                                   std::to_string(options->max_speed));
-  }
-  if (!(options->min_seconds > 0) || !(options->min_seconds <= 3600)) {
-    return Status::InvalidArgument("--pause-seconds must be in (0, 3600], not " +
-                                   std::to_string(options->min_seconds));
-  }
-  return Status::Ok();
+  return ValidatePauseOptions(*options);
 }
 
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy) {

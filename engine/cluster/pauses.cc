@@ -69,19 +69,12 @@ std::vector<double> FrameSpeeds(const float* rows, uint64_t frame_count, uint32_
 
 namespace {
 
-// The clip holding global frame `frame` (clips ascending by first frame).
-const ClipInfo& ClipHolding(const std::vector<ClipInfo>& clips, uint64_t frame) {
-  auto it = std::upper_bound(clips.begin(), clips.end(), frame,
-                             [](uint64_t f, const ClipInfo& clip) { return f < clip.first_frame; });
-  return *std::prev(it);
-}
-
 // `near` widened by `margin` frames each side within its clip, sorted and joined where they
 // touch: the stretches to look at.
-std::vector<MotifInstance> Neighbourhoods(const std::vector<ClipInfo>& clips,
+std::vector<MotifInstance> Neighbourhoods(const FrameFileReader& archive,
                                           std::vector<MotifInstance> near, uint64_t margin) {
   for (MotifInstance& range : near) {
-    const ClipInfo& clip = ClipHolding(clips, range.start);
+    const ClipInfo& clip = archive.clips()[archive.ClipOfFrame(range.start)];
     range.start = range.start - std::min(margin, range.start - clip.first_frame);
     range.end = std::min(clip.first_frame + clip.frame_count, range.end + margin);
   }
@@ -90,7 +83,7 @@ std::vector<MotifInstance> Neighbourhoods(const std::vector<ClipInfo>& clips,
   std::vector<MotifInstance> joined;
   for (const MotifInstance& range : near) {
     if (!joined.empty() && range.start <= joined.back().end &&
-        &ClipHolding(clips, range.start) == &ClipHolding(clips, joined.back().start)) {
+        archive.ClipOfFrame(range.start) == archive.ClipOfFrame(joined.back().start)) {
       joined.back().end = std::max(joined.back().end, range.end);
     } else {
       joined.push_back(range);
@@ -131,8 +124,8 @@ Result<std::vector<MotifInstance>> FindPausesNear(const FrameFileReader& archive
   const uint64_t min_frames = std::max<uint64_t>(
       1, static_cast<uint64_t>(std::lround(options.min_seconds * archive.fps())));
   std::vector<float> rows;
-  for (const MotifInstance& range : Neighbourhoods(archive.clips(), std::move(near), min_frames)) {
-    const ClipInfo& clip = ClipHolding(archive.clips(), range.start);
+  for (const MotifInstance& range : Neighbourhoods(archive, std::move(near), min_frames)) {
+    const ClipInfo& clip = archive.clips()[archive.ClipOfFrame(range.start)];
     const uint64_t clip_end = clip.first_frame + clip.frame_count;
     uint64_t run_start = 0;
     bool in_run = false;
