@@ -9,13 +9,14 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <system_error>
 
 namespace motif {
 
-Result<std::string> ReadFileToString(const std::string& path) {
+Result<std::string> ReadFileToString(const std::string& path, uint64_t max_bytes) {
   // Opened without blocking and checked on the open descriptor: a FIFO named as a file would
   // block the open until a writer came, and a device (/dev/zero) would be read without end.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
@@ -34,16 +35,27 @@ Result<std::string> ReadFileToString(const std::string& path) {
     if (!S_ISREG(info.st_mode)) {
       return Status::InvalidArgument(path + ": not a regular file (a FIFO, device or socket)");
     }
+    const auto too_large = [&](uint64_t size) {
+      return Status::InvalidArgument(path + ": " + std::to_string(size) + " bytes, more than the " +
+                                     std::to_string(max_bytes) + " allowed for this file");
+    };
+    if (static_cast<uint64_t>(info.st_size) > max_bytes) return too_large(info.st_size);
     bytes.resize(static_cast<size_t>(info.st_size));
     size_t done = 0;
     for (;;) {
-      if (done == bytes.size()) bytes.resize(bytes.size() + 65536);  // grew since the stat
+      if (done == bytes.size()) {  // grew since the stat
+        if (done > max_bytes) return too_large(done);
+        // Up to one byte past the limit, which shows a file that grew beyond it.
+        const uint64_t cap = max_bytes == UINT64_MAX ? max_bytes : max_bytes + 1;
+        bytes.resize(static_cast<size_t>(std::min<uint64_t>(bytes.size() + 65536, cap)));
+      }
       const ssize_t got = ::read(fd, bytes.data() + done, bytes.size() - done);
       if (got < 0 && errno == EINTR) continue;
       if (got < 0) return Status::IOError(path + ": read failed: " + std::strerror(errno));
       if (got == 0) break;
       done += static_cast<size_t>(got);
     }
+    if (done > max_bytes) return too_large(done);
     bytes.resize(done);
     return Status::Ok();
   }();

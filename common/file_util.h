@@ -3,6 +3,7 @@
 // old content or the new one, never a half-written file.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,8 +15,10 @@ namespace motif {
 
 // Reads the whole file. NotFound if it does not exist; InvalidArgument "<path>: is a directory,
 // not a file" or "<path>: not a regular file (a FIFO, device or socket)" without blocking or
-// reading it; IOError otherwise.
-Result<std::string> ReadFileToString(const std::string& path);
+// reading it, or "<path>: N bytes, more than the M allowed" for a file larger than `max_bytes`
+// (checked on its size before reading, and again while reading a file that grows); IOError
+// otherwise.
+Result<std::string> ReadFileToString(const std::string& path, uint64_t max_bytes = UINT64_MAX);
 // The same, for a file that must be a regular file: NotFound "<path>: no such file", IOError
 // "<path>: not a regular file" (a folder, a device), or ReadFileToString's errors.
 Result<std::string> ReadRegularFile(const std::string& path);

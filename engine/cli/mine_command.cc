@@ -264,6 +264,9 @@ int RunMine(const std::vector<std::string>& args) {
   }
   Result<std::unique_ptr<FrameFileReader>> frames = FrameFileReader::Open(archive);
   if (!frames.ok()) return fail(frames.status());
+  // Every stage reads the version opened here, whatever another import appends meanwhile.
+  trellis_options.archive_version = (*frames)->version();
+  paths_options.archive_version = (*frames)->version();
 
   // Stage 2: the matching trellis.
   const std::string trellis_path = Join(out_dir, "trellis.mtr");

@@ -63,6 +63,8 @@ nlohmann::json SearchJson(const SearchResult& result, const FrameFileReader& rea
   nlohmann::json json;
   json["version"] = 1;
   json["archive"] = info.archive;
+  // The version searched (read once, so an import appending meanwhile does not change it).
+  json["archive_generation"] = reader.summary().generation;
   nlohmann::json query = {{"kind", query_kind}, {"words", info.query_words}};
   if (info.query_in_archive) {
     query["clip"] = reader.clips()[info.query_clip].name;

@@ -25,7 +25,9 @@ int VerifyArchive(const std::string& path, ProgressMode mode) {
   Status status = reader.Verify([&](uint64_t done, uint64_t) { progress.Update(done); });
   progress.EndStage();
   if (!status.ok()) return ReportError("verify", status);
-  std::printf("OK: %s: %s blocks, %s clips, %s frames verified\n", path.c_str(),
+  // The version named is the one verified, even when an import appended since it was opened.
+  std::printf("OK: %s: generation %llu: %s blocks, %s clips, %s frames verified\n", path.c_str(),
+              static_cast<unsigned long long>(reader.summary().generation),
               WithCommas(reader.summary().block_count).c_str(),
               WithCommas(reader.clips().size()).c_str(), WithCommas(reader.frame_count()).c_str());
   return kExitOk;

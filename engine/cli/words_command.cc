@@ -18,6 +18,7 @@ nlohmann::json ReportJson(const std::string& archive, const WordsReport& report)
   nlohmann::json json;
   json["version"] = 1;
   json["archive"] = archive;
+  json["archive_generation"] = report.archive_generation;
   json["files"] = {{"embedding", report.paths.embedding},
                    {"motifs", report.paths.motifs},
                    {"signatures", report.paths.signatures}};

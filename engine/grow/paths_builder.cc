@@ -34,7 +34,7 @@ Result<PathsReport> BuildPaths(const std::string& archive_path, const std::strin
     return Status::InvalidArgument("the minimum path length must be positive");
   }
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> archive,
-                         FrameFileReader::Open(archive_path));
+                         FrameFileReader::OpenVersion(archive_path, options.archive_version));
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,
                          TrellisFileReader::Open(trellis_path));
   const TrellisParams& trellis_params = trellis->params();

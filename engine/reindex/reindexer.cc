@@ -209,439 +209,445 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
          " s are left for the next run (still being copied?), e.g. " + scan.settling.front());
   }
   if (!scan.new_takes.empty()) {
-    ArchiveImportOptions import;
-    import.import = options.import;
-    import.skip_bad = options.skip_bad;
-    import.threads = options.threads;
-    import.file_system = file_system;
-    import.note = [&](const std::string& message) { note(message);
-  };
-  import.progress = [&](uint64_t done, uint64_t total) { progress("import", done, total, "takes");
-};
-progress("import", 0, scan.new_takes.size(), "takes");
-Result<ArchiveImportResult> imported = ImportTakesIntoArchive(archive_path, scan.new_takes, import);
-if (!imported.ok()) return imported.status();
-report.takes_imported = imported->takes_imported;
-report.frames_imported = imported->frames_added;
-report.takes_known += imported->takes_already_present;
-report.failed = imported->failures;
-}  // namespace motif
-else if (!archive_exists) {
-  return Status::NotFound(archive_path + " does not exist and " + options.watch_dir +
-                          " holds no take to make it from");
-}
-report.import_seconds = SecondsSince(start);
-MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> archive,
-                       FrameFileReader::Open(archive_path));
-const ArchiveVersion archive_version = VersionOf(*archive, archive_path);
-const double fps = archive->fps();
+    ArchiveImportOptions import_options;
+    import_options.import = options.import;
+    import_options.skip_bad = options.skip_bad;
+    import_options.threads = options.threads;
+    import_options.file_system = file_system;
+    import_options.note = [&](const std::string& message) { note(message); };
+    import_options.progress = [&](uint64_t done, uint64_t total) {
+      progress("import", done, total, "takes");
+    };
+    progress("import", 0, scan.new_takes.size(), "takes");
+    Result<ArchiveImportResult> imported =
+        ImportTakesIntoArchive(archive_path, scan.new_takes, import_options);
+    if (!imported.ok()) return imported.status();
+    report.takes_imported = imported->takes_imported;
+    report.frames_imported = imported->frames_added;
+    report.takes_known += imported->takes_already_present;
+    report.failed = imported->failures;
+  } else if (!archive_exists) {
+    return Status::NotFound(archive_path + " does not exist and " + options.watch_dir +
+                            " holds no take to make it from");
+  }
+  report.import_seconds = SecondsSince(start);
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> archive,
+                         FrameFileReader::Open(archive_path));
+  const ArchiveVersion archive_version = VersionOf(*archive, archive_path);
+  const double fps = archive->fps();
 
-// 3. What to build: the parameters wanted, against the recorded ones.
-Plan plan;
-{
-  MiningParams& wanted = plan.params;
-  if (current) {
-    wanted = current->params;
-  } else {
-    wanted.k_max = 256;
-    wanted.seed = 1;
-    wanted.branch = PathsOptions{}.branch;
-    wanted.min_length = MinLengthFrames(0.5, fps);
-    wanted.max_ncut = ClusterOptions{}.cut.max_ncut;
-    wanted.min_similarity = ClusterOptions{}.similarity.min_similarity;
-    wanted.max_length_ratio = ClusterOptions{}.max_length_ratio;
-    wanted.block_columns = TrellisOptions{}.block_columns;
-  }
-  if (options.k_max) wanted.k_max = *options.k_max;
-  if (options.seed) wanted.seed = *options.seed;
-  if (options.weights_path) wanted.weights_path = *options.weights_path;
-  if (options.branch) wanted.branch = *options.branch;
-  if (options.min_length_frames && *options.min_length_frames > 0) {
-    wanted.min_length = *options.min_length_frames;
-  } else if (options.min_length_seconds) {
-    wanted.min_length = MinLengthFrames(*options.min_length_seconds, fps);
-  }
-  if (options.groups) wanted.groups = *options.groups;
-  if (options.max_ncut) wanted.max_ncut = *options.max_ncut;
-  if (options.min_similarity) wanted.min_similarity = *options.min_similarity;
-  if (options.max_length_ratio) wanted.max_length_ratio = *options.max_length_ratio;
-  // The trellis's own parameters: a change means a full build, which resolves them again.
-  bool trellis_change = !current;
-  if (options.eps && (*options.eps == 0 || !current || *options.eps != current->params.eps)) {
-    trellis_change = true;
-  }
-  if (options.exclusion && (!current || *options.exclusion != current->params.exclusion_frames)) {
-    trellis_change = true;
-  }
-  if (options.search && current &&
-      (*options.search == TrellisSearchMode::kAuto ||
-       (*options.search == TrellisSearchMode::kExact) != current->params.exact)) {
-    trellis_change = true;
-  }
-  if (current && !current->params.exact &&
-      ((options.lsh_tables && *options.lsh_tables != current->params.lsh.tables) ||
-       (options.lsh_hashes && *options.lsh_hashes != current->params.lsh.hashes_per_table) ||
-       (options.lsh_width && *options.lsh_width != current->params.lsh.bucket_width))) {
-    trellis_change = true;
-  }
-  if (current && !SameTrellisParams(wanted, current->params)) trellis_change = true;
-  if (trellis_change) {
-    plan.kind = "full";
-    if (current) plan.why = "a parameter of the trellis changed";
-  } else {
-    // The archive must extend the version the manifest names: same file, that commit intact.
-    Result<std::unique_ptr<FrameFileReader>> pinned = FrameFileReader::OpenCommit(
-        archive_path, current->archive.generation, current->archive.committed_bytes);
-    if (!pinned.ok() || (*pinned)->summary().identity != current->archive.identity) {
+  // 3. What to build: the parameters wanted, against the recorded ones.
+  Plan plan;
+  {
+    MiningParams& wanted = plan.params;
+    if (current) {
+      wanted = current->params;
+    } else {
+      wanted.k_max = 256;
+      wanted.seed = 1;
+      wanted.branch = PathsOptions{}.branch;
+      wanted.min_length = MinLengthFrames(0.5, fps);
+      wanted.max_ncut = ClusterOptions{}.cut.max_ncut;
+      wanted.min_similarity = ClusterOptions{}.similarity.min_similarity;
+      wanted.max_length_ratio = ClusterOptions{}.max_length_ratio;
+      wanted.block_columns = TrellisOptions{}.block_columns;
+    }
+    if (options.k_max) wanted.k_max = *options.k_max;
+    if (options.seed) wanted.seed = *options.seed;
+    if (options.weights_path) wanted.weights_path = *options.weights_path;
+    if (options.branch) wanted.branch = *options.branch;
+    if (options.min_length_frames && *options.min_length_frames > 0) {
+      wanted.min_length = *options.min_length_frames;
+    } else if (options.min_length_seconds) {
+      wanted.min_length = MinLengthFrames(*options.min_length_seconds, fps);
+    }
+    if (options.groups) wanted.groups = *options.groups;
+    if (options.max_ncut) wanted.max_ncut = *options.max_ncut;
+    if (options.min_similarity) wanted.min_similarity = *options.min_similarity;
+    if (options.max_length_ratio) wanted.max_length_ratio = *options.max_length_ratio;
+    // The trellis's own parameters: a change means a full build, which resolves them again.
+    bool trellis_change = !current;
+    if (options.eps && (*options.eps == 0 || !current || *options.eps != current->params.eps)) {
+      trellis_change = true;
+    }
+    if (options.exclusion && (!current || *options.exclusion != current->params.exclusion_frames)) {
+      trellis_change = true;
+    }
+    if (options.search && current &&
+        (*options.search == TrellisSearchMode::kAuto ||
+         (*options.search == TrellisSearchMode::kExact) != current->params.exact)) {
+      trellis_change = true;
+    }
+    if (current && !current->params.exact &&
+        ((options.lsh_tables && *options.lsh_tables != current->params.lsh.tables) ||
+         (options.lsh_hashes && *options.lsh_hashes != current->params.lsh.hashes_per_table) ||
+         (options.lsh_width && *options.lsh_width != current->params.lsh.bucket_width))) {
+      trellis_change = true;
+    }
+    if (current && !SameTrellisParams(wanted, current->params)) trellis_change = true;
+    if (trellis_change) {
       plan.kind = "full";
-      plan.why = "the archive is not an extension of the one version " +
-                 std::to_string(current->version) + " was mined from" +
-                 (pinned.ok() ? std::string() : " (" + pinned.status().message() + ")");
-    } else if (archive_version.identity != current->archive.identity) {
-      plan.kind = "incremental";
-    } else if (!(wanted == current->params)) {
-      plan.kind = "regrow";
+      if (current) plan.why = "a parameter of the trellis changed";
+    } else {
+      // The archive must extend the version the manifest names: same file, that commit intact.
+      Result<std::unique_ptr<FrameFileReader>> pinned = FrameFileReader::OpenCommit(
+          archive_path, current->archive.generation, current->archive.committed_bytes);
+      if (!pinned.ok() || (*pinned)->summary().identity != current->archive.identity) {
+        plan.kind = "full";
+        plan.why = "the archive is not an extension of the one version " +
+                   std::to_string(current->version) + " was mined from" +
+                   (pinned.ok() ? std::string() : " (" + pinned.status().message() + ")");
+      } else if (archive_version.identity != current->archive.identity) {
+        plan.kind = "incremental";
+      } else if (!(wanted == current->params)) {
+        plan.kind = "regrow";
+      }
+    }
+    if (plan.kind == "full") {
+      // eps: as given; else the recorded one; at the first build (or --eps 0) estimated.
+      wanted.eps = options.eps ? *options.eps : (current ? current->params.eps : 0.0f);
+      plan.estimate_eps = wanted.eps == 0;
+      if (plan.estimate_eps) {
+        wanted.eps_estimated = true;
+      } else if (options.eps) {  // given: nothing was estimated
+        wanted.eps_estimated = false;
+        wanted.mu = 0;
+        wanted.sigma = 0;
+      }
+      if (options.exclusion)
+        wanted.exclusion_frames = *options.exclusion;
+      else if (!current)
+        wanted.exclusion_frames = 0;  // resolved by the build
     }
   }
+  if (!plan.why.empty()) note("full build: " + plan.why);
+  if (plan.kind.empty()) {
+    report.up_to_date = true;
+    report.manifest = *current;
+    report.total_seconds = SecondsSince(run_start);
+    return report;
+  }
+
+  // 4. The next version, in its own folder (a killed run's files there are resumed or reused).
+  const uint64_t version = current ? current->version + 1 : 1;
+  const std::string version_dir = VersionDirName(version);
+  const std::string version_path = Join(out_dir, version_dir);
+  fs::create_directories(version_path, error);
+  if (error) return Status::IOError("cannot create " + version_path + ": " + error.message());
+  const std::string trellis_path = Join(version_path, "trellis.mtr");
+  MiningParams& params = plan.params;
+  ReindexManifest manifest;
+  manifest.version = version;
+  manifest.dir = version_dir;
+  manifest.archive = archive_version;
+  manifest.build.kind = plan.kind;
+  manifest.build.previous_version = plan.kind == "full" ? 0 : current->version;
+  manifest.build.new_takes = report.takes_imported;
+  manifest.build.new_frames =
+      plan.kind == "incremental" ? archive_version.frames - current->archive.frames : 0;
+
+  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
+                         LoadDistanceWeights(archive->skeleton(), params.weights_path));
+  const uint64_t weights_hash = WeightsHash(weights);
+  start = Clock::now();
+  std::string trellis_stage;
+  auto trellis_progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+    const std::string name = stage == "trellis" ? "trellis" : "trellis " + stage;
+    const std::string unit = stage == "eps"                              ? "pairs"
+                             : stage == "features"                       ? "frames"
+                             : stage == "thresholds" || stage == "merge" ? "blocks"
+                                                                         : "columns";
+    progress(name, done, total, unit);
+  };
   if (plan.kind == "full") {
-    // eps: as given; else the recorded one; at the first build (or --eps 0) estimated.
-    wanted.eps = options.eps ? *options.eps : (current ? current->params.eps : 0.0f);
-    plan.estimate_eps = wanted.eps == 0;
-    if (plan.estimate_eps) {
-      wanted.eps_estimated = true;
-    } else if (options.eps) {  // given: nothing was estimated
-      wanted.eps_estimated = false;
-      wanted.mu = 0;
-      wanted.sigma = 0;
+    TrellisOptions trellis;
+    trellis.eps = params.eps;
+    trellis.k_max = params.k_max;
+    trellis.exclusion_frames = params.exclusion_frames;
+    trellis.min_length_seconds = static_cast<double>(params.min_length) / fps;
+    trellis.search =
+        options.search ? *options.search
+        : current ? (current->params.exact ? TrellisSearchMode::kExact : TrellisSearchMode::kLsh)
+                  : TrellisSearchMode::kAuto;
+    trellis.threads = options.threads;
+    trellis.seed = params.seed;
+    trellis.weights_path = params.weights_path;
+    trellis.block_columns = params.block_columns;
+    if (current && !current->params.exact && trellis.search != TrellisSearchMode::kExact) {
+      trellis.lsh = current->params.lsh;  // the recorded family, unless overridden below
     }
-    if (options.exclusion)
-      wanted.exclusion_frames = *options.exclusion;
-    else if (!current)
-      wanted.exclusion_frames = 0;  // resolved by the build
+    if (options.lsh_tables) trellis.lsh.tables = *options.lsh_tables;
+    if (options.lsh_hashes) trellis.lsh.hashes_per_table = *options.lsh_hashes;
+    if (options.lsh_width) trellis.lsh.bucket_width = *options.lsh_width;
+    trellis.progress = trellis_progress;
+    trellis.note = note;
+    trellis.archive_version = {archive_version.generation, archive_version.committed_bytes};
+    // The features and the LSH tables, kept for the next run (not the thresholds: the next
+    // update decodes the trellis once for them). Best effort: it is a cache.
+    trellis.on_search_done = [&](const PoseFeatures& features, const NeighbourSearch& search) {
+      const auto* lsh_search = dynamic_cast<const LshSearch*>(&search);
+      SearchCacheKey key{archive_version.identity, weights_hash,
+                         lsh_search ? DescribeLshOptions(lsh_search->options()) : ""};
+      Status saved =
+          WriteSearchCache(Join(version_path, kSearchCacheName), key, features,
+                           lsh_search ? &lsh_search->index() : nullptr, 0, {}, file_system);
+      if (!saved.ok())
+        note("search cache not saved (the next run rebuilds it): " + saved.message());
+    };
+    MOTIF_ASSIGN_OR_RETURN(TrellisReport built, BuildTrellis(archive_path, trellis_path, trellis));
+    params.eps = built.params.eps;
+    if (plan.estimate_eps) {
+      params.mu = built.params.mu;
+      params.sigma = built.params.sigma;
+    }
+    params.exclusion_frames = built.params.exclusion_frames;
+    params.exact = built.search == TrellisSearchMode::kExact;
+    params.lsh = params.exact ? LshOptions{} : built.lsh_resolved;
+    params.lsh.threads = 0;
+    params.weights_hash = built.params.weights_hash;
+  } else if (plan.kind == "incremental") {
+    const std::string previous_path = Join(out_dir, current->trellis.path);
+    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> previous,
+                           TrellisFileReader::Open(previous_path));
+    TrellisParams trellis_params = previous->params();
+    trellis_params.frame_count = archive->frame_count();
+    trellis_params.archive_identity = archive_version.identity;
+    trellis_params.mu = 0;  // eps is given from now on, as `mine --eps` gives it
+    trellis_params.sigma = 0;
+    LshOptions lsh = params.lsh;
+    lsh.seed = params.seed;
+    lsh.threads = options.threads;
+    trellis_params.search_params = params.exact ? "exact" : DescribeLshOptions(lsh);
+    const std::string family = params.exact ? "" : DescribeLshOptions(lsh);
+    // Reused when a killed run finished it.
+    bool reused = false;
+    if (fs::exists(trellis_path, error)) {
+      Result<std::unique_ptr<TrellisFileReader>> done = TrellisFileReader::Open(trellis_path);
+      reused = done.ok() && (*done)->params() == trellis_params;
+    }
+    if (!reused) {
+      // The previous version's features, LSH tables and thresholds, extended with the new
+      // frames; computed from the whole archive when the cache is missing or stale.
+      auto features_progress = [&](uint64_t done, uint64_t total) {
+        progress("trellis features", done, total, "frames");
+      };
+      progress("trellis features", 0, archive->frame_count(), "frames");
+      Result<SearchCache> cache =
+          ReadSearchCache(Join(Join(out_dir, current->dir), kSearchCacheName));
+      const SearchCacheKey previous_key{current->archive.identity, weights_hash, family};
+      const bool cached = cache.ok() && cache->key == previous_key &&
+                          cache->features.frame_count() == current->archive.frames &&
+                          (params.exact || cache->tables.size() == lsh.tables);
+      if (!cached) {
+        note("no search cache of version " + std::to_string(current->version) +
+             (cache.ok() ? std::string(" for these parameters") : ": " + cache.status().message()) +
+             "; decoding the whole archive");
+      }
+      std::optional<PoseFeatures> features_holder;
+      if (cached) {
+        MOTIF_ASSIGN_OR_RETURN(features_holder,
+                               PoseFeatures::ExtendFromArchive(std::move(cache->features), *archive,
+                                                               weights, features_progress));
+      } else {
+        MOTIF_ASSIGN_OR_RETURN(features_holder,
+                               PoseFeatures::FromArchive(*archive, weights, features_progress));
+      }
+      const PoseFeatures& features = *features_holder;
+      NeighbourRules rules;
+      rules.eps = params.eps;
+      rules.k_max = params.k_max;
+      rules.exclusion_frames = params.exclusion_frames;
+      rules.clip_first_frames = features.clip_first_frames();
+      std::unique_ptr<NeighbourSearch> search;
+      const LshSearch* lsh_search = nullptr;
+      if (params.exact) {
+        ExactSearchOptions exact;
+        exact.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
+        search = std::make_unique<ExactSearch>(features, rules, exact);
+      } else {
+        std::unique_ptr<LshSearch> made;
+        if (cached) {
+          MOTIF_ASSIGN_OR_RETURN(LshIndex index, LshIndex::FromTables(current->archive.frames,
+                                                                      std::move(cache->tables),
+                                                                      cache->position_codes));
+          const HashFamily hash_family = HashFamily::Draw(
+              features.weights(), lsh.tables, lsh.hashes_per_table, lsh.bucket_width, lsh.seed);
+          MOTIF_RETURN_IF_ERROR(
+              index.Extend(features, hash_family, lsh.shard_frames, options.threads));
+          MOTIF_ASSIGN_OR_RETURN(
+              made, LshSearch::CreateWithIndex(features, rules, lsh, std::move(index)));
+        } else {
+          MOTIF_ASSIGN_OR_RETURN(made, LshSearch::Create(features, rules, lsh));
+        }
+        lsh_search = made.get();
+        search = std::move(made);
+      }
+      // The paths grow as the blocks are written (one pass over the new trellis, beside the
+      // merge), unless the update resumes an interrupted one: BuildPaths grows them then.
+      std::vector<uint64_t> clip_starts;
+      for (const ClipInfo& clip : archive->clips()) clip_starts.push_back(clip.first_frame);
+      GrowOptions grow;
+      grow.branch = params.branch;
+      grow.min_length = params.min_length;
+      MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathGrower> grower,
+                             PathGrower::Create(archive->frame_count(), clip_starts, grow));
+      std::vector<float> next_thresholds;
+      TrellisUpdateOptions update;
+      update.threads = options.threads;
+      update.file_system = file_system;
+      update.progress = trellis_progress;
+      const bool thresholds_cached = cached && cache->trellis_identity == previous->identity() &&
+                                     cache->thresholds.size() == previous->column_count();
+      if (thresholds_cached) update.thresholds = &cache->thresholds;
+      update.next_thresholds = &next_thresholds;
+      update.on_block = [&](uint64_t first_column,
+                            const std::vector<std::vector<Neighbour>>& columns) -> Status {
+        if (grower->next_column() != first_column) return Status::Ok();  // resumed: BuildPaths
+        for (const std::vector<Neighbour>& column : columns) {
+          MOTIF_RETURN_IF_ERROR(grower->AddColumn(column.data(), column.size()));
+        }
+        return Status::Ok();
+      };
+      MOTIF_ASSIGN_OR_RETURN(
+          TrellisUpdateReport updated,
+          UpdateTrellis(*previous, features, rules, *search, trellis_params, trellis_path, update));
+      manifest.build.changed_columns = updated.changed_columns;
+      manifest.build.copied_blocks = updated.copied_blocks;
+      manifest.build.rewritten_blocks = updated.rewritten_blocks;
+      note("trellis update: " + std::to_string(updated.new_columns) + " new columns, " +
+           std::to_string(updated.changed_columns) + " of " + std::to_string(updated.old_columns) +
+           " old columns changed; " + std::to_string(updated.copied_blocks) + " blocks copied, " +
+           std::to_string(updated.rewritten_blocks) + " rewritten");
+      MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> written,
+                             TrellisFileReader::Open(trellis_path));
+      if (grower->next_column() == archive->frame_count()) {
+        MOTIF_ASSIGN_OR_RETURN(std::vector<PathCandidate> candidates, grower->Finish());
+        PathsParams paths_params;
+        paths_params.trellis_identity = written->identity();
+        paths_params.archive_identity = archive_version.identity;
+        paths_params.frame_count = archive->frame_count();
+        paths_params.branch = grow.branch;
+        paths_params.min_length = grow.min_length;
+        MOTIF_RETURN_IF_ERROR(
+            WritePathsFile(Join(version_path, "paths.mpa"), paths_params, candidates));
+      }
+      Status saved = WriteSearchCache(Join(version_path, kSearchCacheName),
+                                      {archive_version.identity, weights_hash, family}, features,
+                                      lsh_search ? &lsh_search->index() : nullptr,
+                                      written->identity(), next_thresholds, file_system);
+      if (!saved.ok())
+        note("search cache not saved (the next run rebuilds it): " + saved.message());
+    }
+  } else {  // regrow: the same trellis, and the same search cache (best effort)
+    const std::string previous_path = Join(out_dir, current->trellis.path);
+    if (!fs::exists(trellis_path, error)) {
+      fs::create_hard_link(previous_path, trellis_path, error);
+      if (error) fs::copy_file(previous_path, trellis_path, error);
+      if (error) {
+        return Status::IOError("cannot link " + previous_path + " to " + trellis_path + ": " +
+                               error.message());
+      }
+    }
+    const std::string cache_path = Join(version_path, kSearchCacheName);
+    if (!fs::exists(cache_path, error)) {
+      fs::create_hard_link(Join(Join(out_dir, current->dir), kSearchCacheName), cache_path, error);
+    }
   }
-}
-if (!plan.why.empty()) note("full build: " + plan.why);
-if (plan.kind.empty()) {
-  report.up_to_date = true;
-  report.manifest = *current;
+  report.trellis_seconds = SecondsSince(start);
+  {
+    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,
+                           TrellisFileReader::Open(trellis_path));
+    manifest.trellis = {Join(version_dir, "trellis.mtr"), trellis->file_bytes(),
+                        trellis->identity()};
+  }
+
+  // 5. Paths and motifs.
+  start = Clock::now();
+  PathsOptions paths_options;
+  paths_options.branch = params.branch;
+  paths_options.min_length_frames = params.min_length;
+  paths_options.archive_version = {archive_version.generation, archive_version.committed_bytes};
+  paths_options.progress = [&](uint64_t done, uint64_t total) {
+    progress("grow", done, total, "columns");
+  };
+  const std::string paths_path = Join(version_path, "paths.mpa");
+  MOTIF_ASSIGN_OR_RETURN(PathsReport paths,
+                         BuildPaths(archive_path, trellis_path, paths_path, paths_options));
+  report.grow_seconds = SecondsSince(start);
+  start = Clock::now();
+  ClusterOptions cluster;
+  cluster.seed = params.seed;
+  cluster.threads = options.threads;
+  cluster.cut.groups = params.groups;
+  cluster.cut.max_ncut = params.max_ncut;
+  cluster.similarity.min_similarity = params.min_similarity;
+  cluster.max_length_ratio = params.max_length_ratio;
+  cluster.progress = [&](const std::string&, uint64_t done, uint64_t total) {
+    progress("cluster", done, total, "columns");
+  };
+  ClusterStageInput cluster_input;
+  cluster_input.archive_path = archive_path;
+  cluster_input.archive = archive.get();
+  cluster_input.trellis_path = trellis_path;
+  cluster_input.paths_path = paths_path;
+  cluster_input.paths_params = paths.params;
+  cluster_input.candidates = paths.candidates;
+  cluster_input.motifs_path = Join(version_path, "motifs.json");
+  cluster_input.state_path = Join(version_path, "cluster_state.json");
+  MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(cluster_input, cluster));
+  report.cluster_seconds = SecondsSince(start);
+  MOTIF_ASSIGN_OR_RETURN(manifest.paths, DescribeFile(out_dir, Join(version_dir, "paths.mpa")));
+  MOTIF_ASSIGN_OR_RETURN(manifest.motifs, DescribeFile(out_dir, Join(version_dir, "motifs.json")));
+  if (options.report) {
+    start = Clock::now();
+    progress("report", 0, 1, "files");
+    ReportInfo info;
+    info.archive_path = archive_path;
+    std::ostringstream text;
+    text << "reindex version " << version << " (" << plan.kind << "), eps " << params.eps
+         << ", k_max " << params.k_max << ", B " << params.branch << ", min length "
+         << params.min_length << " frames, seed " << params.seed << ", search "
+         << (params.exact ? "exact" : "lsh");
+    info.parameters_text = text.str();
+    info.timings = {{"import", report.import_seconds},
+                    {"trellis", report.trellis_seconds},
+                    {"grow", report.grow_seconds},
+                    {"cluster", report.cluster_seconds}};
+    const std::string report_relative = Join(version_dir, "report.html");
+    MOTIF_RETURN_IF_ERROR(
+        WriteReportHtml(Join(out_dir, report_relative), clustered.document, *archive, info));
+    MOTIF_ASSIGN_OR_RETURN(manifest.report, DescribeFile(out_dir, report_relative));
+    progress("report", 1, 1, "files");
+    report.report_seconds = SecondsSince(start);
+  }
+
+  // 6. The switch, then the files at their documented paths, then the old versions.
+  params.lsh.threads = 0;
+  manifest.params = params;
+  manifest.written = UtcNow();
+  manifest.build.seconds = SecondsSince(run_start);
+  bool switched = false;
+  Status status = WriteManifest(out_dir, manifest, file_system, &switched);
+  if (!switched) return status;
+  if (!status.ok()) {
+    report.warnings.push_back(
+        "version " + std::to_string(version) +
+        " is current, but the folder could not be synced: " + status.message());
+  }
+  status = PublishCurrent(out_dir, manifest, file_system);
+  if (!status.ok()) {
+    report.warnings.push_back(
+        Join(out_dir, "motifs.json") +
+        " is still the previous version's (the next run replaces it): " + status.message());
+  }
+  for (uint64_t old : ListVersions(out_dir)) {
+    if (old + 1 >= version && old <= version) continue;  // the current and the previous
+    fs::remove_all(Join(out_dir, VersionDirName(old)), error);
+    if (!error) report.removed_versions.push_back(old);
+  }
+  report.manifest = manifest;
   report.total_seconds = SecondsSince(run_start);
   return report;
-}
-
-// 4. The next version, in its own folder (a killed run's files there are resumed or reused).
-const uint64_t version = current ? current->version + 1 : 1;
-const std::string version_dir = VersionDirName(version);
-const std::string version_path = Join(out_dir, version_dir);
-fs::create_directories(version_path, error);
-if (error) return Status::IOError("cannot create " + version_path + ": " + error.message());
-const std::string trellis_path = Join(version_path, "trellis.mtr");
-MiningParams& params = plan.params;
-ReindexManifest manifest;
-manifest.version = version;
-manifest.dir = version_dir;
-manifest.archive = archive_version;
-manifest.build.kind = plan.kind;
-manifest.build.previous_version = plan.kind == "full" ? 0 : current->version;
-manifest.build.new_takes = report.takes_imported;
-manifest.build.new_frames =
-    plan.kind == "incremental" ? archive_version.frames - current->archive.frames : 0;
-
-MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
-                       LoadDistanceWeights(archive->skeleton(), params.weights_path));
-const uint64_t weights_hash = WeightsHash(weights);
-start = Clock::now();
-std::string trellis_stage;
-auto trellis_progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-  const std::string name = stage == "trellis" ? "trellis" : "trellis " + stage;
-  const std::string unit = stage == "eps"                              ? "pairs"
-                           : stage == "features"                       ? "frames"
-                           : stage == "thresholds" || stage == "merge" ? "blocks"
-                                                                       : "columns";
-  progress(name, done, total, unit);
-};
-if (plan.kind == "full") {
-  TrellisOptions trellis;
-  trellis.eps = params.eps;
-  trellis.k_max = params.k_max;
-  trellis.exclusion_frames = params.exclusion_frames;
-  trellis.min_length_seconds = static_cast<double>(params.min_length) / fps;
-  trellis.search =
-      options.search ? *options.search
-      : current      ? (current->params.exact ? TrellisSearchMode::kExact : TrellisSearchMode::kLsh)
-                     : TrellisSearchMode::kAuto;
-  trellis.threads = options.threads;
-  trellis.seed = params.seed;
-  trellis.weights_path = params.weights_path;
-  trellis.block_columns = params.block_columns;
-  if (current && !current->params.exact && trellis.search != TrellisSearchMode::kExact) {
-    trellis.lsh = current->params.lsh;  // the recorded family, unless overridden below
-  }
-  if (options.lsh_tables) trellis.lsh.tables = *options.lsh_tables;
-  if (options.lsh_hashes) trellis.lsh.hashes_per_table = *options.lsh_hashes;
-  if (options.lsh_width) trellis.lsh.bucket_width = *options.lsh_width;
-  trellis.progress = trellis_progress;
-  trellis.note = note;
-  // The features and the LSH tables, kept for the next run (not the thresholds: the next
-  // update decodes the trellis once for them). Best effort: it is a cache.
-  trellis.on_search_done = [&](const PoseFeatures& features, const NeighbourSearch& search) {
-    const auto* lsh_search = dynamic_cast<const LshSearch*>(&search);
-    SearchCacheKey key{archive_version.identity, weights_hash,
-                       lsh_search ? DescribeLshOptions(lsh_search->options()) : ""};
-    Status saved =
-        WriteSearchCache(Join(version_path, kSearchCacheName), key, features,
-                         lsh_search ? &lsh_search->index() : nullptr, 0, {}, file_system);
-    if (!saved.ok()) note("search cache not saved (the next run rebuilds it): " + saved.message());
-  };
-  MOTIF_ASSIGN_OR_RETURN(TrellisReport built, BuildTrellis(archive_path, trellis_path, trellis));
-  params.eps = built.params.eps;
-  if (plan.estimate_eps) {
-    params.mu = built.params.mu;
-    params.sigma = built.params.sigma;
-  }
-  params.exclusion_frames = built.params.exclusion_frames;
-  params.exact = built.search == TrellisSearchMode::kExact;
-  params.lsh = params.exact ? LshOptions{} : built.lsh_resolved;
-  params.lsh.threads = 0;
-  params.weights_hash = built.params.weights_hash;
-} else if (plan.kind == "incremental") {
-  const std::string previous_path = Join(out_dir, current->trellis.path);
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> previous,
-                         TrellisFileReader::Open(previous_path));
-  TrellisParams trellis_params = previous->params();
-  trellis_params.frame_count = archive->frame_count();
-  trellis_params.archive_identity = archive_version.identity;
-  trellis_params.mu = 0;  // eps is given from now on, as `mine --eps` gives it
-  trellis_params.sigma = 0;
-  LshOptions lsh = params.lsh;
-  lsh.seed = params.seed;
-  lsh.threads = options.threads;
-  trellis_params.search_params = params.exact ? "exact" : DescribeLshOptions(lsh);
-  const std::string family = params.exact ? "" : DescribeLshOptions(lsh);
-  // Reused when a killed run finished it.
-  bool reused = false;
-  if (fs::exists(trellis_path, error)) {
-    Result<std::unique_ptr<TrellisFileReader>> done = TrellisFileReader::Open(trellis_path);
-    reused = done.ok() && (*done)->params() == trellis_params;
-  }
-  if (!reused) {
-    // The previous version's features, LSH tables and thresholds, extended with the new
-    // frames; computed from the whole archive when the cache is missing or stale.
-    auto features_progress = [&](uint64_t done, uint64_t total) {
-      progress("trellis features", done, total, "frames");
-    };
-    progress("trellis features", 0, archive->frame_count(), "frames");
-    Result<SearchCache> cache =
-        ReadSearchCache(Join(Join(out_dir, current->dir), kSearchCacheName));
-    const SearchCacheKey previous_key{current->archive.identity, weights_hash, family};
-    const bool cached = cache.ok() && cache->key == previous_key &&
-                        cache->features.frame_count() == current->archive.frames &&
-                        (params.exact || cache->tables.size() == lsh.tables);
-    if (!cached) {
-      note("no search cache of version " + std::to_string(current->version) +
-           (cache.ok() ? std::string(" for these parameters") : ": " + cache.status().message()) +
-           "; decoding the whole archive");
-    }
-    std::optional<PoseFeatures> features_holder;
-    if (cached) {
-      MOTIF_ASSIGN_OR_RETURN(features_holder,
-                             PoseFeatures::ExtendFromArchive(std::move(cache->features), *archive,
-                                                             weights, features_progress));
-    } else {
-      MOTIF_ASSIGN_OR_RETURN(features_holder,
-                             PoseFeatures::FromArchive(*archive, weights, features_progress));
-    }
-    const PoseFeatures& features = *features_holder;
-    NeighbourRules rules;
-    rules.eps = params.eps;
-    rules.k_max = params.k_max;
-    rules.exclusion_frames = params.exclusion_frames;
-    rules.clip_first_frames = features.clip_first_frames();
-    std::unique_ptr<NeighbourSearch> search;
-    const LshSearch* lsh_search = nullptr;
-    if (params.exact) {
-      ExactSearchOptions exact;
-      exact.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
-      search = std::make_unique<ExactSearch>(features, rules, exact);
-    } else {
-      std::unique_ptr<LshSearch> made;
-      if (cached) {
-        MOTIF_ASSIGN_OR_RETURN(
-            LshIndex index, LshIndex::FromTables(current->archive.frames, std::move(cache->tables),
-                                                 cache->position_codes));
-        const HashFamily hash_family = HashFamily::Draw(
-            features.weights(), lsh.tables, lsh.hashes_per_table, lsh.bucket_width, lsh.seed);
-        MOTIF_RETURN_IF_ERROR(
-            index.Extend(features, hash_family, lsh.shard_frames, options.threads));
-        MOTIF_ASSIGN_OR_RETURN(made,
-                               LshSearch::CreateWithIndex(features, rules, lsh, std::move(index)));
-      } else {
-        MOTIF_ASSIGN_OR_RETURN(made, LshSearch::Create(features, rules, lsh));
-      }
-      lsh_search = made.get();
-      search = std::move(made);
-    }
-    // The paths grow as the blocks are written (one pass over the new trellis, beside the
-    // merge), unless the update resumes an interrupted one: BuildPaths grows them then.
-    std::vector<uint64_t> clip_starts;
-    for (const ClipInfo& clip : archive->clips()) clip_starts.push_back(clip.first_frame);
-    GrowOptions grow;
-    grow.branch = params.branch;
-    grow.min_length = params.min_length;
-    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathGrower> grower,
-                           PathGrower::Create(archive->frame_count(), clip_starts, grow));
-    std::vector<float> next_thresholds;
-    TrellisUpdateOptions update;
-    update.threads = options.threads;
-    update.file_system = file_system;
-    update.progress = trellis_progress;
-    const bool thresholds_cached = cached && cache->trellis_identity == previous->identity() &&
-                                   cache->thresholds.size() == previous->column_count();
-    if (thresholds_cached) update.thresholds = &cache->thresholds;
-    update.next_thresholds = &next_thresholds;
-    update.on_block = [&](uint64_t first_column,
-                          const std::vector<std::vector<Neighbour>>& columns) -> Status {
-      if (grower->next_column() != first_column) return Status::Ok();  // resumed: BuildPaths
-      for (const std::vector<Neighbour>& column : columns) {
-        MOTIF_RETURN_IF_ERROR(grower->AddColumn(column.data(), column.size()));
-      }
-      return Status::Ok();
-    };
-    MOTIF_ASSIGN_OR_RETURN(
-        TrellisUpdateReport updated,
-        UpdateTrellis(*previous, features, rules, *search, trellis_params, trellis_path, update));
-    manifest.build.changed_columns = updated.changed_columns;
-    manifest.build.copied_blocks = updated.copied_blocks;
-    manifest.build.rewritten_blocks = updated.rewritten_blocks;
-    note("trellis update: " + std::to_string(updated.new_columns) + " new columns, " +
-         std::to_string(updated.changed_columns) + " of " + std::to_string(updated.old_columns) +
-         " old columns changed; " + std::to_string(updated.copied_blocks) + " blocks copied, " +
-         std::to_string(updated.rewritten_blocks) + " rewritten");
-    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> written,
-                           TrellisFileReader::Open(trellis_path));
-    if (grower->next_column() == archive->frame_count()) {
-      MOTIF_ASSIGN_OR_RETURN(std::vector<PathCandidate> candidates, grower->Finish());
-      PathsParams paths_params;
-      paths_params.trellis_identity = written->identity();
-      paths_params.archive_identity = archive_version.identity;
-      paths_params.frame_count = archive->frame_count();
-      paths_params.branch = grow.branch;
-      paths_params.min_length = grow.min_length;
-      MOTIF_RETURN_IF_ERROR(
-          WritePathsFile(Join(version_path, "paths.mpa"), paths_params, candidates));
-    }
-    Status saved = WriteSearchCache(Join(version_path, kSearchCacheName),
-                                    {archive_version.identity, weights_hash, family}, features,
-                                    lsh_search ? &lsh_search->index() : nullptr,
-                                    written->identity(), next_thresholds, file_system);
-    if (!saved.ok()) note("search cache not saved (the next run rebuilds it): " + saved.message());
-  }
-} else {  // regrow: the same trellis, and the same search cache (best effort)
-  const std::string previous_path = Join(out_dir, current->trellis.path);
-  if (!fs::exists(trellis_path, error)) {
-    fs::create_hard_link(previous_path, trellis_path, error);
-    if (error) fs::copy_file(previous_path, trellis_path, error);
-    if (error) {
-      return Status::IOError("cannot link " + previous_path + " to " + trellis_path + ": " +
-                             error.message());
-    }
-  }
-  const std::string cache_path = Join(version_path, kSearchCacheName);
-  if (!fs::exists(cache_path, error)) {
-    fs::create_hard_link(Join(Join(out_dir, current->dir), kSearchCacheName), cache_path, error);
-  }
-}
-report.trellis_seconds = SecondsSince(start);
-{
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,
-                         TrellisFileReader::Open(trellis_path));
-  manifest.trellis = {Join(version_dir, "trellis.mtr"), trellis->file_bytes(), trellis->identity()};
-}
-
-// 5. Paths and motifs.
-start = Clock::now();
-PathsOptions paths_options;
-paths_options.branch = params.branch;
-paths_options.min_length_frames = params.min_length;
-paths_options.progress = [&](uint64_t done, uint64_t total) {
-  progress("grow", done, total, "columns");
-};
-const std::string paths_path = Join(version_path, "paths.mpa");
-MOTIF_ASSIGN_OR_RETURN(PathsReport paths,
-                       BuildPaths(archive_path, trellis_path, paths_path, paths_options));
-report.grow_seconds = SecondsSince(start);
-start = Clock::now();
-ClusterOptions cluster;
-cluster.seed = params.seed;
-cluster.threads = options.threads;
-cluster.cut.groups = params.groups;
-cluster.cut.max_ncut = params.max_ncut;
-cluster.similarity.min_similarity = params.min_similarity;
-cluster.max_length_ratio = params.max_length_ratio;
-cluster.progress = [&](const std::string&, uint64_t done, uint64_t total) {
-  progress("cluster", done, total, "columns");
-};
-ClusterStageInput cluster_input;
-cluster_input.archive_path = archive_path;
-cluster_input.archive = archive.get();
-cluster_input.trellis_path = trellis_path;
-cluster_input.paths_path = paths_path;
-cluster_input.paths_params = paths.params;
-cluster_input.candidates = paths.candidates;
-cluster_input.motifs_path = Join(version_path, "motifs.json");
-cluster_input.state_path = Join(version_path, "cluster_state.json");
-MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(cluster_input, cluster));
-report.cluster_seconds = SecondsSince(start);
-MOTIF_ASSIGN_OR_RETURN(manifest.paths, DescribeFile(out_dir, Join(version_dir, "paths.mpa")));
-MOTIF_ASSIGN_OR_RETURN(manifest.motifs, DescribeFile(out_dir, Join(version_dir, "motifs.json")));
-if (options.report) {
-  start = Clock::now();
-  progress("report", 0, 1, "files");
-  ReportInfo info;
-  info.archive_path = archive_path;
-  std::ostringstream text;
-  text << "reindex version " << version << " (" << plan.kind << "), eps " << params.eps
-       << ", k_max " << params.k_max << ", B " << params.branch << ", min length "
-       << params.min_length << " frames, seed " << params.seed << ", search "
-       << (params.exact ? "exact" : "lsh");
-  info.parameters_text = text.str();
-  info.timings = {{"import", report.import_seconds},
-                  {"trellis", report.trellis_seconds},
-                  {"grow", report.grow_seconds},
-                  {"cluster", report.cluster_seconds}};
-  const std::string report_relative = Join(version_dir, "report.html");
-  MOTIF_RETURN_IF_ERROR(
-      WriteReportHtml(Join(out_dir, report_relative), clustered.document, *archive, info));
-  MOTIF_ASSIGN_OR_RETURN(manifest.report, DescribeFile(out_dir, report_relative));
-  progress("report", 1, 1, "files");
-  report.report_seconds = SecondsSince(start);
-}
-
-// 6. The switch, then the files at their documented paths, then the old versions.
-params.lsh.threads = 0;
-manifest.params = params;
-manifest.written = UtcNow();
-manifest.build.seconds = SecondsSince(run_start);
-bool switched = false;
-Status status = WriteManifest(out_dir, manifest, file_system, &switched);
-if (!switched) return status;
-if (!status.ok()) {
-  report.warnings.push_back("version " + std::to_string(version) +
-                            " is current, but the folder could not be synced: " + status.message());
-}
-status = PublishCurrent(out_dir, manifest, file_system);
-if (!status.ok()) {
-  report.warnings.push_back(
-      Join(out_dir, "motifs.json") +
-      " is still the previous version's (the next run replaces it): " + status.message());
-}
-for (uint64_t old : ListVersions(out_dir)) {
-  if (old + 1 >= version && old <= version) continue;  // the current and the previous
-  fs::remove_all(Join(out_dir, VersionDirName(old)), error);
-  if (!error) report.removed_versions.push_back(old);
-}
-report.manifest = manifest;
-report.total_seconds = SecondsSince(run_start);
-return report;
 }
 
 }  // namespace motif

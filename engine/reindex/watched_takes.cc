@@ -46,7 +46,12 @@ Result<WatchScan> ScanWatchedFolder(const std::string& dir, const std::vector<Cl
       scan.settling.push_back(source.path);
       continue;
     }
-    MOTIF_ASSIGN_OR_RETURN(std::string bytes, ReadFileToString(source.path));
+    Result<std::string> read = ReadTakeFile(source.path);
+    if (!read.ok() && read.status().IsInvalidArgument()) {
+      scan.new_takes.push_back(source);  // refused by the import, take by take (--skip-bad)
+      continue;
+    }
+    MOTIF_ASSIGN_OR_RETURN(std::string bytes, std::move(read));
     scan.scanned_bytes += bytes.size();
     const uint64_t hash = Checksum64(bytes.data(), bytes.size());
     if (known_hashes.count(hash)) {

@@ -68,7 +68,7 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::s
     return Status::InvalidArgument("--exact and --search lsh contradict each other");
   }
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
-                         FrameFileReader::Open(archive_path));
+                         FrameFileReader::OpenVersion(archive_path, options.archive_version));
   if (reader->frame_count() >= (uint64_t{1} << 32)) {
     return Status::NotSupported(archive_path + ": more than 2^32 frames");
   }

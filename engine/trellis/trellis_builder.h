@@ -25,6 +25,7 @@
 #include "engine/distance/neighbour_search.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_options.h"
+#include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_writer.h"
 
 namespace motif {
@@ -58,8 +59,9 @@ struct TrellisOptions {
   bool exact = false;  // the same as search = kExact (kept for existing callers)
   int threads = 0;     // 0: all cores
   uint64_t seed = 1;
-  std::string weights_path;  // per-joint weights file; empty: the skeleton's defaults
-  LshOptions lsh;            // lsh.seed and lsh.threads are set from seed and threads
+  FrameFileVersion archive_version;  // the archive's version to read; default: the newest
+  std::string weights_path;          // per-joint weights file; empty: the skeleton's defaults
+  LshOptions lsh;                    // lsh.seed and lsh.threads are set from seed and threads
   uint32_t block_columns = 4096;
   // Testing: stop with IOError after writing this many blocks (0: never), leaving the partial
   // file as an interruption would.

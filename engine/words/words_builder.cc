@@ -189,6 +189,7 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
                          LoadDistanceWeights(reader->skeleton(), options.weights_path));
   const uint64_t archive_identity = reader->summary().identity;
   WordsReport report;
+  report.archive_generation = reader->summary().generation;
   report.paths = paths;
 
   // An embedding from elsewhere fixes the word geometry.

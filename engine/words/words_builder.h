@@ -69,6 +69,7 @@ struct WordsOptions {
 };
 
 struct WordsReport {
+  uint64_t archive_generation = 0;  // the version read (once: a later append does not change it)
   uint64_t clips = 0;
   uint64_t takes = 0;  // clips with at least one word
   uint64_t words = 0;

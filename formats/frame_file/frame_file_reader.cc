@@ -144,6 +144,12 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::OpenCommit(const std::
   return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
 }
 
+Result<std::unique_ptr<FrameFileReader>> FrameFileReader::OpenVersion(
+    const std::string& path, const FrameFileVersion& version) {
+  if (version.newest()) return Open(path);
+  return OpenCommit(path, version.generation, version.committed_bytes);
+}
+
 FrameFileReader::FrameFileReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 FrameFileReader::~FrameFileReader() = default;
 
@@ -153,6 +159,10 @@ double FrameFileReader::fps() const { return impl_->metadata().fps; }
 FrameLayout FrameFileReader::layout() const { return impl_->metadata().layout(); }
 uint64_t FrameFileReader::frame_count() const { return impl_->metadata().frame_count; }
 const std::vector<ClipInfo>& FrameFileReader::clips() const { return impl_->metadata().clips; }
+
+FrameFileVersion FrameFileReader::version() const {
+  return {impl_->archive.slot.generation, impl_->archive.slot.committed_length};
+}
 
 size_t FrameFileReader::ClipOfFrame(uint64_t frame_idx) const {
   const std::vector<ClipInfo>& clips = impl_->metadata().clips;

@@ -42,6 +42,16 @@ struct FrameFileSummary {
 
 class FrameStream;
 
+// Which version of an archive to open: the newest (the default), or the one committed as
+// `generation` with `committed_bytes` bytes. A command that opens its archive more than once
+// (each stage of `mine`) pins the version it opened first, so an import appending meanwhile
+// changes nothing it reads.
+struct FrameFileVersion {
+  uint64_t generation = 0;  // 0: the newest
+  uint64_t committed_bytes = 0;
+  bool newest() const { return generation == 0; }
+};
+
 // What Open() does when the newest commit does not validate and it opened the previous version
 // (summary().fallback_reason non-empty). Without a handler it returns that version, and the
 // caller checks the summary. A program sets one handler, once, before opening archives; the
@@ -66,6 +76,9 @@ class FrameFileReader {
   static Result<std::unique_ptr<FrameFileReader>> OpenCommit(const std::string& path,
                                                              uint64_t generation,
                                                              uint64_t committed_length);
+  // OpenCommit for a pinned version, Open for FrameFileVersion{} (the newest).
+  static Result<std::unique_ptr<FrameFileReader>> OpenVersion(const std::string& path,
+                                                              const FrameFileVersion& version);
   ~FrameFileReader();
 
   const std::string& path() const;
@@ -77,6 +90,8 @@ class FrameFileReader {
   // Index into clips() of the clip holding global frame `frame_idx` (frame_idx < frame_count()).
   size_t ClipOfFrame(uint64_t frame_idx) const;
   FrameFileSummary summary() const;
+  // The version opened, to pin it for the next opens (OpenVersion).
+  FrameFileVersion version() const;
 
   // Decodes frames [first_frame, first_frame + frame_count) into `rows` (resized to
   // frame_count * layout().stride()). InvalidArgument if the range is outside the archive;

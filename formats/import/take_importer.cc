@@ -191,9 +191,17 @@ Status CheckNamesAreUtf8(const std::string& path, const Skeleton& skeleton) {
   return Status::Ok();
 }
 
+}  // namespace
+
+Result<std::string> ReadTakeFile(const std::string& path) {
+  return ReadFileToString(path, kMaxTakeFileBytes);
+}
+
+namespace {
+
 Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& options) {
   if (!IsValidUtf8(source.path)) return CheckNamesAreUtf8(source.path, Skeleton());
-  MOTIF_ASSIGN_OR_RETURN(std::string text, ReadFileToString(source.path));
+  MOTIF_ASSIGN_OR_RETURN(std::string text, ReadTakeFile(source.path));
   Take take;
   if (source.format == TakeFormat::kBvh) {
     MOTIF_ASSIGN_OR_RETURN(take, ParseBvh(text, source.path, options.bvh_fps));
@@ -206,7 +214,7 @@ Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& optio
       return Status::InvalidArgument(source.path +
                                      ": no ASF skeleton given for this AMC file (--asf)");
     }
-    MOTIF_ASSIGN_OR_RETURN(std::string asf_text, ReadFileToString(asf_path));
+    MOTIF_ASSIGN_OR_RETURN(std::string asf_text, ReadTakeFile(asf_path));
     MOTIF_ASSIGN_OR_RETURN(AsfSkeleton asf, ParseAsf(asf_text, asf_path));
     MOTIF_ASSIGN_OR_RETURN(take, ParseAmc(asf, text, source.path, options.amc_fps));
   }

@@ -21,6 +21,7 @@
 // Thread-safety: pure functions; takes may be imported from several threads at once.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,15 @@
 #include "formats/motion/take.h"
 
 namespace motif {
+
+// The largest take (or ASF) file read: 1 GiB, far beyond any capture (a 31-joint BVH take of
+// one hour at 120 fps is about 400 MB). A larger file is refused on its size, before it is read.
+inline constexpr uint64_t kMaxTakeFileBytes = uint64_t{1} << 30;
+
+// Reads a take or ASF file: ReadFileToString's errors (a folder, a FIFO, a device are refused
+// without reading), and InvalidArgument naming the file and the limit for one larger than
+// kMaxTakeFileBytes.
+Result<std::string> ReadTakeFile(const std::string& path);
 
 enum class FirstFramePolicy {
   kAuto,  // drop frame 0 when it is a converter's T-pose: discontinuous with the rest of the take

@@ -82,5 +82,17 @@ TEST(ReadFileToString, ReadsAWholeFileAndRefusesFoldersFifosAndDevicesWithoutBlo
   }
 }
 
+// A size limit refuses a larger file on its size, naming it, and reads one at the limit whole.
+TEST(ReadFileToString, RefusesAFileLargerThanTheLimit) {
+  testing::TempDir dir;
+  ASSERT_TRUE(AtomicWriteFile(dir.File("ten"), "0123456789").ok());
+  EXPECT_EQ(ReadFileToString(dir.File("ten"), 10).value(), "0123456789");
+  auto refused = ReadFileToString(dir.File("ten"), 9);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_TRUE(refused.status().IsInvalidArgument());
+  EXPECT_EQ(refused.status().message(),
+            dir.File("ten") + ": 10 bytes, more than the 9 allowed for this file");
+}
+
 }  // namespace
 }  // namespace motif

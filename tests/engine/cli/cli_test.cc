@@ -1,6 +1,7 @@
 // End-to-end tests of the motifmine tool: runs the built binary as a user would.
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -108,6 +109,35 @@ TEST(MotifmineTool, AFifoOrADeviceNamedAsATakeIsRefusedAtOnce) {
   EXPECT_NE(empty.output.find("no .bvh or .amc takes found in " + folder + " (a folder)"),
             std::string::npos)
       << empty.output;
+}
+
+// A take file larger than the limit (1 GiB) is refused on its size before it is read (a sparse
+// file here: nothing is written to disk), by itself or passed over with --skip-bad.
+TEST(MotifmineTool, ATakeLargerThanTheLimitIsRefusedBeforeItIsRead) {
+  testing::TempDir dir;
+  const std::string huge = dir.File("huge.bvh");
+  ASSERT_EQ(::truncate(huge.c_str(), 0), -1);  // absent
+  { std::ofstream create(huge); }
+  ASSERT_EQ(::truncate(huge.c_str(), (int64_t{1} << 30) + 1), 0);
+  const std::string archive = dir.File("a.mfs");
+  const RunResult refused = RunTool("import " + archive + " " + huge);
+  EXPECT_EQ(refused.exit_code, 13) << refused.output;
+  EXPECT_NE(refused.output.find(huge + ": 1073741825 bytes, more than the 1073741824 allowed"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(archive));
+
+  const std::string synth = dir.File("s.mfs");
+  ASSERT_EQ(RunTool("synth " + synth + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code, 0);
+  ASSERT_EQ(
+      RunTool("export " + synth + " --clip synth_000000 --out " + dir.File("good.bvh")).exit_code,
+      0);
+  const RunResult skipped = RunTool("import " + archive + " " + dir.File("good.bvh") + " " + huge +
+                                    " --skip-bad --quiet");
+  EXPECT_EQ(skipped.exit_code, 3) << skipped.output;
+  EXPECT_NE(skipped.output.find(huge), std::string::npos) << skipped.output;
+  EXPECT_EQ(nlohmann::json::parse(RunTool("info " + archive + " --json").output)["clips"].size(),
+            1u);
 }
 
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "engine/trellis/trellis_builder.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/frame_file/frame_file_writer.h"
 #include "formats/paths_file/paths_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 #include "tests/engine/grow/grow_test_util.h"
@@ -116,6 +118,51 @@ TEST_F(PathsBuilderTest, RefusesATrellisOfAnotherArchive) {
   zero.branch = 0;
   EXPECT_TRUE(
       BuildPaths(archive_, trellis_, dir_->File("o.mpa"), zero).status().IsInvalidArgument());
+}
+
+// Appends a copy of the archive's first clip, as another import would.
+void AppendCopyOfFirstClip(const std::string& archive) {
+  auto reader = FrameFileReader::Open(archive);
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  ClipFrames copy;
+  copy.info = (*reader)->clips().front();
+  copy.info.name += "_copy";
+  ASSERT_TRUE((*reader)->ReadFrames(0, copy.info.frame_count, &copy.rows).ok());
+  auto writer = FrameFileWriter::OpenForAppend(archive);
+  ASSERT_TRUE(writer.ok()) << writer.status().ToString();
+  ASSERT_TRUE((*writer)->AppendClip(copy).ok());
+  ASSERT_TRUE((*writer)->Commit().ok());
+}
+
+// A take appended between the trellis and the grower (an import while `mine` runs): the stages
+// given the version opened first finish on it; without it the grower refuses the trellis.
+TEST(PathsBuilder, StagesPinnedToAVersionIgnoreALaterAppend) {
+  TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  ASSERT_TRUE(WriteSynthArchive(archive, 4000, 7).ok());
+  auto opened = FrameFileReader::Open(archive);
+  ASSERT_TRUE(opened.ok());
+  const FrameFileVersion pinned = (*opened)->version();
+  EXPECT_EQ(pinned.generation, 1u);
+  EXPECT_EQ(pinned.committed_bytes, std::filesystem::file_size(archive));
+
+  TrellisOptions trellis_options;
+  trellis_options.exact = true;
+  trellis_options.k_max = 32;
+  trellis_options.archive_version = pinned;
+  ASSERT_TRUE(BuildTrellis(archive, dir.File("a.mtr"), trellis_options).ok());
+  ASSERT_NO_FATAL_FAILURE(AppendCopyOfFirstClip(archive));
+  ASSERT_EQ(FrameFileReader::Open(archive).value()->summary().generation, 2u);
+
+  EXPECT_TRUE(BuildPaths(archive, dir.File("a.mtr"), dir.File("newest.mpa"), {})
+                  .status()
+                  .IsInvalidArgument());
+  PathsOptions paths_options;
+  paths_options.archive_version = pinned;
+  auto paths = BuildPaths(archive, dir.File("a.mtr"), dir.File("a.mpa"), paths_options);
+  ASSERT_TRUE(paths.ok()) << paths.status().ToString();
+  EXPECT_EQ(paths->params.frame_count, 4000u);
+  EXPECT_EQ(paths->params.archive_identity, (*opened)->summary().identity);
 }
 
 TEST(PathsBuilder, DefaultPathAndLambdaInFrames) {
