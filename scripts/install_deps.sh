@@ -8,7 +8,9 @@
 # graphs, engine/cluster/), Google Benchmark and GoogleTest/GoogleMock (bench/ and tests/),
 # chromium (headless: the test that opens report.html in a browser,
 # tests/engine/cli/report_browser_test.cc, checks that its script runs without errors and draws
-# every figure, and saves a screenshot; it skips without it).
+# every figure, and saves a screenshot; it skips without it), python3 (the crash-consistency
+# harness and the hostile-input corpus, scripts/crash_harness.py and scripts/hostile_inputs.py,
+# both run by ctest; standard library only).
 set -euo pipefail
 
 packages=(
@@ -17,7 +19,7 @@ packages=(
   libeigen3-dev libtbb-dev libzstd-dev libxxhash-dev nlohmann-json3-dev
   libspectra-dev
   libbenchmark-dev libgtest-dev libgmock-dev
-  chromium
+  chromium python3
 )
 
 missing=()

@@ -47,6 +47,8 @@ asan_skip=(
   'DtwNeighbours\.DefaultSearchFindsMostTrueNeighbours'  # (DtwNeighbours.* on fewer words)
   'EmbeddingTrainer\.TrainingLowersTheLoss'        # (EmbeddingTrainer.*, which train too)
   'crash_harness'                                   # (a Python harness around the tool)
+  'DamageSweep\.'   # 7,000 runs of the tool (FrameFileCorruption.*: the same sweep in-process)
+  'hostile_inputs'  # a memory limit on the address space, which ASan's shadow memory exceeds
 )
 # The tests ThreadSanitizer runs: the parallel parts, by test name, and the test executables
 # that hold them (tests/*/CMakeLists.txt).

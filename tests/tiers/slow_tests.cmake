@@ -53,5 +53,9 @@ set_tests_properties(
   WordsCliTest.ClassifyWritesItsDocumentWithAndWithoutLabels
   WordsCliTest.SearchFindsAnExportedRangeAndTheWholeTake
   WordsCliTest.WordsWritesItsFilesThenReusesThem
+  Shards/DamageSweep.EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommit/0
+  Shards/DamageSweep.EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommit/1
+  Shards/DamageSweep.EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommit/2
+  Shards/DamageSweep.EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommit/3
   PROPERTIES LABELS slow)
 set_tests_properties(crash_harness_small PROPERTIES LABELS "slow;crash")
