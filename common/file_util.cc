@@ -43,11 +43,19 @@ Result<std::string> ReadFileToString(const std::string& path, uint64_t max_bytes
     bytes.resize(static_cast<size_t>(info.st_size));
     size_t done = 0;
     for (;;) {
-      if (done == bytes.size()) {  // grew since the stat
-        if (done > max_bytes) return too_large(done);
-        // Up to one byte past the limit, which shows a file that grew beyond it.
-        const uint64_t cap = max_bytes == UINT64_MAX ? max_bytes : max_bytes + 1;
-        bytes.resize(static_cast<size_t>(std::min<uint64_t>(bytes.size() + 65536, cap)));
+      if (done == bytes.size()) {
+        // The size the stat gave is read: look for more through a small buffer first, so that
+        // the usual end of file does not grow (and copy) the whole string.
+        char probe[4096];
+        const ssize_t more = ::read(fd, probe, sizeof probe);
+        if (more < 0 && errno == EINTR) continue;
+        if (more < 0) return Status::IOError(path + ": read failed: " + std::strerror(errno));
+        if (more == 0) break;
+        if (done + static_cast<uint64_t>(more) > max_bytes) return too_large(done + more);
+        bytes.append(probe, static_cast<size_t>(more));  // it grew since the stat
+        done += static_cast<size_t>(more);
+        bytes.resize(static_cast<size_t>(std::min<uint64_t>(done + 65536, max_bytes)));
+        if (done == bytes.size()) continue;  // at the limit: only an end of file may follow
       }
       const ssize_t got = ::read(fd, bytes.data() + done, bytes.size() - done);
       if (got < 0 && errno == EINTR) continue;
