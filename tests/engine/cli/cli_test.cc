@@ -19,6 +19,7 @@
 #include "tests/testing/mocap_data.h"
 #include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/tmpfs.h"
 
 namespace motif {
 namespace {
@@ -253,6 +254,38 @@ TEST(MotifmineTool, AFlippedBitInTheActiveCommitSlotLosesNothing) {
   EXPECT_EQ(nlohmann::json::parse(RunTool("info " + archive + " --json").output)["clips"].size(),
             4u);
   EXPECT_EQ(RunTool("verify " + archive + " --quiet").exit_code, 0);
+}
+
+// A folder that cannot be made is an I/O error (exit 14) naming it; a disk too full for an
+// append is exit 16 naming the archive, which stays as it was (a real full tmpfs, when the test
+// may mount one).
+TEST(MotifmineTool, AnIoErrorAndAFullDiskHaveTheirExitCodes) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("a.mfs");
+  const std::string take = dir.File("t.bvh");
+  ASSERT_NO_FATAL_FAILURE(MakeTwoCommitArchive(archive, take));
+  ASSERT_TRUE(AtomicWriteFile(dir.File("plain"), "x").ok());
+  const RunResult io =
+      RunTool("mine " + archive + " --out " + dir.File("plain/out") + " --quiet --no-report");
+  EXPECT_EQ(io.exit_code, 14) << io.output;
+  EXPECT_NE(io.output.find("cannot create " + dir.File("plain/out")), std::string::npos)
+      << io.output;
+
+  testing::Tmpfs tmpfs(dir.File("small"));
+  if (!tmpfs.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (not root?): no full disk";
+  const std::string small = dir.File("small/a.mfs");
+  std::filesystem::copy_file(archive, small);
+  const std::string before = ReadFileToString(small).value();
+  const std::string other = dir.File("u.bvh");  // content not yet in the archive
+  ASSERT_EQ(
+      RunTool("export " + archive + " --clip synth_000000 --start 10 --out " + other).exit_code, 0);
+  ASSERT_TRUE(tmpfs.LeaveRoom(16 << 10));
+  const RunResult full = RunTool("import " + small + " " + other + " --quiet");
+  EXPECT_EQ(full.exit_code, 16) << full.output;
+  EXPECT_NE(full.output.find(small), std::string::npos) << full.output;
+  EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
+  EXPECT_EQ(ReadFileToString(small).value(), before);
+  EXPECT_EQ(RunTool("verify " + small + " --quiet").exit_code, 0);
 }
 
 // A file of a newer format major version is not supported (exit 15), not damaged (12).

@@ -4,8 +4,6 @@
 // and the next run, with room again, makes the version an uninterrupted run makes.
 #include "engine/reindex/reindexer.h"
 
-#include <sys/mount.h>
-#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -23,6 +21,7 @@
 #include "formats/frame_file/frame_file_writer.h"
 #include "tests/testing/fault_injection.h"
 #include "tests/testing/temp_dir.h"
+#include "tests/testing/tmpfs.h"
 
 namespace motif {
 namespace {
@@ -171,34 +170,9 @@ TEST_F(ReindexFailureTest, AWriteFailingAtAnyStepLeavesTheCurrentVersionAndTheNe
   }
 }
 
-// A tmpfs mounted for the test, unmounted when it ends.
-class Tmpfs {
- public:
-  explicit Tmpfs(const std::string& path) : path_(path) {
-    fs::create_directories(path);
-    mounted_ = ::mount("tmpfs", path.c_str(), "tmpfs", 0, "size=64m") == 0;
-  }
-  ~Tmpfs() {
-    if (mounted_) ::umount2(path_.c_str(), MNT_DETACH);
-  }
-  bool mounted() const { return mounted_; }
-  // Resizes it to what is used now plus `room_bytes` (rounded up to pages by the kernel).
-  bool LeaveRoom(uint64_t room_bytes) {
-    struct statvfs stats {};
-    if (::statvfs(path_.c_str(), &stats) != 0) return false;
-    const uint64_t used = (stats.f_blocks - stats.f_bfree) * stats.f_frsize;
-    const std::string options = "size=" + std::to_string(used + room_bytes);
-    return ::mount("tmpfs", path_.c_str(), "tmpfs", MS_REMOUNT, options.c_str()) == 0;
-  }
-
- private:
-  std::string path_;
-  bool mounted_ = false;
-};
-
 TEST_F(ReindexFailureTest, AFullFileSystemGivesAClearErrorAndLeavesTheVersionIntact) {
   testing::TempDir dir;
-  Tmpfs tmpfs(dir.File("small"));
+  testing::Tmpfs tmpfs(dir.File("small"));
   if (!tmpfs.mounted()) {
     GTEST_SKIP() << "cannot mount a tmpfs here (not root?); "
                     "AWriteFailingAtAnyStep... covers a full disk by injected failures";
