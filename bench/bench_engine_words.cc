@@ -32,9 +32,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_util.h"
-#include "engine/cli/progress_reporter.h"
-#include "engine/cli/synthetic_archive.h"
 #include "engine/synth/motion_synthesizer.h"
+#include "engine/synth/synthetic_archive.h"
 #include "engine/words/words_builder.h"
 #include "formats/frame_file/frame_file_writer.h"
 
@@ -67,10 +66,9 @@ Result<std::string> Archive(uint64_t frames) {
   options.threads = 2;
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
                          MotionSynthesizer::Create(options));
-  ProgressReporter quiet(ProgressMode::kQuiet);
-  MOTIF_RETURN_IF_ERROR(cli::WriteSyntheticArchive(path, *synthesizer, options,
-                                                   FrameFileWriterOptions{}.block_frames, &quiet)
-                            .status());
+  MOTIF_RETURN_IF_ERROR(
+      WriteSyntheticArchive(path, *synthesizer, options, FrameFileWriterOptions{}.block_frames)
+          .status());
   return path;
 }
 

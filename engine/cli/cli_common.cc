@@ -155,20 +155,6 @@ std::string Percent(uint64_t part, uint64_t whole) {
   return text;
 }
 
-uint64_t PeakResidentBytes() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "VmHWM:") {
-      uint64_t kilobytes = 0;
-      status >> kilobytes;
-      return kilobytes * 1024;
-    }
-    std::getline(status, key);
-  }
-  return 0;
-}
-
 Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds) {
   const bool in_seconds = !text.empty() && text.back() == 's';
   const std::string number = in_seconds ? text.substr(0, text.size() - 1) : text;

@@ -13,6 +13,7 @@
 
 #include <boost/program_options.hpp>
 
+#include "common/peak_memory.h"  // PeakResidentBytes, for the commands' summaries
 #include "common/status.h"
 #include "engine/cli/progress_reporter.h"
 #include "engine/cluster/pauses.h"
@@ -63,8 +64,6 @@ std::string WithCommas(uint64_t value);
 std::string FormatBytes(uint64_t bytes);
 // part / whole as "57.2%" (0.0% when whole is 0).
 std::string Percent(uint64_t part, uint64_t whole);
-// Peak resident memory of this process so far (VmHWM), 0 if unknown.
-uint64_t PeakResidentBytes();
 
 // --min-length: "60" is 60 frames (*frames = 60, *seconds = 0); "0.5s" is half a second at the
 // archive's rate (*frames = 0, *seconds = 0.5). InvalidArgument otherwise.

@@ -4,8 +4,8 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
-#include "engine/cli/synthetic_archive.h"
 #include "engine/synth/motion_synthesizer.h"
+#include "engine/synth/synthetic_archive.h"
 #include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
 #include "formats/import/take_importer.h"
@@ -124,8 +124,11 @@ int RunSynth(const std::vector<std::string>& args) {
     synthesizer = std::move(created.value());
   }
 
-  Result<uint64_t> frames_done = WriteSyntheticArchive(
-      out, *synthesizer, options, vm["block-frames"].as<uint32_t>(), &progress);
+  progress.BeginStage("synth", options.frames, "frames");
+  Result<uint64_t> frames_done =
+      WriteSyntheticArchive(out, *synthesizer, options, vm["block-frames"].as<uint32_t>(),
+                            [&](uint64_t done, uint64_t) { progress.Update(done); });
+  progress.EndStage();
   if (!frames_done.ok()) return ReportError("synth", frames_done.status());
   const std::string truth_path = TruthPathFor(out);
   std::printf("wrote %s: %s frames in %s clips at %g fps, %u motifs planted as %zu instances\n",

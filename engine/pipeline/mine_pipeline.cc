@@ -1,0 +1,258 @@
+#include "engine/pipeline/mine_pipeline.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <utility>
+
+#include "common/file_lock.h"
+#include "common/file_util.h"
+#include "common/peak_memory.h"
+#include "common/seconds_since.h"
+#include "engine/cluster/cluster_stage.h"
+#include "engine/ingest/archive_import.h"
+#include "engine/report/report_html.h"
+#include "engine/synth/synthetic_archive.h"
+#include "engine/synth/truth_json_reader.h"
+#include "formats/frame_file/frame_file_reader.h"
+#include "formats/frame_file/frame_file_writer.h"
+
+namespace motif {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The file a run holds an exclusive flock on, in its output folder.
+constexpr char kRunLockName[] = ".motifmine.lock";
+
+// The files a run writes in its folder, whose temporary files a killed run may have left.
+const std::vector<std::string> kOwnedFiles = {
+    "archive.mfs", "archive.truth.json", "trellis.mtr", "paths.mpa",
+    "motifs.json", "mine_state.json",    "report.html"};
+
+std::string Join(const std::string& dir, const char* name) {
+  return (std::filesystem::path(dir) / name).string();
+}
+
+bool IsArchivePath(const std::string& path) {
+  return std::filesystem::path(path).extension() == ".mfs";
+}
+
+}  // namespace
+
+MinePipelineOptions DefaultMinePipelineOptions() {
+  MinePipelineOptions options;
+  // Background that does not repeat within eps, so the planted motifs are the only long repeats
+  // and precision against them means something (docs/guide.md, synth).
+  options.synth.background_variation_degrees = kRecommendedBackgroundVariation;
+  options.synth.frames = 120000;
+  options.synth.motifs = 12;
+  return options;
+}
+
+MinePipeline::MinePipeline(MinePipelineOptions options) : options_(std::move(options)) {
+  options_.trellis.seed = options_.seed;
+  options_.trellis.threads = options_.threads;
+  options_.cluster.seed = options_.seed;
+  options_.cluster.threads = options_.threads;
+  options_.synth.seed = options_.seed;
+  options_.synth.threads = options_.threads > 0 ? static_cast<uint32_t>(options_.threads) : 0;
+}
+
+void MinePipeline::Progress(const std::string& stage, uint64_t done, uint64_t total,
+                            const std::string& unit) {
+  if (options_.progress) options_.progress(stage, done, total, unit);
+}
+
+Status MinePipeline::CheckOptions() const {
+  const ClusterOptions& cluster = options_.cluster;
+  if (options_.out_dir.empty()) return Status::InvalidArgument("no output folder given");
+  if (!(cluster.max_length_ratio == 0 || cluster.max_length_ratio >= 1) ||
+      !std::isfinite(cluster.max_length_ratio)) {
+    return Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1");
+  }
+  if (options_.trellis.eps < 0 || !std::isfinite(options_.trellis.eps)) {
+    return Status::InvalidArgument("--eps must be >= 0 (0: chosen by --eps-rule)");
+  }
+  if (options_.trellis.k_max == 0) return Status::InvalidArgument("--kmax must be > 0");
+  if (options_.paths.branch == 0) return Status::InvalidArgument("--branch must be > 0");
+  return ValidatePauseOptions(cluster.pauses);
+}
+
+Result<MinePipelineResult> MinePipeline::Run() {
+  const Clock::time_point job_start = Clock::now();
+  MOTIF_RETURN_IF_ERROR(CheckOptions());
+  std::error_code error;
+  std::filesystem::create_directories(options_.out_dir, error);
+  if (error) {
+    return Status::IOError("cannot create " + options_.out_dir + ": " + error.message());
+  }
+  // One run per folder: a second run (an overlapping cron job) leaves at once, before touching
+  // anything. The lock goes with the process, even on kill -9.
+  ExclusiveFileLock run_lock;
+  MOTIF_RETURN_IF_ERROR(run_lock.Acquire(
+      Join(options_.out_dir, kRunLockName),
+      "another motifmine run is working in this folder; nothing was changed (exit 17: try "
+      "again when it has finished)",
+      /*create=*/true));
+  RemoveStaleTemporaries(options_.out_dir, kOwnedFiles);
+
+  MOTIF_RETURN_IF_ERROR(MakeArchive());
+  MOTIF_RETURN_IF_ERROR(BuildTrellisStage());
+  MOTIF_RETURN_IF_ERROR(BuildPathsStage());
+  MOTIF_RETURN_IF_ERROR(ClusterStage());
+  MOTIF_RETURN_IF_ERROR(ScoreStage());
+  result_.total_seconds = SecondsSince(job_start);
+  MOTIF_RETURN_IF_ERROR(ReportStage());
+  result_.total_seconds = SecondsSince(job_start);
+  result_.peak_memory_bytes = PeakResidentBytes();
+  return std::move(result_);
+}
+
+// Stage 1: the archive, then opened once; every later stage reads that version.
+Status MinePipeline::MakeArchive() {
+  const Clock::time_point start = Clock::now();
+  const std::vector<std::string>& inputs = options_.inputs;
+  std::string archive = Join(options_.out_dir, "archive.mfs");
+  std::error_code error;
+  if (inputs.empty()) {
+    const std::string truth = TruthPathFor(archive);
+    const SynthOptions& synth = options_.synth;
+    bool reused = false;
+    if (std::filesystem::exists(archive, error)) {
+      Result<TruthFile> stored = ReadTruthJson(truth);
+      reused = stored.ok() && stored->frames == synth.frames && stored->seed == synth.seed &&
+               stored->motifs == synth.motifs && FrameFileReader::Open(archive).ok();
+    }
+    if (!reused) {
+      MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
+                             MotionSynthesizer::Create(synth));
+      MOTIF_RETURN_IF_ERROR(
+          WriteSyntheticArchive(
+              archive, *synthesizer, synth, FrameFileWriterOptions{}.block_frames,
+              [&](uint64_t done, uint64_t total) { Progress("synth", done, total, "frames"); })
+              .status());
+    }
+    result_.truth_path = truth;
+    result_.times.push_back({"synth", SecondsSince(start), reused});
+  } else if (inputs.size() == 1 && IsArchivePath(inputs[0])) {
+    archive = inputs[0];
+    if (std::filesystem::exists(TruthPathFor(archive), error)) {
+      result_.truth_path = TruthPathFor(archive);
+    }
+  } else {
+    ArchiveImportOptions import_options;
+    import_options.skip_bad = options_.skip_bad;
+    import_options.threads = options_.threads;
+    import_options.note = options_.note;
+    import_options.progress = [&](uint64_t done, uint64_t total) {
+      Progress("import", done, total, "takes");
+    };
+    MOTIF_ASSIGN_OR_RETURN(ArchiveImportResult imported,
+                           ImportIntoArchive(archive, inputs, import_options));
+    result_.times.push_back({"import", SecondsSince(start), imported.takes_imported == 0});
+    result_.skipped_takes = imported.failures;
+  }
+  result_.archive_path = archive;
+  MOTIF_ASSIGN_OR_RETURN(archive_, FrameFileReader::Open(archive));
+  options_.trellis.archive_version = archive_->version();
+  options_.paths.archive_version = archive_->version();
+  result_.fps = archive_->fps();
+  result_.frames = archive_->frame_count();
+  result_.clips = archive_->clips().size();
+  return Status::Ok();
+}
+
+// Stage 2: the matching trellis.
+Status MinePipeline::BuildTrellisStage() {
+  TrellisOptions trellis = options_.trellis;
+  const PathsOptions& paths = options_.paths;
+  trellis.min_length_seconds = paths.min_length_frames > 0
+                                   ? static_cast<double>(paths.min_length_frames) / archive_->fps()
+                                   : paths.min_length_seconds;
+  trellis.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+    const bool columns = stage == "trellis";
+    Progress(columns ? "trellis" : "trellis " + stage, done, total,
+             stage == "eps" ? "pairs"
+             : columns      ? "columns"
+                            : "frames");
+  };
+  trellis.note = options_.note;
+  const Clock::time_point start = Clock::now();
+  MOTIF_ASSIGN_OR_RETURN(
+      result_.trellis,
+      BuildTrellis(result_.archive_path, Join(options_.out_dir, "trellis.mtr"), trellis));
+  result_.times.push_back({"trellis", SecondsSince(start), result_.trellis.reused});
+  return Status::Ok();
+}
+
+// Stage 3: the paths.
+Status MinePipeline::BuildPathsStage() {
+  PathsOptions paths = options_.paths;
+  paths.progress = [&](uint64_t done, uint64_t total) { Progress("grow", done, total, "columns"); };
+  const Clock::time_point start = Clock::now();
+  MOTIF_ASSIGN_OR_RETURN(result_.paths,
+                         BuildPaths(result_.archive_path, Join(options_.out_dir, "trellis.mtr"),
+                                    Join(options_.out_dir, "paths.mpa"), paths));
+  result_.times.push_back({"grow", SecondsSince(start), result_.paths.reused});
+  return Status::Ok();
+}
+
+// Stage 4: clustering, reused when the same paths were clustered with the same options.
+Status MinePipeline::ClusterStage() {
+  ClusterStageInput input;
+  input.archive_path = result_.archive_path;
+  input.archive = archive_.get();
+  input.trellis_path = Join(options_.out_dir, "trellis.mtr");
+  input.paths_path = Join(options_.out_dir, "paths.mpa");
+  input.paths_params = result_.paths.params;
+  input.candidates = result_.paths.candidates;
+  input.motifs_path = Join(options_.out_dir, "motifs.json");
+  input.state_path = Join(options_.out_dir, "mine_state.json");
+  ClusterOptions cluster = options_.cluster;
+  cluster.progress = [&](const std::string&, uint64_t done, uint64_t total) {
+    Progress("cluster", done, total, "columns");
+  };
+  const Clock::time_point start = Clock::now();
+  MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(input, cluster));
+  result_.document = std::move(clustered.document);
+  result_.motifs_path = input.motifs_path;
+  result_.times.push_back({"cluster", SecondsSince(start), clustered.reused});
+  return Status::Ok();
+}
+
+// The planted motifs, when the archive is synthetic.
+Status MinePipeline::ScoreStage() {
+  if (result_.truth_path.empty()) return Status::Ok();
+  MOTIF_ASSIGN_OR_RETURN(TruthFile truth, ReadTruthJson(result_.truth_path));
+  result_.score = ScoreMotifsDocument(result_.document, truth.instances);
+  return Status::Ok();
+}
+
+// Stage 5: the report.
+Status MinePipeline::ReportStage() {
+  if (!options_.write_report) return Status::Ok();
+  const Clock::time_point start = Clock::now();
+  const TrellisReport& trellis = result_.trellis;
+  ReportInfo info;
+  info.archive_path = result_.archive_path;
+  std::ostringstream parameters;
+  parameters << "eps " << trellis.params.eps << " (" << trellis.eps_how << "), k_max "
+             << trellis.params.k_max << ", B " << result_.paths.params.branch << ", min length "
+             << result_.paths.params.min_length << " frames, groups " << options_.groups_text
+             << ", seed " << options_.seed << ", search " << TrellisSearchModeName(trellis.search);
+  info.parameters_text = parameters.str();
+  for (const MineStageTime& time : result_.times)
+    info.timings.push_back({time.stage, time.seconds});
+  info.peak_memory_bytes = PeakResidentBytes();
+  info.planted_score = result_.score;
+  info.truth_path = result_.truth_path;
+  result_.report_path = Join(options_.out_dir, "report.html");
+  MOTIF_RETURN_IF_ERROR(WriteReportHtml(result_.report_path, result_.document, *archive_, info));
+  result_.times.push_back({"report", SecondsSince(start), false});
+  return Status::Ok();
+}
+
+}  // namespace motif
