@@ -44,8 +44,8 @@ struct MinePipelineOptions {
   uint64_t seed = 1;                 // every random choice (trellis, cluster, synth)
   int threads = 0;                   // 0: all cores
   bool write_report = true;          // OUT/report.html
-  // (stage, done, total, unit) as the run goes: stages "import", "synth", "trellis eps",
-  // "trellis", "grow", "cluster"; not called for a stage that is reused.
+  // (stage, done, total, unit) as the run goes: stages "import", "synth", "trellis features",
+  // "trellis eps", "trellis", "grow", "cluster"; not called for a stage that is reused.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total,
                      const std::string& unit)>
       progress;

@@ -53,6 +53,7 @@ set_tests_properties(
   WordsCliTest.ClassifyWritesItsDocumentWithAndWithoutLabels
   WordsCliTest.SearchFindsAnExportedRangeAndTheWholeTake
   WordsCliTest.WordsWritesItsFilesThenReusesThem
+  PublicApi.MineFindsTheToolsMotifsOnTheSyntheticArchive
   Shards/DamageSweep.EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommit/0
   Shards/DamageSweep.EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommit/1
   Shards/DamageSweep.EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommit/2
