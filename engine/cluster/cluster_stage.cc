@@ -1,5 +1,6 @@
 #include "engine/cluster/cluster_stage.h"
 
+#include <filesystem>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -44,6 +45,12 @@ std::string StoredClusterKey(const std::string& state_path) {
   return state["cluster_key"].get<std::string>();
 }
 
+// Whether two paths from the current directory name the same file, as written.
+bool SamePath(const std::string& a, const std::string& b) {
+  return std::filesystem::absolute(a).lexically_normal() ==
+         std::filesystem::absolute(b).lexically_normal();
+}
+
 }  // namespace
 
 MotifsArchiveVersion ArchiveVersionOf(const FrameFileReader& archive) {
@@ -60,7 +67,7 @@ Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
     Result<MotifsDocument> stored = ReadMotifsJson(input.motifs_path);
     if (stored.ok() && stored->frames == archive.frame_count() &&
         stored->archive_version == ArchiveVersionOf(archive) &&
-        stored->archive == input.archive_path) {
+        SamePath(stored->archive, input.archive_path)) {
       result.document = std::move(stored.value());
       result.reused = true;
       return result;

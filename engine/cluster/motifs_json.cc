@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <filesystem>
 #include <unordered_map>
 
 #include <nlohmann/json.hpp>
@@ -83,7 +84,7 @@ std::string MotifsJsonText(const MotifsDocument& document) {
 
   // One clip, and one instance, per line: readable and diffable with thousands of them.
   std::string text = "{\n";
-  text += "  \"version\": 1,\n";
+  text += "  \"version\": 2,\n";
   text += "  \"archive\": " + Dump(document.archive) + ",\n";
   text += "  \"frames\": " + std::to_string(document.frames) + ",\n";
   if (document.archive_version.known()) {
@@ -170,8 +171,30 @@ std::string MotifsJsonText(const MotifsDocument& document) {
   return text;
 }
 
+namespace {
+
+std::filesystem::path FolderOf(const std::string& motifs_path) {
+  const std::filesystem::path folder = std::filesystem::path(motifs_path).parent_path();
+  return folder.empty() ? std::filesystem::path(".") : folder;
+}
+
+// The archive path as stored in the file at `motifs_path`: relative to its folder, unless absolute.
+std::string StoredArchivePath(const std::string& archive, const std::string& motifs_path) {
+  const std::filesystem::path given(archive);
+  if (given.is_absolute() || archive.empty()) return archive;
+  std::error_code error;
+  const std::filesystem::path relative =
+      std::filesystem::relative(std::filesystem::absolute(given, error),
+                                std::filesystem::absolute(FolderOf(motifs_path)), error);
+  return error || relative.empty() ? archive : relative.string();
+}
+
+}  // namespace
+
 Status WriteMotifsJson(const std::string& path, const MotifsDocument& document) {
-  Status status = AtomicWriteFile(path, MotifsJsonText(document));
+  MotifsDocument stored = document;
+  stored.archive = StoredArchivePath(document.archive, path);
+  Status status = AtomicWriteFile(path, MotifsJsonText(stored));
   return status.ok() ? status : status.WithContext("motifs file " + path);
 }
 
@@ -182,11 +205,12 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
   }
   uint64_t version = 0;
   MOTIF_RETURN_IF_ERROR(Get(root, "version", name, &version));
-  if (version != 1) {
+  if (version != 1 && version != 2) {
     return Status::NotSupported(name + ": motifs.json version " + std::to_string(version) +
-                                " (this reader knows version 1)");
+                                " (this reader knows versions 1 and 2)");
   }
   MotifsDocument document;
+  document.archive_relative_to_file = version >= 2;
   MOTIF_RETURN_IF_ERROR(Get(root, "archive", name, &document.archive));
   MOTIF_RETURN_IF_ERROR(Get(root, "frames", name, &document.frames));
   if (root.contains("archive_version")) {
@@ -288,7 +312,18 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
 
 Result<MotifsDocument> ReadMotifsJson(const std::string& path) {
   MOTIF_ASSIGN_OR_RETURN(std::string text, ReadFileToString(path));
-  return ParseMotifsJson(text, path);
+  MOTIF_ASSIGN_OR_RETURN(MotifsDocument document, ParseMotifsJson(text, path));
+  ResolveArchivePath(path, &document);
+  return document;
+}
+
+void ResolveArchivePath(const std::string& motifs_path, MotifsDocument* document) {
+  if (!document->archive_relative_to_file || document->archive.empty() ||
+      std::filesystem::path(document->archive).is_absolute()) {
+    return;
+  }
+  document->archive = (FolderOf(motifs_path) / document->archive).lexically_normal().string();
+  document->archive_relative_to_file = false;
 }
 
 }  // namespace motif

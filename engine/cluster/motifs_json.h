@@ -1,6 +1,6 @@
 // motifs.json: the mined motifs, the contract other tools read (docs/guide.md, section cluster).
 //
-//   {"version": 1, "archive": "...", "frames": N,
+//   {"version": 2, "archive": "...", "frames": N,
 //    "clips": [{"name": "05_01", "source": "...", "frames": 1234, "fps": 120.0,
 //               "first_frame": 0}, ...],
 //    "params": {"eps": ..., "kmax": ..., "branch": ..., "min_length": ..., "groups": ...,
@@ -20,7 +20,9 @@
 // digits)}: the archive version (commit) mined, so that a reader opens that version
 // (FrameFileReader::OpenCommit) even after later takes were appended to the archive. Readers
 // must ignore fields they do not know; the version changes only if a contract field changes
-// meaning.
+// meaning. Version 2: "archive" is relative to the folder holding motifs.json (absolute when the
+// run was given an absolute path), so the file works from any directory; in version 1 it was the
+// path as given to the run, relative to where it ran. docs/formats/motifs_json.md specifies it.
 // Thread-safety: pure functions.
 #pragma once
 
@@ -84,6 +86,8 @@ struct MotifsArchiveVersion {
 };
 
 struct MotifsDocument {
+  // The archive as a path from the current directory (or absolute). WriteMotifsJson stores it
+  // relative to the file's folder, ReadMotifsJson resolves it back.
   std::string archive;
   uint64_t frames = 0;
   MotifsArchiveVersion archive_version;
@@ -91,6 +95,9 @@ struct MotifsDocument {
   MotifsJsonParams params;
   std::vector<MotifsJsonMotif> motifs;
   uint64_t covered_frames = 0;  // summary (not compared: derived)
+  // Set by ParseMotifsJson for a version 2 file: `archive` is still relative to the file's
+  // folder (ReadMotifsJson and ResolveArchivePath resolve it).
+  bool archive_relative_to_file = false;
   bool operator==(const MotifsDocument& other) const {
     return archive == other.archive && frames == other.frames &&
            archive_version == other.archive_version && clips == other.clips &&
@@ -114,5 +121,8 @@ Status WriteMotifsJson(const std::string& path, const MotifsDocument& document);
 // NotSupported for another version.
 Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::string& name);
 Result<MotifsDocument> ReadMotifsJson(const std::string& path);
+// For a document parsed from the file at `motifs_path`: its archive path made usable from the
+// current directory (a version 2 file's relative path joined to the file's folder).
+void ResolveArchivePath(const std::string& motifs_path, MotifsDocument* document);
 
 }  // namespace motif

@@ -44,6 +44,7 @@ Result<MinedVersion> OpenOnce(const std::string& out_dir) {
   MOTIF_ASSIGN_OR_RETURN(std::string motifs_text, ReadChecked(out_dir, manifest.motifs));
   MOTIF_ASSIGN_OR_RETURN(version.motifs,
                          ParseMotifsJson(motifs_text, InOutDir(out_dir, manifest.motifs.path)));
+  ResolveArchivePath(InOutDir(out_dir, manifest.motifs.path), &version.motifs);
   MOTIF_ASSIGN_OR_RETURN(version.archive, FrameFileReader::OpenCommit(
                                               manifest.archive.path, manifest.archive.generation,
                                               manifest.archive.committed_bytes));

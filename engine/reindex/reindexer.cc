@@ -586,7 +586,8 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     progress("cluster", done, total, "columns");
   };
   ClusterStageInput cluster_input;
-  cluster_input.archive_path = archive_path;
+  // Absolute: OUTDIR/motifs.json is a byte copy of this version's, one folder up.
+  cluster_input.archive_path = fs::absolute(archive_path).lexically_normal().string();
   cluster_input.archive = archive.get();
   cluster_input.trellis_path = trellis_path;
   cluster_input.paths_path = paths_path;

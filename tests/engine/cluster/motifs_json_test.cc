@@ -1,5 +1,7 @@
 #include "engine/cluster/motifs_json.h"
 
+#include <filesystem>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -58,7 +60,7 @@ TEST(MotifsJsonTest, ExactFieldNamesOfTheContract) {
   auto document = MakeMotifsDocument(SmallResult(), "a.mfs", 1500, TwoClips(), Params());
   ASSERT_TRUE(document.ok());
   const nlohmann::json json = nlohmann::json::parse(MotifsJsonText(*document));
-  EXPECT_EQ(json["version"], 1);
+  EXPECT_EQ(json["version"], 2);
   EXPECT_EQ(json["archive"], "a.mfs");
   EXPECT_EQ(json["frames"], 1500);
   const nlohmann::json& clip = json["clips"][1];
@@ -98,7 +100,7 @@ TEST(MotifsJsonTest, ExactFieldNamesOfTheContract) {
 
 TEST(MotifsJsonTest, WritesAtomicallyAndReadsBack) {
   testing::TempDir dir;
-  auto document = MakeMotifsDocument(SmallResult(), "a.mfs", 1500, TwoClips(), Params());
+  auto document = MakeMotifsDocument(SmallResult(), dir.File("a.mfs"), 1500, TwoClips(), Params());
   ASSERT_TRUE(document.ok());
   for (uint32_t groups : {0u, 5u}) {
     document->params.groups = groups;
@@ -120,11 +122,41 @@ TEST(MotifsJsonTest, WritesAtomicallyAndReadsBack) {
   EXPECT_EQ(older_read->params.pause_speed, 0.0);
   // An empty result is a valid file too.
   MotifsDocument empty;
-  empty.archive = "e.mfs";
+  empty.archive = dir.File("e.mfs");
   ASSERT_TRUE(WriteMotifsJson(dir.File("empty.json"), empty).ok());
   auto read = ReadMotifsJson(dir.File("empty.json"));
   ASSERT_TRUE(read.ok()) << read.status().ToString();
   EXPECT_EQ(*read, empty);
+}
+
+// Version 2 stores the archive relative to the file's folder, so the file can be read from any
+// directory; a version 1 file's path (relative to where the run was) is read as it is.
+TEST(MotifsJsonTest, TheArchivePathIsRelativeToTheFilesFolder) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir.File("out/deeper"));
+  auto document =
+      MakeMotifsDocument(SmallResult(), dir.File("out/a.mfs"), 1500, TwoClips(), Params());
+  ASSERT_TRUE(document.ok());
+  const std::string cwd = std::filesystem::current_path().string();
+  std::filesystem::current_path(dir.path());
+  document->archive = "out/a.mfs";  // as a run in dir was given it
+  Status written = WriteMotifsJson("out/deeper/motifs.json", *document);
+  std::filesystem::current_path(cwd);
+  ASSERT_TRUE(written.ok()) << written.ToString();
+  const std::string text = ReadFileToString(dir.File("out/deeper/motifs.json")).value();
+  EXPECT_EQ(nlohmann::json::parse(text)["archive"], "../a.mfs");
+  auto read = ReadMotifsJson(dir.File("out/deeper/motifs.json"));  // from another directory
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  EXPECT_EQ(read->archive, dir.File("out/a.mfs"));
+
+  nlohmann::json older = nlohmann::json::parse(text);
+  older["version"] = 1;
+  older["archive"] = "out/a.mfs";
+  ASSERT_TRUE(AtomicWriteFile(dir.File("out/deeper/older.json"), older.dump()).ok());
+  EXPECT_EQ(ReadMotifsJson(dir.File("out/deeper/older.json"))->archive, "out/a.mfs");
+  older["version"] = 3;
+  ASSERT_TRUE(AtomicWriteFile(dir.File("out/deeper/newer.json"), older.dump()).ok());
+  EXPECT_TRUE(ReadMotifsJson(dir.File("out/deeper/newer.json")).status().IsNotSupported());
 }
 
 TEST(MotifsJsonTest, ReaderNamesWhatIsWrong) {
@@ -136,7 +168,7 @@ TEST(MotifsJsonTest, ReaderNamesWhatIsWrong) {
   EXPECT_TRUE(ParseMotifsJson("{not json", "m.json").status().IsInvalidArgument());
 
   nlohmann::json changed = good;
-  changed["version"] = 2;
+  changed["version"] = 3;
   EXPECT_EQ(parse(changed).status().code(), Status::Code::kNotSupported);
   changed = good;
   changed["motifs"][0]["instances"][0].erase("end");
