@@ -6,10 +6,10 @@
 //   recall    planted instances hit by a found one (overlap >= half of the shorter),
 //   precision found instances that hit a planted one,
 //   ari       adjusted Rand index of found vs planted motif over the hit instances.
-// Arguments: frames, motifs, seed. The trellis search is chosen as `motifmine trellis` does
-// (exact below 90,000 frames, LSH above). Timed: one run of trellis + grow + cluster (the
-// archive is written outside the timing). Other counters: planted and found instances, found
-// motifs, path candidates, the trellis's eps. Files go to $TMPDIR and are removed afterwards.
+// Arguments: frames, motifs, seed. The stages run through MinePipeline, as `motifmine mine` runs
+// them (the search exact below 90,000 frames, LSH above). Timed: one run of trellis + grow +
+// cluster (the archive is written outside the timing). Other counters: planted and found instances,
+// found motifs, path candidates, the trellis's eps. Files go to $TMPDIR and are removed afterwards.
 // docs/benchmarks.md, "Mining quality on planted archives", has the figures and the commands.
 #include <unistd.h>
 
@@ -21,16 +21,11 @@
 
 #include <benchmark/benchmark.h>
 
-#include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/planted_motif_score.h"
-#include "engine/grow/paths_builder.h"
+#include "engine/pipeline/mine_pipeline.h"
 #include "engine/synth/motion_synthesizer.h"
-#include "engine/trellis/trellis_builder.h"
-#include "formats/frame_file/frame_file_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
-#include "formats/paths_file/paths_file_reader.h"
-#include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {
 namespace {
@@ -69,22 +64,16 @@ void BM_PlantedMotifs(benchmark::State& state) {
   uint64_t candidates = 0;
   double eps = 0;
   for (auto _ : state) {
-    const std::string trellis_path = dir + "/planted.mtr";
-    const std::string paths_path = dir + "/planted.mpa";
-    std::filesystem::remove(trellis_path);
-    std::filesystem::remove(paths_path);
-    TrellisReport trellis_report = Check(BuildTrellis(archive, trellis_path, TrellisOptions{}));
-    eps = trellis_report.params.eps;
-    Check(BuildPaths(archive, trellis_path, paths_path, PathsOptions{}));
-    auto paths = Check(PathsFileReader::Open(paths_path));
-    auto trellis = Check(TrellisFileReader::Open(trellis_path));
-    auto frames = Check(FrameFileReader::Open(archive));
-    candidates = paths->candidates().size();
-    ClusterResult result = Check(ClusterMotifs(paths->candidates(), *trellis, ClusterOptions{}));
-    MotifsDocument document = Check(MakeMotifsDocument(result, archive, frames->frame_count(),
-                                                       frames->clips(), MotifsJsonParams{}));
+    std::filesystem::remove_all(dir + "/mined");
+    MinePipelineOptions mine = DefaultMinePipelineOptions();
+    mine.out_dir = dir + "/mined";
+    mine.inputs = {archive};
+    mine.write_report = false;
+    MinePipelineResult run = Check(MinePipeline(mine).Run());
+    eps = run.trellis.params.eps;
+    candidates = run.paths.candidates;
     std::vector<FoundInstance> found;
-    for (const MotifsJsonMotif& motif : document.motifs) {
+    for (const MotifsJsonMotif& motif : run.document.motifs) {
       for (const MotifsJsonInstance& instance : motif.instances) {
         found.push_back({instance.clip, instance.start, instance.end, motif.id});
       }

@@ -10,7 +10,9 @@
 # tests/engine/cli/report_browser_test.cc, checks that its script runs without errors and draws
 # every figure, and saves a screenshot; it skips without it), python3 (the crash-consistency
 # harness and the hostile-input corpus, scripts/crash_harness.py and scripts/hostile_inputs.py,
-# both run by ctest; standard library only).
+# both run by ctest; standard library only), pybind11-dev, python3-dev, python3-numpy and
+# python3-pytest (the Python module `motifmine` for Debian's /usr/bin/python3, its numpy arrays,
+# and its tests: python/, docs/python.md).
 set -euo pipefail
 
 packages=(
@@ -20,6 +22,7 @@ packages=(
   libspectra-dev
   libbenchmark-dev libgtest-dev libgmock-dev
   chromium python3
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

@@ -49,6 +49,7 @@ asan_skip=(
   'crash_harness'                                   # (a Python harness around the tool)
   'DamageSweep\.'   # 7,000 runs of the tool (FrameFileCorruption.*: the same sweep in-process)
   'hostile_inputs'  # a memory limit on the address space, which ASan's shadow memory exceeds
+  'install_and_example'  # builds a program without the sanitizer against the installed library
 )
 # The tests ThreadSanitizer runs: the parallel parts, by test name, and the test executables
 # that hold them (tests/*/CMakeLists.txt).

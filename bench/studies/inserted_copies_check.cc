@@ -91,7 +91,7 @@ Segment MakeCopy(const Take& source, size_t start, int index, std::mt19937_64& r
 int Run(const std::string& bvh_dir, const std::string& source_name, size_t start, uint64_t seed,
         bool one_take) {
   auto import = [&](const std::string& name) {
-    return ImportTake({TakeFormat::kBvh, bvh_dir + "/" + name + ".bvh", ""}, ImportOptions{});
+    return ImportTake({TakeFormat::kBvh, bvh_dir + "/" + name + ".bvh", "", ""}, ImportOptions{});
   };
   auto source = import(source_name);
   if (!source.ok() || source->frame_count() < start + kSegmentFrames + 1) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "motifmine/archive.h"  // Clip
+#include "motifmine/export.h"
 #include "motifmine/status.h"
 
 namespace motifmine {
@@ -15,7 +17,7 @@ namespace motifmine {
 // Every option of a run; a default-constructed MineOptions holds the defaults of `motifmine
 // mine` (they are defined once, in the engine).
 struct MineOptions {
-  MineOptions();
+  MOTIFMINE_API MineOptions();
 
   std::string out_dir;  // required: archive.mfs (imported takes), trellis, paths, motifs.json
   // The radius ε: > 0 explicit; 0 from the rule: "joint-angle" (eps_angle_degrees of rotation on
@@ -50,14 +52,6 @@ struct Motif {
   std::vector<Instance> instances;
 };
 
-struct Clip {
-  std::string name;
-  std::string source;  // the take file it was imported from ("synthetic" for the built-in one)
-  uint64_t first_frame = 0;
-  uint64_t frames = 0;
-  double fps = 0;
-};
-
 // The parameters the run chose or was given.
 struct MineParameters {
   double eps = 0;
@@ -88,6 +82,7 @@ struct MineResult {
 // (.mfs), or none (a built-in synthetic archive with planted motifs). Fills *result on success.
 // Fails with InvalidArgument for an impossible option, Busy when another run holds the folder,
 // and the codes of docs/guide.md otherwise, the message naming the file.
-Status Mine(const std::vector<std::string>& inputs, const MineOptions& options, MineResult* result);
+MOTIFMINE_API Status Mine(const std::vector<std::string>& inputs, const MineOptions& options,
+                          MineResult* result);
 
 }  // namespace motifmine

@@ -11,5 +11,6 @@
 // Link with the CMake target motifmine::motifmine (docs/library.md).
 #pragma once
 
-#include "motifmine/mine.h"    // IWYU pragma: export
-#include "motifmine/status.h"  // IWYU pragma: export
+#include "motifmine/archive.h"  // IWYU pragma: export
+#include "motifmine/mine.h"     // IWYU pragma: export
+#include "motifmine/status.h"   // IWYU pragma: export

@@ -5,9 +5,11 @@
 
 #include <string>
 
+#include "motifmine/export.h"
+
 namespace motifmine {
 
-class [[nodiscard]] Status {
+class [[nodiscard]] MOTIFMINE_API Status {
  public:
   // The codes, each with the motifmine tool's exit code for it (docs/guide.md, "Exit codes").
   enum class Code {

@@ -141,6 +141,26 @@ TEST(MotifmineTool, ATakeLargerThanTheLimitIsRefusedBeforeItIsRead) {
             1u);
 }
 
+// motifs.json names its archive relative to its own folder: a run made with relative paths in
+// one directory is reported and exported from any other.
+TEST(MotifmineTool, ReportAndExportMotifWorkFromAnyDirectory) {
+  testing::TempDir dir;
+  const std::string in_dir = "cd " + dir.path() + " && " + MOTIF_TOOL + " ";
+  ASSERT_EQ(RunShell(in_dir + "synth s.mfs --frames 20000 --motifs 3 --seed 2 --quiet").exit_code,
+            0);
+  ASSERT_EQ(RunShell(in_dir + "mine s.mfs --out out --quiet --no-report").exit_code, 0);
+  const nlohmann::json motifs =
+      nlohmann::json::parse(ReadFileToString(dir.File("out/motifs.json")).value());
+  EXPECT_EQ(motifs["archive"], "../s.mfs");
+  const RunResult report =
+      RunTool("report " + dir.File("out") + " --out " + dir.File("report.html"));
+  EXPECT_EQ(report.exit_code, 0) << report.output;
+  const RunResult exported =
+      RunTool("export-motif " + dir.File("out") + " --motif 0 --out " + dir.File("m0"));
+  EXPECT_EQ(exported.exit_code, 0) << exported.output;
+  EXPECT_FALSE(std::filesystem::is_empty(dir.File("m0")));
+}
+
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
   testing::TempDir dir;
   const std::string archive = dir.File("s.mfs");
@@ -361,10 +381,10 @@ TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   ASSERT_EQ(exported_run.exit_code, 0) << exported_run.output;
 
   ImportOptions options;
-  auto original = ImportTake({TakeFormat::kBvh, source, ""}, options);
+  auto original = ImportTake({TakeFormat::kBvh, source, "", ""}, options);
   ASSERT_TRUE(original.ok()) << original.status().ToString();
   options.first_frame = FirstFramePolicy::kKeep;
-  auto round_trip = ImportTake({TakeFormat::kBvh, exported, ""}, options);
+  auto round_trip = ImportTake({TakeFormat::kBvh, exported, "", ""}, options);
   ASSERT_TRUE(round_trip.ok()) << round_trip.status().ToString();
   ASSERT_EQ(round_trip->frame_count(), original->frame_count());
   // Documented bound (docs/formats/frame_file.md): rotation angle error <= 4 * 2^-15 rad.
@@ -385,7 +405,7 @@ TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   RunResult range = RunTool("export " + archive + " --clip 05_01 --start 100 --end 220 --out " +
                             dir.File("range.bvh"));
   ASSERT_EQ(range.exit_code, 0) << range.output;
-  auto ranged = ImportTake({TakeFormat::kBvh, dir.File("range.bvh"), ""}, options);
+  auto ranged = ImportTake({TakeFormat::kBvh, dir.File("range.bvh"), "", ""}, options);
   ASSERT_TRUE(ranged.ok());
   EXPECT_EQ(ranged->frame_count(), 120u);
   EXPECT_LE(RotationAngleBetween(ranged->rotation(0, 2), original->rotation(100, 2)), bound);

@@ -64,7 +64,9 @@ std::vector<float> Frames(const std::string& archive, uint64_t frames) {
   std::vector<float> rows;
   auto reader = FrameFileReader::Open(archive);
   EXPECT_TRUE(reader.ok()) << reader.status().ToString();
-  if (reader.ok()) EXPECT_TRUE((*reader)->ReadFrames(0, frames, &rows).ok());
+  if (reader.ok()) {
+    EXPECT_TRUE((*reader)->ReadFrames(0, frames, &rows).ok());
+  }
   return rows;
 }
 

@@ -4,9 +4,8 @@
 //  * the paper's own check on real data (Meng et al. 2008): one ~3.5 s segment of a real take
 //    inserted three times, at different speeds, into a concatenation of 9 other real takes is
 //    found three times and grouped into one motif (skipped when the CMU takes are absent).
-// Both run the library pipeline as `motifmine mine` does, with its defaults (the joint-angle eps,
-// lambda 0.5 s, B = 5): BuildTrellis (exact search: recall 1, and faster than LSH at this size),
-// BuildPaths, ClusterMotifs with the archive (held poses) and lambda (periodic pieces).
+// Both run MinePipeline, as `motifmine mine` does, with its defaults (the joint-angle eps,
+// lambda 0.5 s, B = 5), with the exact search (recall 1, and faster than LSH at this size).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +21,7 @@
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/planted_motif_score.h"
 #include "engine/cluster/truth_score.h"
-#include "engine/grow/paths_builder.h"
+#include "engine/pipeline/mine_pipeline.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "engine/synth/segment_insertion.h"
 #include "engine/trellis/trellis_builder.h"
@@ -39,38 +38,21 @@
 namespace motif {
 namespace {
 
-// Trellis (exact), paths and motifs of `archive` with the default parameters; the motifs' instances
-// as found instances (clip-relative ranges, motif = rank).
+// The motifs of `archive` mined by MinePipeline with the defaults of `motifmine mine` (the exact
+// search: recall 1, and faster than LSH at this size), as found instances (clip-relative ranges,
+// motif = rank).
 std::vector<FoundInstance> MineArchive(const testing::TempDir& dir, const std::string& archive) {
-  const std::string trellis_path = dir.File("mined.mtr");
-  const std::string paths_path = dir.File("mined.mpa");
-  TrellisOptions trellis_options;
-  trellis_options.search = TrellisSearchMode::kExact;
-  trellis_options.threads = 2;
-  auto trellis_report = BuildTrellis(archive, trellis_path, trellis_options);
-  EXPECT_TRUE(trellis_report.ok()) << trellis_report.status().ToString();
-  if (!trellis_report.ok()) return {};
-  auto paths_report = BuildPaths(archive, trellis_path, paths_path, PathsOptions{});
-  EXPECT_TRUE(paths_report.ok()) << paths_report.status().ToString();
-  if (!paths_report.ok()) return {};
-  auto paths = PathsFileReader::Open(paths_path);
-  auto trellis = TrellisFileReader::Open(trellis_path);
-  auto frames = FrameFileReader::Open(archive);
-  EXPECT_TRUE(paths.ok() && trellis.ok() && frames.ok());
-  if (!paths.ok() || !trellis.ok() || !frames.ok()) return {};
-  ClusterOptions cluster_options;
-  cluster_options.threads = 2;
-  cluster_options.archive = frames->get();
-  cluster_options.instances.min_length = paths_report->params.min_length;
-  auto result = ClusterMotifs((*paths)->candidates(), **trellis, cluster_options);
-  EXPECT_TRUE(result.ok()) << result.status().ToString();
-  if (!result.ok()) return {};
-  auto document = MakeMotifsDocument(*result, archive, (*frames)->frame_count(), (*frames)->clips(),
-                                     MotifsJsonParams{});
-  EXPECT_TRUE(document.ok()) << document.status().ToString();
-  if (!document.ok()) return {};
+  MinePipelineOptions options = DefaultMinePipelineOptions();
+  options.out_dir = dir.File("mined");
+  options.inputs = {archive};
+  options.trellis.search = TrellisSearchMode::kExact;
+  options.threads = 2;
+  options.write_report = false;
+  Result<MinePipelineResult> run = MinePipeline(options).Run();
+  EXPECT_TRUE(run.ok()) << run.status().ToString();
+  if (!run.ok()) return {};
   std::vector<FoundInstance> found;
-  for (const MotifsJsonMotif& motif : document->motifs) {
+  for (const MotifsJsonMotif& motif : run->document.motifs) {
     for (const MotifsJsonInstance& instance : motif.instances) {
       found.push_back({instance.clip, instance.start, instance.end, motif.id});
     }
@@ -133,7 +115,7 @@ TEST(PlantedMotifs, RealSegmentInsertedThreeTimesAtDifferentSpeedsIsFoundAsOneMo
   const std::vector<std::string> host_names = {"01_01", "02_05", "05_04", "05_09", "06_13",
                                                "02_04", "05_06", "09_12", "05_18"};
   auto import = [&](const std::string& name) -> Take {
-    auto take = ImportTake({TakeFormat::kBvh, bvh + name + ".bvh", ""}, ImportOptions{});
+    auto take = ImportTake({TakeFormat::kBvh, bvh + name + ".bvh", "", ""}, ImportOptions{});
     EXPECT_TRUE(take.ok()) << take.status().ToString();
     return take.ok() ? std::move(*take) : Take{};
   };

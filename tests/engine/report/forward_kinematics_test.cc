@@ -77,7 +77,7 @@ TEST(ForwardKinematics, ArchivedRealTakeMatchesTheBvhPositions) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string bvh = testing::MocapDir() + "/bvh/05_01.bvh";
   if (!std::filesystem::exists(bvh)) GTEST_SKIP() << bvh << " not found";
-  Result<Take> take = ImportTake({TakeFormat::kBvh, bvh, ""}, {});
+  Result<Take> take = ImportTake({TakeFormat::kBvh, bvh, "", ""}, {});
   ASSERT_TRUE(take.ok()) << take.status().ToString();
   testing::TempDir dir;
   const std::string archive = dir.File("a.mfs");

@@ -1,0 +1,70 @@
+// motifmine::Archive, a motion archive (.mfs, docs/formats/frame_file.md) opened for reading,
+// and motifmine::ImportTakes, which creates or appends to one. Part of the public API
+// (<motifmine/motifmine.h>); no third-party type.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "motifmine/export.h"
+#include "motifmine/status.h"
+
+namespace motifmine {
+
+struct Clip {
+  std::string name;
+  std::string source;  // the take file it was imported from ("synthetic" for the built-in one)
+  uint64_t first_frame = 0;  // global frame index of its first frame
+  uint64_t frames = 0;
+  double fps = 0;
+};
+
+class MOTIFMINE_API Archive {
+ public:
+  // Opens the newest version of the archive at `path` (memory-mapped, read-only). NotFound,
+  // Corruption (a damaged newest commit: docs/guide.md, "Damaged archives"), NotSupported.
+  static Status Open(const std::string& path, std::unique_ptr<Archive>* archive);
+  ~Archive();
+  Archive(const Archive&) = delete;
+  Archive& operator=(const Archive&) = delete;
+
+  const std::string& path() const;
+  uint64_t frames() const;
+  double fps() const;
+  const std::vector<Clip>& clips() const;
+  std::vector<std::string> joint_names() const;  // the skeleton's joints, in frame order
+
+  // The joints' rotations of frames [start, end) of `clip` (frames within the clip, end
+  // exclusive): (end - start) x joints x 4 floats, unit quaternions (w, x, y, z), each joint's
+  // relative to its parent, the root's without its heading (about the vertical Y axis).
+  // NotFound for an unknown clip, InvalidArgument for a range outside it.
+  Status Rotations(const std::string& clip, uint64_t start, uint64_t end,
+                   std::vector<float>* rotations) const;
+
+ private:
+  class Impl;
+  explicit Archive(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+struct ImportOptions {
+  bool skip_bad = false;  // pass over takes that fail (named in ImportResult::skipped)
+  int threads = 0;        // 0: all cores
+};
+
+struct ImportResult {
+  uint64_t takes_imported = 0;
+  uint64_t takes_already_present = 0;
+  uint64_t frames_added = 0;
+  std::vector<std::string> skipped;  // skip_bad: the takes passed over, with the reason
+};
+
+// Imports BVH / ASF+AMC takes and folders into the archive at `archive_path` (created if
+// missing), as `motifmine import` does: one commit, nothing changed on failure.
+MOTIFMINE_API Status ImportTakes(const std::string& archive_path,
+                                 const std::vector<std::string>& paths,
+                                 const ImportOptions& options, ImportResult* result);
+
+}  // namespace motifmine

@@ -1,0 +1,236 @@
+// The Python module `motifmine` (docs/python.md): the public C++ API (include/motifmine/) with
+// pybind11. Long calls release the GIL; a failing Status raises motifmine.Error carrying its
+// message and code; rotations come back as numpy arrays.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <exception>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <motifmine/motifmine.h>
+
+namespace py = pybind11;
+
+namespace {
+
+// A failed Status on its way to Python.
+struct StatusError {
+  motifmine::Status status;
+};
+
+void Check(const motifmine::Status& status) {
+  if (!status.ok()) throw StatusError{status};
+}
+
+// A Python progress callback called from C++: with the GIL, and never throwing into the engine
+// (the first Python error is kept and raised when the call returns).
+class PythonProgress {
+ public:
+  explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
+  void operator()(const std::string& stage, uint64_t done, uint64_t total) {
+    py::gil_scoped_acquire gil;
+    if (error_) return;
+    try {
+      callback_(stage, done, total);
+    } catch (py::error_already_set& error) {
+      error_ = std::make_shared<py::error_already_set>(std::move(error));
+    }
+  }
+  void RaiseIfFailed() {
+    if (error_) throw *error_;
+  }
+
+ private:
+  py::object callback_;
+  std::shared_ptr<py::error_already_set> error_;
+};
+
+// Sets MineOptions fields from keyword arguments; TypeError for an unknown one.
+void SetMineOption(motifmine::MineOptions* options, const std::string& key, py::handle value) {
+  if (key == "eps")
+    options->eps = value.cast<double>();
+  else if (key == "eps_rule")
+    options->eps_rule = value.cast<std::string>();
+  else if (key == "eps_angle_degrees")
+    options->eps_angle_degrees = value.cast<double>();
+  else if (key == "k_max")
+    options->k_max = value.cast<uint32_t>();
+  else if (key == "branch")
+    options->branch = value.cast<uint32_t>();
+  else if (key == "min_length_seconds")
+    options->min_length_seconds = value.cast<double>();
+  else if (key == "min_length_frames")
+    options->min_length_frames = value.cast<uint64_t>();
+  else if (key == "groups")
+    options->groups = value.cast<uint32_t>();
+  else if (key == "seed")
+    options->seed = value.cast<uint64_t>();
+  else if (key == "threads")
+    options->threads = value.cast<int>();
+  else if (key == "skip_bad")
+    options->skip_bad = value.cast<bool>();
+  else if (key == "write_report")
+    options->write_report = value.cast<bool>();
+  else if (key == "synth_frames")
+    options->synth_frames = value.cast<uint64_t>();
+  else if (key == "synth_motifs")
+    options->synth_motifs = value.cast<uint32_t>();
+  else
+    throw py::type_error("mine() got an unexpected keyword argument '" + key + "'");
+}
+
+motifmine::MineResult Mine(const std::vector<std::string>& inputs, const std::string& out_dir,
+                           const py::object& progress, const py::kwargs& kwargs) {
+  motifmine::MineOptions options;
+  options.out_dir = out_dir;
+  for (const auto& [key, value] : kwargs) SetMineOption(&options, key.cast<std::string>(), value);
+  std::optional<PythonProgress> python_progress;
+  if (!progress.is_none()) {
+    python_progress.emplace(progress);
+    options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+      (*python_progress)(stage, done, total);
+    };
+  }
+  motifmine::MineResult result;
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = motifmine::Mine(inputs, options, &result);
+  }
+  if (python_progress) python_progress->RaiseIfFailed();
+  Check(status);
+  return result;
+}
+
+std::unique_ptr<motifmine::Archive> OpenArchive(const std::string& path) {
+  std::unique_ptr<motifmine::Archive> archive;
+  Check(motifmine::Archive::Open(path, &archive));
+  return archive;
+}
+
+py::array_t<float> Rotations(const motifmine::Archive& archive, const std::string& clip,
+                             uint64_t start, uint64_t end) {
+  auto rotations = std::make_unique<std::vector<float>>();
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = archive.Rotations(clip, start, end, rotations.get());
+  }
+  Check(status);
+  const py::ssize_t joints = static_cast<py::ssize_t>(archive.joint_names().size());
+  const py::ssize_t frames = static_cast<py::ssize_t>(end - start);
+  std::vector<float>* data = rotations.release();
+  py::capsule owner(data, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+  return py::array_t<float>({frames, joints, py::ssize_t{4}}, data->data(), owner);
+}
+
+motifmine::ImportResult ImportTakes(const std::string& archive,
+                                    const std::vector<std::string>& paths, bool skip_bad,
+                                    int threads) {
+  motifmine::ImportOptions options;
+  options.skip_bad = skip_bad;
+  options.threads = threads;
+  motifmine::ImportResult result;
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = motifmine::ImportTakes(archive, paths, options, &result);
+  }
+  Check(status);
+  return result;
+}
+
+std::string InstanceRepr(const motifmine::Instance& instance) {
+  return "Instance(clip='" + instance.clip + "', start=" + std::to_string(instance.start) +
+         ", end=" + std::to_string(instance.end) + ")";
+}
+
+}  // namespace
+
+PYBIND11_MODULE(motifmine, m) {
+  m.doc() = "motifmine: motion motifs mined from motion-capture archives (docs/python.md)";
+
+  static py::exception<StatusError> error(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const StatusError& failed) {
+      py::object instance = py::handle(error.ptr())(failed.status.message());
+      instance.attr("code") = static_cast<int>(failed.status.code());
+      PyErr_SetObject(error.ptr(), instance.ptr());
+    }
+  });
+
+  py::class_<motifmine::Instance>(m, "Instance")
+      .def_readonly("clip", &motifmine::Instance::clip)
+      .def_readonly("start", &motifmine::Instance::start)
+      .def_readonly("end", &motifmine::Instance::end)
+      .def("__repr__", &InstanceRepr);
+  py::class_<motifmine::Motif>(m, "Motif")
+      .def_readonly("id", &motifmine::Motif::id)
+      .def_readonly("instances", &motifmine::Motif::instances)
+      .def("__repr__", [](const motifmine::Motif& motif) {
+        return "Motif(id=" + std::to_string(motif.id) + ", " +
+               std::to_string(motif.instances.size()) + " instances)";
+      });
+  py::class_<motifmine::Clip>(m, "Clip")
+      .def_readonly("name", &motifmine::Clip::name)
+      .def_readonly("source", &motifmine::Clip::source)
+      .def_readonly("first_frame", &motifmine::Clip::first_frame)
+      .def_readonly("frames", &motifmine::Clip::frames)
+      .def_readonly("fps", &motifmine::Clip::fps)
+      .def("__repr__", [](const motifmine::Clip& clip) {
+        return "Clip(name='" + clip.name + "', frames=" + std::to_string(clip.frames) + ")";
+      });
+  py::class_<motifmine::MineParameters>(m, "MineParameters")
+      .def_readonly("eps", &motifmine::MineParameters::eps)
+      .def_readonly("eps_how", &motifmine::MineParameters::eps_how)
+      .def_readonly("k_max", &motifmine::MineParameters::k_max)
+      .def_readonly("branch", &motifmine::MineParameters::branch)
+      .def_readonly("min_length_frames", &motifmine::MineParameters::min_length_frames)
+      .def_readonly("seed", &motifmine::MineParameters::seed);
+  py::class_<motifmine::StageTiming>(m, "StageTiming")
+      .def_readonly("stage", &motifmine::StageTiming::stage)
+      .def_readonly("seconds", &motifmine::StageTiming::seconds)
+      .def_readonly("reused", &motifmine::StageTiming::reused);
+  py::class_<motifmine::MineResult>(m, "MineResult")
+      .def_readonly("motifs", &motifmine::MineResult::motifs)
+      .def_readonly("clips", &motifmine::MineResult::clips)
+      .def_readonly("parameters", &motifmine::MineResult::parameters)
+      .def_readonly("timings", &motifmine::MineResult::timings)
+      .def_readonly("archive_path", &motifmine::MineResult::archive_path)
+      .def_readonly("motifs_path", &motifmine::MineResult::motifs_path)
+      .def_readonly("skipped_takes", &motifmine::MineResult::skipped_takes);
+  py::class_<motifmine::ImportResult>(m, "ImportResult")
+      .def_readonly("takes_imported", &motifmine::ImportResult::takes_imported)
+      .def_readonly("takes_already_present", &motifmine::ImportResult::takes_already_present)
+      .def_readonly("frames_added", &motifmine::ImportResult::frames_added)
+      .def_readonly("skipped", &motifmine::ImportResult::skipped);
+
+  m.def("mine", &Mine, py::arg("inputs") = std::vector<std::string>{}, py::kw_only(),
+        py::arg("out_dir"), py::arg("progress") = py::none(),
+        "Mines takes, folders or an archive (the built-in synthetic archive when `inputs` is "
+        "empty) into out_dir, as `motifmine mine` does; options as keyword arguments (eps, "
+        "eps_rule, eps_angle_degrees, k_max, branch, min_length_seconds, min_length_frames, "
+        "groups, seed, threads, skip_bad, write_report, synth_frames, synth_motifs). "
+        "progress(stage, done, total) is called as it goes.");
+  m.def("import_takes", &ImportTakes, py::arg("archive"), py::arg("paths"), py::kw_only(),
+        py::arg("skip_bad") = false, py::arg("threads") = 0,
+        "Imports BVH / ASF+AMC takes and folders into an archive (created if missing).");
+
+  py::class_<motifmine::Archive>(m, "Archive")
+      .def(py::init(&OpenArchive), py::arg("path"))
+      .def_property_readonly("path", &motifmine::Archive::path)
+      .def_property_readonly("frames", &motifmine::Archive::frames)
+      .def_property_readonly("fps", &motifmine::Archive::fps)
+      .def_property_readonly("clips", &motifmine::Archive::clips)
+      .def_property_readonly("joint_names", &motifmine::Archive::joint_names)
+      .def("rotations", &Rotations, py::arg("clip"), py::arg("start"), py::arg("end"),
+           "float32 array (frames, joints, 4): unit quaternions (w, x, y, z), each joint's "
+           "relative to its parent, the root's without its heading");
+}
