@@ -50,6 +50,7 @@ asan_skip=(
   'DamageSweep\.'   # 7,000 runs of the tool (FrameFileCorruption.*: the same sweep in-process)
   'hostile_inputs'  # a memory limit on the address space, which ASan's shadow memory exceeds
   'install_and_example'  # builds a program without the sanitizer against the installed library
+  'python_tests'    # Debian's python3 cannot load a module built with ASan without preloading it
 )
 # The tests ThreadSanitizer runs: the parallel parts, by test name, and the test executables
 # that hold them (tests/*/CMakeLists.txt).
