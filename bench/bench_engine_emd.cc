@@ -40,7 +40,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/signature/clip_words.h"
 #include "engine/signature/earth_movers_distance.h"
 #include "engine/signature/ground_distance.h"

@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     return motif::cli::kExitOk;
   }
   if (name == "--version") {
-    std::printf("motifmine 0.1.0\n");
+    std::printf("motifmine %s\n", MOTIFMINE_VERSION);
     return motif::cli::kExitOk;
   }
   std::vector<std::string> args(argv + 2, argv + argc);

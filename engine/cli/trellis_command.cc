@@ -88,7 +88,8 @@ int RunTrellis(const std::vector<std::string>& args) {
   LshOptions lsh_defaults;
   spec.options.add_options()("eps", po::value<std::string>()->default_value("auto"),
                              "neighbour radius: a number, or auto (chosen by --eps-rule)")(
-      "kmax", po::value<uint32_t>()->default_value(256), "at most this many neighbours a column")(
+      "kmax", po::value<uint32_t>()->default_value(TrellisOptions{}.k_max),
+      "at most this many neighbours a column")(
       "exclusion", po::value<uint32_t>()->default_value(0),
       "frames of the same clip closer than this are never neighbours (0: half of --min-length)")(
       "min-length", po::value<double>()->default_value(0.5),

@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "engine/cluster/motif_instance.h"
-#include "engine/grow/path_candidate.h"
+#include "formats/paths_file/path_candidate.h"
 
 namespace motif {
 

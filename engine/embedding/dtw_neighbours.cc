@@ -10,7 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "engine/lsh/hash_family.h"
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/signature/k_means.h"
 #include "engine/signature/word_distance.h"
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <type_traits>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 
 namespace motif {
 

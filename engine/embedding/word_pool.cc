@@ -12,7 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include "engine/embedding/word_input.h"
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/signature/word_stream.h"
 
 namespace motif {

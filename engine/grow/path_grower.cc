@@ -106,7 +106,7 @@ class PathGrower::Impl {
   }
 
   // The leaf of column `column` could not grow: its path is a candidate if it is long enough
-  // on both sides; with keep_all_branches it is kept, otherwise only its tree's longest one
+  // on both sides; with all_branches it is kept, otherwise only its tree's longest one
   // (by top length, then match length) is, once the tree's last leaf is gone.
   void Die(const Leaf& leaf, uint64_t column) {
     ++stats.dead_paths;
@@ -116,7 +116,7 @@ class PathGrower::Impl {
     if (top_end - leaf.root_column >= options.min_length &&
         match_end - leaf.root_frame >= options.min_length) {
       ++stats.long_paths;
-      if (options.keep_all_branches) {
+      if (options.all_branches) {
         candidates.push_back(MakeCandidate(leaf, top_end, match_end));
       } else if (!tree.has_best || top_end > tree.best_top_end ||
                  (top_end == tree.best_top_end && match_end > tree.best_match_end)) {

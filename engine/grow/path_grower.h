@@ -12,7 +12,7 @@
 //      exactly one ancestor;
 //   3. a leaf that claimed nothing dies: if its path spans at least lambda columns of the top
 //      row AND at least lambda matched frames, it becomes a PathCandidate (by default only the
-//      longest path of each tree is kept: GrowOptions::keep_all_branches);
+//      longest path of each tree is kept: GrowOptions::all_branches);
 //   4. column t+1's unclaimed nodes start new trees; their cells are reset (O(K)).
 // Clips: frames of different clips are not consecutive. When column t+1 starts a new clip every
 // path dies (the top row would cross into it), and a step j -> j' with j' in another clip than
@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "engine/grow/path_candidate.h"
+#include "formats/paths_file/path_candidate.h"
 #include "formats/trellis_file/trellis_column.h"
 
 namespace motif {
@@ -59,7 +59,7 @@ struct GrowOptions {
   // only the longest of each tree (by top length, then match length) is a candidate, the
   // paper's first clustering step done here, so that memory stays O(N + trees with a
   // candidate) instead of O(long paths). true keeps every one.
-  bool keep_all_branches = false;
+  bool all_branches = false;
 };
 
 struct GrowStats {

@@ -48,7 +48,7 @@ Result<PathsReport> BuildPaths(const std::string& archive_path, const std::strin
 
   GrowOptions grow;
   grow.branch = options.branch;
-  grow.keep_all_branches = options.all_branches;
+  grow.all_branches = options.all_branches;
   grow.min_length = options.min_length_frames > 0
                         ? options.min_length_frames
                         : MinLengthFrames(options.min_length_seconds, archive->fps());
@@ -62,7 +62,7 @@ Result<PathsReport> BuildPaths(const std::string& archive_path, const std::strin
   report.params.frame_count = trellis_params.frame_count;
   report.params.branch = grow.branch;
   report.params.min_length = grow.min_length;
-  report.params.all_branches = grow.keep_all_branches;
+  report.params.all_branches = grow.all_branches;
 
   // A valid paths file grown from this trellis with these parameters is the answer already; a
   // damaged or stale one is replaced.

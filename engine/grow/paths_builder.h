@@ -26,7 +26,7 @@ struct PathsOptions {
   // (rounded, at least 1 frame): 0.5 s is 60 frames at 120 fps, as in the paper.
   uint64_t min_length_frames = 0;
   double min_length_seconds = 0.5;
-  bool all_branches = false;         // GrowOptions::keep_all_branches
+  bool all_branches = false;         // GrowOptions::all_branches (--all-branches)
   FrameFileVersion archive_version;  // the archive's version to read; default: the newest
   // (done_columns, total): (0, N) first and (N, N) last, not called when the file is reused.
   std::function<void(uint64_t done, uint64_t total)> progress;

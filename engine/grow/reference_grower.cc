@@ -101,7 +101,7 @@ Result<std::vector<PathCandidate>> GrowPathsReference(
   for (const ReferenceLeaf& leaf : leaves) die(leaf, frame_count - 1);
   local_stats.columns = frame_count;
   SortCandidates(&candidates);
-  if (!options.keep_all_branches) {
+  if (!options.all_branches) {
     // The longest of each tree: sorted, a tree's paths are adjacent (same top_start and
     // match_start), the longest top row last, and among those the longest match last.
     std::vector<PathCandidate> longest;

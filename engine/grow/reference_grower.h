@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "common/status.h"
-#include "engine/grow/path_candidate.h"
 #include "engine/grow/path_grower.h"
+#include "formats/paths_file/path_candidate.h"
 #include "formats/trellis_file/trellis_column.h"
 
 namespace motif {

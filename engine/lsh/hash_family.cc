@@ -5,7 +5,7 @@
 
 #include "common/status.h"
 #include "engine/distance/pose_features.h"
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 
 namespace motif {
 

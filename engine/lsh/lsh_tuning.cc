@@ -10,7 +10,7 @@
 
 #include "engine/lsh/hash_family.h"
 #include "engine/lsh/query_distance.h"
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 
 namespace motif {
 namespace {

@@ -22,6 +22,7 @@
 #include "engine/ingest/archive_import.h"
 #include "engine/lsh/hash_family.h"
 #include "engine/lsh/lsh_search.h"
+#include "engine/pipeline/mine_pipeline.h"
 #include "engine/reindex/search_cache.h"
 #include "engine/reindex/watched_takes.h"
 #include "engine/report/report_html.h"
@@ -243,13 +244,15 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     if (current) {
       wanted = current->params;
     } else {
-      wanted.k_max = 256;
-      wanted.seed = 1;
-      wanted.branch = PathsOptions{}.branch;
-      wanted.min_length = MinLengthFrames(0.5, fps);
-      wanted.max_ncut = ClusterOptions{}.cut.max_ncut;
-      wanted.min_similarity = ClusterOptions{}.similarity.min_similarity;
-      wanted.max_length_ratio = ClusterOptions{}.max_length_ratio;
+      // The defaults of `motifmine mine`, defined once (DefaultMinePipelineOptions).
+      const MinePipelineOptions defaults = DefaultMinePipelineOptions();
+      wanted.k_max = defaults.trellis.k_max;
+      wanted.seed = defaults.seed;
+      wanted.branch = defaults.paths.branch;
+      wanted.min_length = MinLengthFrames(defaults.paths.min_length_seconds, fps);
+      wanted.max_ncut = defaults.cluster.cut.max_ncut;
+      wanted.min_similarity = defaults.cluster.similarity.min_similarity;
+      wanted.max_length_ratio = defaults.cluster.max_length_ratio;
       wanted.block_columns = TrellisOptions{}.block_columns;
     }
     if (options.k_max) wanted.k_max = *options.k_max;

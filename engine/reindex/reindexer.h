@@ -44,7 +44,7 @@ struct ReindexOptions {
   std::string watch_dir;
   std::string out_dir;
   std::optional<float> eps;                 // 0: the default rule of mine (joint angle 12 degrees)
-  std::optional<uint32_t> k_max;            // default 256
+  std::optional<uint32_t> k_max;            // default: mine's (256)
   std::optional<uint32_t> exclusion;        // default 0: half the minimum length
   std::optional<TrellisSearchMode> search;  // default auto at the first run
   std::optional<uint32_t> lsh_tables;       // LSH family overrides

@@ -9,7 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 
 namespace motif {
 namespace {

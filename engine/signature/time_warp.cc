@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 
 namespace motif {
 

@@ -50,7 +50,7 @@ struct TrellisOptions {
   EpsilonRule eps_rule = EpsilonRule::kJointAngle;  // epsilon_estimator.h
   double eps_joint_angle_degrees = kDefaultJointAngleDegrees;
   uint64_t eps_sample_pairs = 200000;
-  uint32_t k_max = 256;
+  uint32_t k_max = NeighbourRules{}.k_max;  // 256
   // Trivial-match exclusion radius in frames; 0: half the minimum motif length (min_length_s).
   uint32_t exclusion_frames = 0;
   double min_length_seconds = 0.5;  // lambda: 60 frames at 120 fps

@@ -19,7 +19,7 @@
 
 #include "common/byte_coding.h"
 #include "common/status.h"
-#include "engine/grow/path_candidate.h"
+#include "formats/paths_file/path_candidate.h"
 #include "formats/paths_file/paths_file_writer.h"
 
 namespace motif::paths_file {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/status.h"
-#include "engine/grow/path_candidate.h"
+#include "formats/paths_file/path_candidate.h"
 #include "formats/paths_file/paths_file_writer.h"
 
 namespace motif {

@@ -1,4 +1,4 @@
-// WritePathsFile: the path grower's candidates (engine/grow/path_candidate.h) as a paths file
+// WritePathsFile: the path grower's candidates (formats/paths_file/path_candidate.h) as a paths file
 // (.mpa, docs/formats/paths_file.md): a header naming the trellis the paths were grown from
 // and the grow parameters, then the candidates as one zstd-compressed section of delta-coded
 // records, everything checksummed. The file is small (tens of bytes a thousand candidates) and
@@ -13,7 +13,7 @@
 
 #include "common/status.h"
 #include "common/writable_file.h"
-#include "engine/grow/path_candidate.h"
+#include "formats/paths_file/path_candidate.h"
 
 namespace motif {
 
@@ -25,7 +25,7 @@ struct PathsParams {
   uint64_t frame_count = 0;       // N: columns of the trellis, at most 2^32
   uint32_t branch = 0;            // B, at least 1
   uint64_t min_length = 0;        // lambda in frames, at least 1
-  bool all_branches = false;      // every long path (GrowOptions::keep_all_branches), or the
+  bool all_branches = false;      // every long path (GrowOptions::all_branches), or the
                                   // longest of each tree
 
   bool operator==(const PathsParams& other) const = default;

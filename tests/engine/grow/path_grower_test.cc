@@ -19,7 +19,7 @@ GrowOptions Options(uint32_t branch, uint64_t min_length, bool all_branches = tr
   GrowOptions options;
   options.branch = branch;
   options.min_length = min_length;
-  options.keep_all_branches = all_branches;
+  options.all_branches = all_branches;
   return options;
 }
 

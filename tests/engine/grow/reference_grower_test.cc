@@ -21,7 +21,7 @@ TEST(ReferenceGrower, MatchesTheHandBuiltFigure2Step) {
   GrowOptions options;
   options.branch = 3;
   options.min_length = 1;
-  options.keep_all_branches = true;
+  options.all_branches = true;
   auto reference = GrowPathsReference(columns, {0}, options);
   ASSERT_TRUE(reference.ok());
   // 26 takes 27 and 28, 27 takes 29, 29 takes 31; 7 is a new tree.
@@ -49,7 +49,7 @@ TEST(ReferenceGrower, EqualsTheStreamingGrowerOnRandomTrellises) {
         GrowOptions options;
         options.branch = branch;
         options.min_length = min_length;
-        options.keep_all_branches = (seed + branch + min_length) % 2 == 0;
+        options.all_branches = (seed + branch + min_length) % 2 == 0;
         GrowStats streaming_stats;
         GrowStats reference_stats;
         auto grower = PathGrower::Create(frame_count, clips, options);
@@ -63,7 +63,7 @@ TEST(ReferenceGrower, EqualsTheStreamingGrowerOnRandomTrellises) {
         ASSERT_TRUE(streaming.ok() && reference.ok());
         ASSERT_EQ(*streaming, *reference)
             << "seed " << seed << " B " << branch << " lambda " << min_length << " all "
-            << options.keep_all_branches << "\nstreaming\n"
+            << options.all_branches << "\nstreaming\n"
             << Describe(*streaming) << "reference\n"
             << Describe(*reference);
         EXPECT_EQ(streaming_stats.trees, reference_stats.trees);
@@ -104,7 +104,7 @@ TEST(ReferenceGrower, EqualsTheStreamingGrowerOnASyntheticArchivesTrellis) {
       GrowOptions options;
       options.branch = branch;
       options.min_length = min_length;
-      options.keep_all_branches = branch == 3;
+      options.all_branches = branch == 3;
       auto streaming = GrowPaths(**trellis, clips, options);
       auto reference = GrowPathsReference(**trellis, clips, options);
       ASSERT_TRUE(streaming.ok() && reference.ok());

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/signature/ground_distance.h"
 
 namespace motif {

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 
 namespace motif {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/signature/classical_mds.h"
 #include "engine/signature/earth_movers_distance.h"
 #include "engine/signature/k_means.h"

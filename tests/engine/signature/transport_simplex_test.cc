@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/signature/transport_reference.h"
 
 namespace motif {

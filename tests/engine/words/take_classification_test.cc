@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/signature/signature_matrix.h"
 #include "engine/words/word_model.h"
 #include "tests/engine/words/words_test_util.h"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/embedding/embedding_file.h"
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/words/word_files.h"
 
 namespace motif {

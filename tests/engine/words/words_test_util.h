@@ -10,7 +10,7 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/lsh/split_mix64.h"
+#include "common/split_mix64.h"
 #include "engine/words/words_builder.h"
 #include "tests/engine/signature/word_test_util.h"
 

@@ -1,7 +1,8 @@
 // PathCandidate: one continuous path of the matching trellis that died with at least lambda
 // frames on both sides (docs/design/algorithm.md step 3). It links two motif instances: the top-row
 // segment (the columns the path crossed) and the matched segment (the frames its nodes were).
-// The grower (engine/grow/) writes these to a paths file; clustering (engine/cluster/) reads them.
+// The grower (engine/grow/) writes these to a paths file (docs/formats/paths_file.md), which
+// clustering (engine/cluster/) reads; the type lives with the file format it is stored in.
 // All frame numbers are global archive frame indices; ranges are half-open [start, end).
 #pragma once
 
