@@ -145,6 +145,60 @@ motifmine::ImportResult ImportTakes(const std::string& archive,
   return result;
 }
 
+motifmine::WordsResult BuildWords(const std::string& archive, uint32_t motifs, uint64_t seed,
+                                  int threads, const py::object& progress) {
+  motifmine::WordsOptions options;
+  options.motifs = motifs;
+  options.seed = seed;
+  options.threads = threads;
+  std::optional<PythonProgress> python_progress;
+  if (!progress.is_none()) {
+    python_progress.emplace(progress);
+    options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+      (*python_progress)(stage, done, total);
+    };
+  }
+  motifmine::WordsResult result;
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = motifmine::BuildWords(archive, options, &result);
+  }
+  if (python_progress) python_progress->RaiseIfFailed();
+  Check(status);
+  return result;
+}
+
+// (clip names, float64 array clips x motifs).
+py::tuple Signatures(const std::string& archive) {
+  auto signatures = std::make_unique<motifmine::Signatures>();
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = motifmine::LoadSignatures(archive, signatures.get());
+  }
+  Check(status);
+  const py::ssize_t rows = static_cast<py::ssize_t>(signatures->clips.size());
+  const py::ssize_t columns = signatures->motifs;
+  py::list names;
+  for (const std::string& name : signatures->clips) names.append(name);
+  motifmine::Signatures* data = signatures.release();
+  py::capsule owner(data, [](void* p) { delete static_cast<motifmine::Signatures*>(p); });
+  return py::make_tuple(names, py::array_t<double>({rows, columns}, data->values.data(), owner));
+}
+
+std::vector<motifmine::SearchMatch> Search(const std::string& archive, const std::string& clip,
+                                           uint64_t start, uint64_t end, uint32_t top) {
+  std::vector<motifmine::SearchMatch> matches;
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = motifmine::SearchClipRange(archive, clip, start, end, top, &matches);
+  }
+  Check(status);
+  return matches;
+}
+
 std::string InstanceRepr(const motifmine::Instance& instance) {
   return "Instance(clip='" + instance.clip + "', start=" + std::to_string(instance.start) +
          ", end=" + std::to_string(instance.end) + ")";
@@ -222,6 +276,36 @@ PYBIND11_MODULE(motifmine, m) {
   m.def("import_takes", &ImportTakes, py::arg("archive"), py::arg("paths"), py::kw_only(),
         py::arg("skip_bad") = false, py::arg("threads") = 0,
         "Imports BVH / ASF+AMC takes and folders into an archive (created if missing).");
+
+  py::class_<motifmine::WordsResult>(m, "WordsResult")
+      .def_readonly("takes", &motifmine::WordsResult::takes)
+      .def_readonly("words", &motifmine::WordsResult::words)
+      .def_readonly("motifs", &motifmine::WordsResult::motifs)
+      .def_readonly("embedding_path", &motifmine::WordsResult::embedding_path)
+      .def_readonly("motifs_path", &motifmine::WordsResult::motifs_path)
+      .def_readonly("signatures_path", &motifmine::WordsResult::signatures_path);
+  py::class_<motifmine::SearchMatch>(m, "SearchMatch")
+      .def_readonly("clip", &motifmine::SearchMatch::clip)
+      .def_readonly("start", &motifmine::SearchMatch::start)
+      .def_readonly("end", &motifmine::SearchMatch::end)
+      .def_readonly("distance", &motifmine::SearchMatch::distance)
+      .def("__repr__", [](const motifmine::SearchMatch& match) {
+        return "SearchMatch(clip='" + match.clip + "', start=" + std::to_string(match.start) +
+               ", end=" + std::to_string(match.end) +
+               ", distance=" + std::to_string(match.distance) + ")";
+      });
+  const motifmine::WordsOptions words_defaults;
+  m.def("build_words", &BuildWords, py::arg("archive"), py::kw_only(),
+        py::arg("motifs") = words_defaults.motifs, py::arg("seed") = words_defaults.seed,
+        py::arg("threads") = words_defaults.threads, py::arg("progress") = py::none(),
+        "The archive's motion words, their embedding, motifs and signatures, written beside it "
+        "(reused when up to date), as `motifmine words` does.");
+  m.def("signatures", &Signatures, py::arg("archive"),
+        "(clip names, float64 array clips x motifs): every clip's TF-IDF signature.");
+  m.def("search", &Search, py::arg("archive"), py::arg("clip"), py::arg("start"), py::arg("end"),
+        py::kw_only(), py::arg("top") = 10,
+        "The takes with a window most like frames [start, end) of clip, best first, as "
+        "`motifmine search` finds them.");
 
   py::class_<motifmine::Archive>(m, "Archive")
       .def(py::init(&OpenArchive), py::arg("path"))

@@ -11,6 +11,7 @@
 // Link with the CMake target motifmine::motifmine (docs/library.md).
 #pragma once
 
-#include "motifmine/archive.h"  // IWYU pragma: export
-#include "motifmine/mine.h"     // IWYU pragma: export
-#include "motifmine/status.h"   // IWYU pragma: export
+#include "motifmine/archive.h"     // IWYU pragma: export
+#include "motifmine/mine.h"        // IWYU pragma: export
+#include "motifmine/signatures.h"  // IWYU pragma: export
+#include "motifmine/status.h"      // IWYU pragma: export

@@ -184,3 +184,32 @@ def test_the_gil_is_released_while_mining(mined, tmp_path):
         stop.set()
         ticker.join()
     assert len(ticks) > 10  # the other thread ran during the call
+
+
+def test_words_signatures_and_search_are_the_tools(tmp_path):
+    archive = str(tmp_path / "s.mfs")
+    tool("synth", archive, "--frames", "20000", "--motifs", "3", "--seed", "2", "--quiet")
+    stages = []
+    words = motifmine.build_words(archive, progress=lambda s, d, t: stages.append(s))
+    assert words.takes == len(motifmine.Archive(archive).clips)
+    assert words.words > 0 and words.motifs == 100
+    assert words.signatures_path == str(tmp_path / "s.mws")
+    assert "train" in stages
+
+    names, signatures = motifmine.signatures(archive)
+    assert names == [c.name for c in motifmine.Archive(archive).clips]
+    assert signatures.shape == (len(names), words.motifs)
+    assert signatures.dtype == np.float64
+    assert (signatures >= 0).all() and (signatures.sum(axis=1) > 0).all()
+
+    matches = motifmine.search(archive, names[0], 100, 400, top=3)
+    tool("search", archive, "--clip", names[0], "--start", "100", "--end", "400", "--top", "3",
+         "--out", str(tmp_path / "search"))
+    with open(tmp_path / "search" / "search.json") as f:
+        expected = json.load(f)["matches"]
+    assert [(m.clip, m.start, m.end) for m in matches] == [
+        (e["clip"], e["start"], e["end"]) for e in expected]
+    assert [m.distance for m in matches] == pytest.approx([e["distance"] for e in expected])
+    with pytest.raises(motifmine.Error) as missing:
+        motifmine.search(archive, "no_such_clip", 0, 100)
+    assert missing.value.code == 11
