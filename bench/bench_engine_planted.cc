@@ -22,7 +22,7 @@
 #include <benchmark/benchmark.h>
 
 #include "engine/cluster/motifs_json.h"
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 #include "engine/pipeline/mine_pipeline.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/frame_file/frame_file_writer.h"

@@ -21,7 +21,7 @@
 
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
-#include "engine/cluster/truth_score.h"
+#include "engine/evaluation/truth_score.h"
 #include "engine/grow/paths_builder.h"
 #include "engine/synth/segment_insertion.h"
 #include "engine/trellis/trellis_builder.h"

@@ -10,7 +10,7 @@
 #include "engine/cluster/cluster_stage.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 #include "engine/grow/paths_builder.h"
 #include "engine/synth/truth_json_reader.h"
 #include "engine/trellis/trellis_builder.h"

@@ -5,7 +5,7 @@
 
 #include "engine/cli/cli_common.h"
 #include "engine/cli/mined_motifs.h"
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 #include "engine/report/report_html.h"
 #include "engine/synth/truth_json_reader.h"
 

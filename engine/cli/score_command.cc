@@ -1,10 +1,10 @@
 // motifmine score MOTIFS.json TRUTH [--json]: how well mined motifs match ground truth, for users
-// with their own annotations (engine/cluster/truth_score.h: the hit rule and the figures).
+// with their own annotations (engine/evaluation/truth_score.h: the hit rule and the figures).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "engine/cli/cli_common.h"
-#include "engine/cluster/truth_score.h"
+#include "engine/evaluation/truth_score.h"
 
 namespace motif::cli {
 

@@ -22,7 +22,7 @@
 #include "common/status.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 #include "engine/grow/paths_builder.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "engine/trellis/trellis_builder.h"

@@ -21,7 +21,7 @@
 
 #include "common/status.h"
 #include "engine/cluster/motifs_json.h"
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 #include "engine/report/html_page.h"
 #include "engine/report/stick_figure_svg.h"
 #include "formats/frame_file/frame_file_reader.h"

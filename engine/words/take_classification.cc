@@ -4,7 +4,7 @@
 #include <map>
 #include <set>
 
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/adjusted_rand_index.h"
 #include "engine/signature/k_means.h"
 
 namespace motif {

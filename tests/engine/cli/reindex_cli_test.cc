@@ -24,7 +24,7 @@
 #include "common/file_lock.h"
 #include "common/file_util.h"
 #include "engine/cluster/motifs_json.h"
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 #include "engine/reindex/mined_version.h"
 #include "engine/reindex/reindex_manifest.h"
 #include "engine/synth/truth_json_reader.h"

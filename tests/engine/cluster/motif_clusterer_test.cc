@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 #include "tests/engine/cluster/cluster_test_util.h"
 #include "tests/testing/temp_dir.h"
 

@@ -19,8 +19,8 @@
 
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
-#include "engine/cluster/planted_motif_score.h"
-#include "engine/cluster/truth_score.h"
+#include "engine/evaluation/planted_motif_score.h"
+#include "engine/evaluation/truth_score.h"
 #include "engine/pipeline/mine_pipeline.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "engine/synth/segment_insertion.h"

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/cluster/motifs_json.h"
+#include "engine/evaluation/adjusted_rand_index.h"
 #include "engine/synth/motion_synthesizer.h"
 
 namespace motif {
@@ -50,11 +51,5 @@ PlantedMotifScore ScorePlantedMotifs(const std::vector<FoundInstance>& found,
 // The same, for every instance of every motif of a motifs.json document.
 PlantedMotifScore ScoreMotifsDocument(const MotifsDocument& document,
                                       const std::vector<PlantedInstance>& planted);
-
-// The adjusted Rand index of two labelings of the same items (equal sizes). With fewer than two
-// items, or when both put every item in one cluster or both put each item alone, it is 1 (the
-// labelings agree perfectly; the formula is 0/0 there).
-double AdjustedRandIndex(const std::vector<uint32_t>& labels_a,
-                         const std::vector<uint32_t>& labels_b);
 
 }  // namespace motif

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/cluster/motif_truth.h"
 #include "engine/cluster/motifs_json.h"
+#include "engine/evaluation/motif_truth.h"
 
 namespace motif {
 

@@ -1,4 +1,4 @@
-#include "engine/cluster/truth_score.h"
+#include "engine/evaluation/truth_score.h"
 
 #include <algorithm>
 #include <map>

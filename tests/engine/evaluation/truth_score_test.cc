@@ -1,12 +1,12 @@
 // The ground-truth reader (motif_truth.h) and the scorer (truth_score.h) on small cases whose
 // figures are worked out by hand.
-#include "engine/cluster/truth_score.h"
+#include "engine/evaluation/truth_score.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "engine/cluster/motif_truth.h"
+#include "engine/evaluation/motif_truth.h"
 #include "tests/testing/temp_dir.h"
 
 namespace motif {

@@ -1,4 +1,4 @@
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 
 #include <gtest/gtest.h>
 

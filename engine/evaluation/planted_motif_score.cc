@@ -1,4 +1,4 @@
-#include "engine/cluster/planted_motif_score.h"
+#include "engine/evaluation/planted_motif_score.h"
 
 #include <algorithm>
 #include <map>
@@ -11,10 +11,6 @@
 namespace motif {
 
 namespace {
-
-double PairsOf(uint64_t count) {
-  return static_cast<double>(count) * static_cast<double>(count > 0 ? count - 1 : 0) / 2.0;
-}
 
 uint64_t Overlap(uint64_t a_start, uint64_t a_end, uint64_t b_start, uint64_t b_end) {
   const uint64_t start = std::max(a_start, b_start);
@@ -99,35 +95,6 @@ PlantedMotifScore ScorePlantedMotifs(const std::vector<FoundInstance>& found,
                   : 0.0;
   score.adjusted_rand_index = AdjustedRandIndex(planted_labels, found_labels);
   return score;
-}
-
-double AdjustedRandIndex(const std::vector<uint32_t>& labels_a,
-                         const std::vector<uint32_t>& labels_b) {
-  MOTIF_CHECK(labels_a.size() == labels_b.size());
-  const uint64_t n = labels_a.size();
-  if (n < 2) return 1.0;
-  std::map<std::pair<uint32_t, uint32_t>, uint64_t> table;
-  std::map<uint32_t, uint64_t> rows;
-  std::map<uint32_t, uint64_t> cols;
-  for (size_t idx = 0; idx < n; ++idx) {
-    ++table[{labels_a[idx], labels_b[idx]}];
-    ++rows[labels_a[idx]];
-    ++cols[labels_b[idx]];
-  }
-  // Both trivial in the same way: perfect agreement (the formula below would be 0/0).
-  if ((rows.size() == 1 && cols.size() == 1) || (rows.size() == n && cols.size() == n)) {
-    return 1.0;
-  }
-  double index = 0;
-  for (const auto& [cell, count] : table) index += PairsOf(count);
-  double sum_rows = 0;
-  double sum_cols = 0;
-  for (const auto& [label, count] : rows) sum_rows += PairsOf(count);
-  for (const auto& [label, count] : cols) sum_cols += PairsOf(count);
-  const double expected = sum_rows * sum_cols / PairsOf(n);
-  const double maximum = (sum_rows + sum_cols) / 2.0;
-  if (maximum == expected) return 1.0;
-  return (index - expected) / (maximum - expected);
 }
 
 PlantedMotifScore ScoreMotifsDocument(const MotifsDocument& document,

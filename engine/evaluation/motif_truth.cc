@@ -1,4 +1,4 @@
-#include "engine/cluster/motif_truth.h"
+#include "engine/evaluation/motif_truth.h"
 
 #include <charconv>
 #include <sstream>
