@@ -88,6 +88,14 @@ std::string TemporaryPathFor(const std::string& path) {
 }
 
 Status AtomicWriteFile(const std::string& path, std::string_view content, FileSystem* file_system) {
+  // A missing folder is named as such, not through the temporary file that could not be made.
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code error;
+  if (!folder.empty() && !std::filesystem::is_directory(folder, error)) {
+    return Status::IOError(
+        "cannot write " + path + ": " + folder.string() +
+        (std::filesystem::exists(folder, error) ? " is not a folder" : " does not exist"));
+  }
   const std::string temp_path = TemporaryPathFor(path);
   Status status = [&]() -> Status {
     MOTIF_ASSIGN_OR_RETURN(auto file,

@@ -128,6 +128,10 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
   return -1;
 }
 
+std::string CountOf(uint64_t count, const std::string& noun) {
+  return WithCommas(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
 std::string WithCommas(uint64_t value) {
   std::string digits = std::to_string(value);
   std::string out;

@@ -60,6 +60,9 @@ ProgressMode ProgressModeFrom(const boost::program_options::variables_map& vm);
 
 // Thousands separators: 40346 -> "40,346".
 std::string WithCommas(uint64_t value);
+// "1 clip", "1,234 clips": a count with commas and its noun, plural when it is not 1 (nouns that
+// take an "s").
+std::string CountOf(uint64_t count, const std::string& noun);
 // "24.0 KB", "1.6 MB".
 std::string FormatBytes(uint64_t bytes);
 // part / whole as "57.2%" (0.0% when whole is 0).

@@ -83,18 +83,18 @@ int RunImport(const std::vector<std::string>& args) {
                  archive.c_str());
     return code;
   }
-  std::printf("%s %s: %s takes imported (%s frames)", result->created ? "created" : "appended to",
-              archive.c_str(), WithCommas(result->takes_imported).c_str(),
-              WithCommas(result->frames_added).c_str());
+  std::printf("%s %s: %s imported (%s)", result->created ? "created" : "appended to",
+              archive.c_str(), CountOf(result->takes_imported, "take").c_str(),
+              CountOf(result->frames_added, "frame").c_str());
   if (result->takes_already_present) {
     std::printf(", %s already present", WithCommas(result->takes_already_present).c_str());
   }
   if (result->takes_failed) {
     std::printf(", %s failed", WithCommas(result->takes_failed).c_str());
   }
-  std::printf("; the archive now holds %s clips, %s frames at %g fps\n",
-              WithCommas(result->archive_clips).c_str(), WithCommas(result->archive_frames).c_str(),
-              result->fps);
+  std::printf("; the archive now holds %s, %s at %g fps\n",
+              CountOf(result->archive_clips, "clip").c_str(),
+              CountOf(result->archive_frames, "frame").c_str(), result->fps);
   if (result->takes_failed == 0) return kExitOk;
   ReportSkippedTakes("import", result->failures, ProgressModeFrom(vm));
   return kExitWarnings;  // the good takes are stored; the bad ones are named

@@ -50,9 +50,9 @@ void PrintSummary(const MinePipelineResult& result) {
   const double fps = result.fps;
   const TrellisReport& trellis = result.trellis;
   std::printf("motifmine mine: %s\n", result.archive_path.c_str());
-  std::printf("  archive      %s frames (%.1f min at %g fps) in %s clips\n",
+  std::printf("  archive      %s frames (%.1f min at %g fps) in %s\n",
               WithCommas(result.frames).c_str(), static_cast<double>(result.frames) / fps / 60.0,
-              fps, WithCommas(result.clips).c_str());
+              fps, CountOf(result.clips, "clip").c_str());
   std::printf("  radius       eps %.3f: %s (the paper's mu - 2 sigma would be %.3f)\n",
               trellis.params.eps, trellis.eps_how.c_str(), trellis.paper_eps);
   std::printf("  trellis      mean K %.1f of k_max %u, %s search\n", trellis.mean_k,
@@ -60,8 +60,9 @@ void PrintSummary(const MinePipelineResult& result) {
   std::printf("  paths        %s candidates (B %u, min length %llu frames)\n",
               WithCommas(result.paths.candidates).c_str(), result.paths.params.branch,
               static_cast<unsigned long long>(result.paths.params.min_length));
-  std::printf("  motifs       %s motifs, %s instances, mean %.1f s, covering %s of the archive\n",
-              WithCommas(document.motifs.size()).c_str(), WithCommas(instances).c_str(),
+  std::printf("  motifs       %s, %s, mean %.1f s, covering %s of the archive\n",
+              CountOf(document.motifs.size(), "motif").c_str(),
+              CountOf(instances, "instance").c_str(),
               instances ? static_cast<double>(instance_frames) / instances / fps : 0.0,
               Percent(document.covered_frames, result.frames).c_str());
   for (size_t rank = 0; rank < std::min<size_t>(5, document.motifs.size()); ++rank) {

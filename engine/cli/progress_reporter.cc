@@ -104,7 +104,12 @@ void ProgressReporter::Note(const std::string& message) {
 void ProgressReporter::Draw(uint64_t done, bool final_line) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start_).count();
-  const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
+  // No rate from the first moments of a stage: a stage reported first with work already done
+  // would show billions a second.
+  constexpr double kLeastElapsedForRate = 0.25;
+  const double rate = elapsed >= kLeastElapsedForRate || (final_line && elapsed > 0)
+                          ? static_cast<double>(done) / elapsed
+                          : 0.0;
   const double eta = rate > 0 && total_ >= done ? static_cast<double>(total_ - done) / rate : -1.0;
   if (mode_ == ProgressMode::kJson) {
     nlohmann::json line = {{"stage", stage_},      {"done", done},          {"total", total_},

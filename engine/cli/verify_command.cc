@@ -26,10 +26,11 @@ int VerifyArchive(const std::string& path, ProgressMode mode) {
   progress.EndStage();
   if (!status.ok()) return ReportError("verify", status);
   // The version named is the one verified, even when an import appended since it was opened.
-  std::printf("OK: %s: generation %llu: %s blocks, %s clips, %s frames verified\n", path.c_str(),
+  std::printf("OK: %s: generation %llu: %s, %s, %s verified\n", path.c_str(),
               static_cast<unsigned long long>(reader.summary().generation),
-              WithCommas(reader.summary().block_count).c_str(),
-              WithCommas(reader.clips().size()).c_str(), WithCommas(reader.frame_count()).c_str());
+              CountOf(reader.summary().block_count, "block").c_str(),
+              CountOf(reader.clips().size(), "clip").c_str(),
+              CountOf(reader.frame_count(), "frame").c_str());
   return kExitOk;
 }
 

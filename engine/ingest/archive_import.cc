@@ -1,6 +1,7 @@
 #include "engine/ingest/archive_import.h"
 
 #include <atomic>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <unordered_set>
@@ -13,6 +14,17 @@
 #include "formats/motion/resample.h"
 
 namespace motif {
+
+namespace {
+
+// 120, 29.97: the rate as a person writes it ("%g"), not std::to_string's 120.000000.
+std::string FormatFps(double fps) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", fps);
+  return text;
+}
+
+}  // namespace
 namespace {
 
 // One take on its way through the pipeline.
@@ -92,8 +104,7 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
         writer, FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options));
     result.created = true;
     note("creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
-         std::to_string(first.skeleton.joint_count()) + " joints), " + std::to_string(fps) +
-         " fps");
+         std::to_string(first.skeleton.joint_count()) + " joints), " + FormatFps(fps) + " fps");
   }
   const Skeleton skeleton = writer->skeleton();
   const double fps = writer->fps();

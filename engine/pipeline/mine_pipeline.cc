@@ -69,6 +69,13 @@ void MinePipeline::Progress(const std::string& stage, uint64_t done, uint64_t to
 Status MinePipeline::CheckOptions() const {
   const ClusterOptions& cluster = options_.cluster;
   if (options_.out_dir.empty()) return Status::InvalidArgument("no output folder given");
+  // Before the output folder is made: a mistyped input leaves nothing behind.
+  for (const std::string& input : options_.inputs) {
+    std::error_code error;
+    if (!std::filesystem::exists(input, error)) {
+      return Status::NotFound(input + ": no such file or folder");
+    }
+  }
   if (!(cluster.max_length_ratio == 0 || cluster.max_length_ratio >= 1) ||
       !std::isfinite(cluster.max_length_ratio)) {
     return Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1");

@@ -24,6 +24,18 @@ TEST(AtomicWriteFile, WritesAndReplaces) {
             1);
 }
 
+TEST(AtomicWriteFile, AMissingFolderIsNamed) {
+  testing::TempDir dir;
+  const Status missing = AtomicWriteFile(dir.File("absent/x.txt"), "x");
+  EXPECT_TRUE(missing.IsIOError());
+  EXPECT_EQ(missing.message(), "cannot write " + dir.File("absent/x.txt") + ": " +
+                                   dir.File("absent") + " does not exist");
+  ASSERT_TRUE(AtomicWriteFile(dir.File("plain"), "x").ok());
+  EXPECT_NE(AtomicWriteFile(dir.File("plain/x.txt"), "x").message().find("is not a folder"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir.File("absent")));
+}
+
 TEST(AtomicWriteFile, FailureAtAnyStepKeepsTheOldContent) {
   testing::TempDir dir;
   const std::string path = dir.File("out.json");

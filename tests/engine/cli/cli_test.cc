@@ -276,6 +276,28 @@ TEST(MotifmineTool, AFlippedBitInTheActiveCommitSlotLosesNothing) {
   EXPECT_EQ(RunTool("verify " + archive + " --quiet").exit_code, 0);
 }
 
+// A missing input leaves no output folder behind, and an output in a missing folder names the
+// folder, not the temporary file that could not be made.
+TEST(MotifmineTool, AMissingInputOrOutputFolderIsNamedAndLeavesNothing) {
+  testing::TempDir dir;
+  const RunResult mine =
+      RunTool("mine " + dir.File("nosuch/") + " --out " + dir.File("out") + " --quiet");
+  EXPECT_EQ(mine.exit_code, 11) << mine.output;
+  EXPECT_NE(mine.output.find(dir.File("nosuch/") + ": no such file or folder"), std::string::npos)
+      << mine.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.File("out")));
+
+  const std::string archive = dir.File("s.mfs");
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
+            0);
+  const RunResult exported =
+      RunTool("export " + archive + " --clip synth_000000 --out " + dir.File("missing/x.bvh"));
+  EXPECT_EQ(exported.exit_code, 14) << exported.output;
+  EXPECT_NE(exported.output.find(dir.File("missing") + " does not exist"), std::string::npos)
+      << exported.output;
+  EXPECT_EQ(exported.output.find(".tmp-"), std::string::npos) << exported.output;
+}
+
 // A folder that cannot be made is an I/O error (exit 14) naming it; a disk too full for an
 // append is exit 16 naming the archive, which stays as it was (a real full tmpfs, when the test
 // may mount one).
