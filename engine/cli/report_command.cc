@@ -6,6 +6,7 @@
 #include "engine/cli/cli_common.h"
 #include "engine/cli/mined_motifs.h"
 #include "engine/evaluation/planted_motif_score.h"
+#include "engine/pipeline/run_record.h"
 #include "engine/report/report_html.h"
 #include "engine/synth/truth_json_reader.h"
 
@@ -62,6 +63,20 @@ int RunReport(const std::vector<std::string>& args) {
   ReportInfo info;
   info.archive_path = mined->archive->path();
   info.truth_path = vm["truth"].as<std::string>();
+  // The overview of the `mine` run that wrote this motifs.json, when its record still matches.
+  const std::string run_path =
+      (std::filesystem::path(mined->motifs_path).parent_path() / "run.json").string();
+  if (Result<RunRecord> run = ReadRunRecord(run_path, mined->motifs_path); run.ok()) {
+    info.parameters_text = run->parameters_text;
+    for (const RunStageTiming& timing : run->timings) {
+      info.timings.push_back({timing.stage, timing.seconds});
+    }
+    info.peak_memory_bytes = run->peak_memory_bytes;
+    if (info.truth_path.empty()) info.truth_path = run->truth_path;
+  } else if (!run.status().IsNotFound()) {
+    std::fprintf(stderr, "motifmine report: note: %s not used: %s\n", run_path.c_str(),
+                 run.status().message().c_str());
+  }
   if (!info.truth_path.empty()) {
     Result<TruthFile> truth = ReadTruthJson(info.truth_path);
     if (!truth.ok()) return ReportError("report", truth.status());

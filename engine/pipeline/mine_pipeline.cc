@@ -6,12 +6,14 @@
 #include <sstream>
 #include <utility>
 
+#include "common/byte_coding.h"
 #include "common/file_lock.h"
 #include "common/file_util.h"
 #include "common/peak_memory.h"
 #include "common/seconds_since.h"
 #include "engine/cluster/cluster_stage.h"
 #include "engine/ingest/archive_import.h"
+#include "engine/pipeline/run_record.h"
 #include "engine/report/report_html.h"
 #include "engine/synth/synthetic_archive.h"
 #include "engine/synth/truth_json_reader.h"
@@ -30,7 +32,7 @@ constexpr char kRunLockName[] = ".motifmine.lock";
 // The files a run writes in its folder, whose temporary files a killed run may have left.
 const std::vector<std::string> kOwnedFiles = {
     "archive.mfs", "archive.truth.json", "trellis.mtr", "paths.mpa",
-    "motifs.json", "mine_state.json",    "report.html"};
+    "motifs.json", "mine_state.json",    "report.html", "run.json"};
 
 std::string Join(const std::string& dir, const char* name) {
   return (std::filesystem::path(dir) / name).string();
@@ -115,6 +117,7 @@ Result<MinePipelineResult> MinePipeline::Run() {
   MOTIF_RETURN_IF_ERROR(ReportStage());
   result_.total_seconds = SecondsSince(job_start);
   result_.peak_memory_bytes = PeakResidentBytes();
+  MOTIF_RETURN_IF_ERROR(WriteRunStage());
   return std::move(result_);
 }
 
@@ -238,19 +241,45 @@ Status MinePipeline::ScoreStage() {
   return Status::Ok();
 }
 
-// Stage 5: the report.
-Status MinePipeline::ReportStage() {
-  if (!options_.write_report) return Status::Ok();
-  const Clock::time_point start = Clock::now();
+std::string MinePipeline::ParametersText() const {
   const TrellisReport& trellis = result_.trellis;
-  ReportInfo info;
-  info.archive_path = result_.archive_path;
   std::ostringstream parameters;
   parameters << "eps " << trellis.params.eps << " (" << trellis.eps_how << "), k_max "
              << trellis.params.k_max << ", B " << result_.paths.params.branch << ", min length "
              << result_.paths.params.min_length << " frames, groups " << options_.groups_text
              << ", seed " << options_.seed << ", search " << TrellisSearchModeName(trellis.search);
-  info.parameters_text = parameters.str();
+  return parameters.str();
+}
+
+// OUT/run.json: what `report OUT` needs to show this run's overview again.
+Status MinePipeline::WriteRunStage() {
+  MOTIF_ASSIGN_OR_RETURN(std::string motifs, ReadFileToString(result_.motifs_path));
+  RunRecord record;
+  record.motifs_checksum = Checksum64(motifs.data(), motifs.size());
+  record.parameters_text = ParametersText();
+  for (const MineStageTime& time : result_.times) {
+    record.timings.push_back({time.stage, time.seconds, time.reused});
+  }
+  record.total_seconds = result_.total_seconds;
+  record.peak_memory_bytes = result_.peak_memory_bytes;
+  if (!result_.truth_path.empty()) {
+    std::error_code error;
+    const std::filesystem::path truth =
+        std::filesystem::relative(std::filesystem::absolute(result_.truth_path),
+                                  std::filesystem::absolute(options_.out_dir), error);
+    record.truth_path =
+        error ? std::filesystem::absolute(result_.truth_path).string() : truth.string();
+  }
+  return WriteRunRecord(Join(options_.out_dir, "run.json"), record);
+}
+
+// Stage 5: the report.
+Status MinePipeline::ReportStage() {
+  if (!options_.write_report) return Status::Ok();
+  const Clock::time_point start = Clock::now();
+  ReportInfo info;
+  info.archive_path = result_.archive_path;
+  info.parameters_text = ParametersText();
   for (const MineStageTime& time : result_.times)
     info.timings.push_back({time.stage, time.seconds});
   info.peak_memory_bytes = PeakResidentBytes();

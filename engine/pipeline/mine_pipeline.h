@@ -8,9 +8,10 @@
 // block); clustering is reused when OUT/mine_state.json says it ran on the same paths with the same
 // options; the synthetic archive when its truth has the same options; an import skips takes
 // already in the archive. A run killed at any point and started again gives the same motifs.json;
-// it first removes the temporary files a dead run left in OUT. One run at a time per folder:
-// OUT/.motifmine.lock (flock) is held for the whole run; a second run fails at once with Busy.
-// Every stage reads the archive version opened first, whatever an import appends meanwhile.
+// it first removes the temporary files a dead run left in OUT; last, it writes OUT/run.json (the
+// timings, peak memory and parameters, for `motifmine report`: run_record.h). One run at a time per
+// folder: OUT/.motifmine.lock (flock) is held for the whole run; a second run fails at once with
+// Busy. Every stage reads the archive version opened first, whatever an import appends meanwhile.
 #pragma once
 
 #include <cstdint>
@@ -93,6 +94,8 @@ class MinePipeline {
   Status ClusterStage();
   Status ScoreStage();
   Status ReportStage();
+  Status WriteRunStage();
+  std::string ParametersText() const;
   void Progress(const std::string& stage, uint64_t done, uint64_t total, const std::string& unit);
 
   MinePipelineOptions options_;

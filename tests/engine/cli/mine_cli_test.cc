@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "common/file_lock.h"
+#include "common/file_util.h"
 #include "engine/cluster/motifs_json.h"
 #include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
@@ -59,6 +60,16 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   EXPECT_EQ(document->params.kmax, 64u);
   EXPECT_FALSE(document->motifs.empty());
 
+  // `report` run again shows the overview mine's report showed: timings, peak memory, the
+  // planted motifs (from OUT/run.json, which names this motifs.json).
+  const std::string mine_report = ReadFileToString(out + "/report.html").value();
+  ASSERT_EQ(RunTool("report " + out + " --out " + out + "/again.html").exit_code, 0);
+  const std::string again_report = ReadFileToString(out + "/again.html").value();
+  for (const char* shown : {"peak memory", "timings", "recall"}) {
+    EXPECT_NE(mine_report.find(shown), std::string::npos) << shown;
+    EXPECT_NE(again_report.find(shown), std::string::npos) << shown;
+  }
+
   // The same again: every stage is reused and the motifs are the same.
   RunResult second = RunTool("mine --out " + out + " " + small + "--quiet");
   ASSERT_EQ(second.exit_code, 0) << second.output;
@@ -77,6 +88,14 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   auto changed = ReadMotifsJson(out + "/motifs.json");
   ASSERT_TRUE(changed.ok());
   EXPECT_EQ(changed->params.branch, 3u);
+
+  // A motifs.json changed since: its run record is stale, said so, and not shown.
+  std::string motifs = ReadFileToString(out + "/motifs.json").value();
+  ASSERT_TRUE(AtomicWriteFile(out + "/motifs.json", motifs + " ").ok());
+  const RunResult stale = RunTool("report " + out + " --out " + out + "/stale.html");
+  ASSERT_EQ(stale.exit_code, 0) << stale.output;
+  EXPECT_NE(stale.output.find("run.json not used"), std::string::npos) << stale.output;
+  EXPECT_EQ(ReadFileToString(out + "/stale.html").value().find("peak memory"), std::string::npos);
 }
 
 TEST(MotifmineMine, RefusesBadParametersBeforeAnyWork) {
