@@ -76,6 +76,7 @@ nlohmann::json SearchJson(const SearchResult& result, const FrameFileReader& rea
   json["query"] = query;
   json["motifs"] = info.motifs;
   json["windows"] = result.windows;
+  json["shorter_takes"] = result.shorter_takes;  // left out: fewer words than the query
   json["seconds"] = info.seconds;
   nlohmann::json matches = nlohmann::json::array();
   for (size_t rank = 0; rank < result.matches.size(); ++rank) {
@@ -251,6 +252,11 @@ int RunSearch(const std::vector<std::string>& args) {
   }
   std::printf("  compared     %s windows in %.2fs\n", WithCommas(result->windows).c_str(),
               info.seconds);
+  if (result->shorter_takes > 0) {
+    std::printf("  left out     %s shorter than the query (fewer words than its %s)\n",
+                CountOf(result->shorter_takes, "take").c_str(),
+                WithCommas(info.query_words).c_str());
+  }
   std::printf("  wrote        %s, %s\n", json_path.c_str(), html_path.c_str());
   return kExitOk;
 }

@@ -343,8 +343,10 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     if (!eager) lazy_json += "]";
     html += "</div>";
     if (count > chosen[motif_idx].size()) {
-      html += "<p class=\"note\">" + HtmlCommas(count - chosen[motif_idx].size()) +
-              " more instances not drawn.</p>";
+      const size_t more = count - chosen[motif_idx].size();
+      html += "<p class=\"note\">" + HtmlCommas(more) +
+              (more == 1 ? " more instance not drawn" : " more instances not drawn") +
+              " (all of them are in the timeline above and in motifs.json).</p>";
     }
     html += "</section>\n";
   }

@@ -138,6 +138,9 @@ Result<SearchResult> SlidingWindowSearch(const FrameFileReader& reader, const Lo
   }
   SearchResult result = Rank(reader, words, best, q, top);
   result.windows = windows;
+  for (size_t clip = 0; clip < clips; ++clip) {
+    result.shorter_takes += words.signatures.clip_words[clip] < q;
+  }
   return result;
 }
 

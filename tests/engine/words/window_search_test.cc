@@ -1,5 +1,7 @@
 #include "engine/words/window_search.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "engine/words/word_model.h"
@@ -122,6 +124,19 @@ TEST(WindowSearch, WholeTakesAndErrors) {
   WindowQuery bad;
   bad.motifs = {9999};
   EXPECT_TRUE(SlidingWindowSearch(*reader, *words, bad, 5, 1).status().IsInvalidArgument());
+
+  // A query longer than some takes: those are left out, and counted.
+  const std::vector<uint64_t>& clip_words = words->signatures.clip_words;
+  const uint64_t longest = *std::max_element(clip_words.begin(), clip_words.end());
+  WindowQuery longest_query;
+  longest_query.motifs.assign(longest, 0);
+  auto long_query = SlidingWindowSearch(*reader, *words, longest_query, 100, 1);
+  ASSERT_TRUE(long_query.ok()) << long_query.status().ToString();
+  const uint64_t shorter = static_cast<uint64_t>(std::count_if(
+      clip_words.begin(), clip_words.end(), [&](uint64_t count) { return count < longest; }));
+  EXPECT_GT(shorter, 0u);
+  EXPECT_EQ(long_query->shorter_takes, shorter);
+  EXPECT_EQ(long_query->matches.size(), clip_words.size() - shorter);
 }
 
 }  // namespace
