@@ -11,8 +11,8 @@
 #include "common/file_util.h"
 #include "common/peak_memory.h"
 #include "common/seconds_since.h"
-#include "engine/cluster/cluster_stage.h"
 #include "engine/ingest/archive_import.h"
+#include "engine/pipeline/motif_stages.h"
 #include "engine/pipeline/run_record.h"
 #include "engine/report/report_html.h"
 #include "engine/synth/synthetic_archive.h"
@@ -110,8 +110,7 @@ Result<MinePipelineResult> MinePipeline::Run() {
 
   MOTIF_RETURN_IF_ERROR(MakeArchive());
   MOTIF_RETURN_IF_ERROR(BuildTrellisStage());
-  MOTIF_RETURN_IF_ERROR(BuildPathsStage());
-  MOTIF_RETURN_IF_ERROR(ClusterStage());
+  MOTIF_RETURN_IF_ERROR(MotifStages());
   MOTIF_RETURN_IF_ERROR(ScoreStage());
   result_.total_seconds = SecondsSince(job_start);
   MOTIF_RETURN_IF_ERROR(ReportStage());
@@ -198,38 +197,24 @@ Status MinePipeline::BuildTrellisStage() {
   return Status::Ok();
 }
 
-// Stage 3: the paths.
-Status MinePipeline::BuildPathsStage() {
-  PathsOptions paths = options_.paths;
-  paths.progress = [&](uint64_t done, uint64_t total) { Progress("grow", done, total, "columns"); };
-  const Clock::time_point start = Clock::now();
-  MOTIF_ASSIGN_OR_RETURN(result_.paths,
-                         BuildPaths(result_.archive_path, Join(options_.out_dir, "trellis.mtr"),
-                                    Join(options_.out_dir, "paths.mpa"), paths));
-  result_.times.push_back({"grow", SecondsSince(start), result_.paths.reused});
-  return Status::Ok();
-}
-
-// Stage 4: clustering, reused when the same paths were clustered with the same options.
-Status MinePipeline::ClusterStage() {
-  ClusterStageInput input;
+// Stages 3 and 4: the paths, then the motifs (RunMotifStages, shared with reindex).
+Status MinePipeline::MotifStages() {
+  MotifStagesInput input;
   input.archive_path = result_.archive_path;
   input.archive = archive_.get();
   input.trellis_path = Join(options_.out_dir, "trellis.mtr");
   input.paths_path = Join(options_.out_dir, "paths.mpa");
-  input.paths_params = result_.paths.params;
-  input.candidates = result_.paths.candidates;
   input.motifs_path = Join(options_.out_dir, "motifs.json");
   input.state_path = Join(options_.out_dir, "mine_state.json");
-  ClusterOptions cluster = options_.cluster;
-  cluster.progress = [&](const std::string&, uint64_t done, uint64_t total) {
-    Progress("cluster", done, total, "columns");
-  };
-  const Clock::time_point start = Clock::now();
-  MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(input, cluster));
-  result_.document = std::move(clustered.document);
+  input.paths = options_.paths;
+  input.cluster = options_.cluster;
+  input.progress = options_.progress;
+  MOTIF_ASSIGN_OR_RETURN(MotifStagesResult stages, RunMotifStages(input));
+  result_.paths = stages.paths;
+  result_.document = std::move(stages.clustered.document);
   result_.motifs_path = input.motifs_path;
-  result_.times.push_back({"cluster", SecondsSince(start), clustered.reused});
+  result_.times.push_back({"grow", stages.grow_seconds, stages.paths.reused});
+  result_.times.push_back({"cluster", stages.cluster_seconds, stages.clustered.reused});
   return Status::Ok();
 }
 

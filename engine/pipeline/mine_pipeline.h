@@ -90,8 +90,7 @@ class MinePipeline {
   Status CheckOptions() const;
   Status MakeArchive();
   Status BuildTrellisStage();
-  Status BuildPathsStage();
-  Status ClusterStage();
+  Status MotifStages();
   Status ScoreStage();
   Status ReportStage();
   Status WriteRunStage();

@@ -23,6 +23,7 @@
 #include "engine/lsh/hash_family.h"
 #include "engine/lsh/lsh_search.h"
 #include "engine/pipeline/mine_pipeline.h"
+#include "engine/pipeline/motif_stages.h"
 #include "engine/reindex/search_cache.h"
 #include "engine/reindex/watched_takes.h"
 #include "engine/report/report_html.h"
@@ -564,42 +565,30 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
                         trellis->identity()};
   }
 
-  // 5. Paths and motifs.
-  start = Clock::now();
-  PathsOptions paths_options;
-  paths_options.branch = params.branch;
-  paths_options.min_length_frames = params.min_length;
-  paths_options.archive_version = {archive_version.generation, archive_version.committed_bytes};
-  paths_options.progress = [&](uint64_t done, uint64_t total) {
-    progress("grow", done, total, "columns");
-  };
-  const std::string paths_path = Join(version_path, "paths.mpa");
-  MOTIF_ASSIGN_OR_RETURN(PathsReport paths,
-                         BuildPaths(archive_path, trellis_path, paths_path, paths_options));
-  report.grow_seconds = SecondsSince(start);
-  start = Clock::now();
-  ClusterOptions cluster;
+  // 5. Paths and motifs: the stages mine runs after its trellis (RunMotifStages).
+  MotifStagesInput stages_input;
+  // Absolute: OUTDIR/motifs.json is a byte copy of this version's, one folder up.
+  stages_input.archive_path = fs::absolute(archive_path).lexically_normal().string();
+  stages_input.archive = archive.get();
+  stages_input.trellis_path = trellis_path;
+  stages_input.paths_path = Join(version_path, "paths.mpa");
+  stages_input.motifs_path = Join(version_path, "motifs.json");
+  stages_input.state_path = Join(version_path, "cluster_state.json");
+  stages_input.paths.branch = params.branch;
+  stages_input.paths.min_length_frames = params.min_length;
+  ClusterOptions& cluster = stages_input.cluster;
   cluster.seed = params.seed;
   cluster.threads = options.threads;
   cluster.cut.groups = params.groups;
   cluster.cut.max_ncut = params.max_ncut;
   cluster.similarity.min_similarity = params.min_similarity;
   cluster.max_length_ratio = params.max_length_ratio;
-  cluster.progress = [&](const std::string&, uint64_t done, uint64_t total) {
-    progress("cluster", done, total, "columns");
-  };
-  ClusterStageInput cluster_input;
-  // Absolute: OUTDIR/motifs.json is a byte copy of this version's, one folder up.
-  cluster_input.archive_path = fs::absolute(archive_path).lexically_normal().string();
-  cluster_input.archive = archive.get();
-  cluster_input.trellis_path = trellis_path;
-  cluster_input.paths_path = paths_path;
-  cluster_input.paths_params = paths.params;
-  cluster_input.candidates = paths.candidates;
-  cluster_input.motifs_path = Join(version_path, "motifs.json");
-  cluster_input.state_path = Join(version_path, "cluster_state.json");
-  MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(cluster_input, cluster));
-  report.cluster_seconds = SecondsSince(start);
+  stages_input.progress = [&](const std::string& stage, uint64_t done, uint64_t total,
+                              const std::string& unit) { progress(stage, done, total, unit); };
+  MOTIF_ASSIGN_OR_RETURN(MotifStagesResult stages, RunMotifStages(stages_input));
+  const ClusterStageResult& clustered = stages.clustered;
+  report.grow_seconds = stages.grow_seconds;
+  report.cluster_seconds = stages.cluster_seconds;
   MOTIF_ASSIGN_OR_RETURN(manifest.paths, DescribeFile(out_dir, Join(version_dir, "paths.mpa")));
   MOTIF_ASSIGN_OR_RETURN(manifest.motifs, DescribeFile(out_dir, Join(version_dir, "motifs.json")));
   if (options.report) {

@@ -233,7 +233,7 @@ void KillRerunAndCompare(const std::string& cwd, const std::vector<std::string>&
     const std::string name = entry.path().filename().string();
     EXPECT_TRUE(name == "archive.mfs" || name == "archive.truth.json" || name == "trellis.mtr" ||
                 name == "paths.mpa" || name == "motifs.json" || name == "mine_state.json" ||
-                name == "report.html" || name == ".motifmine.lock")
+                name == "report.html" || name == "run.json" || name == ".motifmine.lock")
         << "left behind: " << name;
   }
 }
