@@ -50,6 +50,29 @@ class PythonProgress {
   std::shared_ptr<py::error_already_set> error_;
 };
 
+using ProgressSlot = std::function<void(const std::string&, uint64_t, uint64_t)>;
+
+// Runs `call` (returning a Status) without the GIL, with the Python callable `progress` (or None)
+// installed in *slot meanwhile; a Python error the callable raised is raised once it returns.
+template <typename Call>
+motifmine::Status WithoutGil(const py::object& progress, ProgressSlot* slot, Call call) {
+  std::optional<PythonProgress> python_progress;
+  if (!progress.is_none()) {
+    python_progress.emplace(progress);
+    *slot = [&](const std::string& stage, uint64_t done, uint64_t total) {
+      (*python_progress)(stage, done, total);
+    };
+  }
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = call();
+  }
+  *slot = nullptr;
+  if (python_progress) python_progress->RaiseIfFailed();
+  return status;
+}
+
 // Sets MineOptions fields from keyword arguments; TypeError for an unknown one.
 void SetMineOption(motifmine::MineOptions* options, const std::string& key, py::handle value) {
   if (key == "eps")
@@ -89,21 +112,9 @@ motifmine::MineResult Mine(const std::vector<std::string>& inputs, const std::st
   motifmine::MineOptions options;
   options.out_dir = out_dir;
   for (const auto& [key, value] : kwargs) SetMineOption(&options, key.cast<std::string>(), value);
-  std::optional<PythonProgress> python_progress;
-  if (!progress.is_none()) {
-    python_progress.emplace(progress);
-    options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-      (*python_progress)(stage, done, total);
-    };
-  }
   motifmine::MineResult result;
-  motifmine::Status status;
-  {
-    py::gil_scoped_release release;
-    status = motifmine::Mine(inputs, options, &result);
-  }
-  if (python_progress) python_progress->RaiseIfFailed();
-  Check(status);
+  Check(WithoutGil(progress, &options.progress,
+                   [&] { return motifmine::Mine(inputs, options, &result); }));
   return result;
 }
 
@@ -151,21 +162,9 @@ motifmine::WordsResult BuildWords(const std::string& archive, uint32_t motifs, u
   options.motifs = motifs;
   options.seed = seed;
   options.threads = threads;
-  std::optional<PythonProgress> python_progress;
-  if (!progress.is_none()) {
-    python_progress.emplace(progress);
-    options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-      (*python_progress)(stage, done, total);
-    };
-  }
   motifmine::WordsResult result;
-  motifmine::Status status;
-  {
-    py::gil_scoped_release release;
-    status = motifmine::BuildWords(archive, options, &result);
-  }
-  if (python_progress) python_progress->RaiseIfFailed();
-  Check(status);
+  Check(WithoutGil(progress, &options.progress,
+                   [&] { return motifmine::BuildWords(archive, options, &result); }));
   return result;
 }
 

@@ -29,8 +29,8 @@
 #include "engine/cluster/normalized_cut.h"
 #include "engine/cluster/pauses.h"
 #include "engine/cluster/warped_similarity.h"
-#include "formats/paths_file/path_candidate.h"
 #include "formats/frame_file/frame_file_reader.h"
+#include "formats/paths_file/path_candidate.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {

@@ -9,8 +9,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "engine/lsh/hash_family.h"
 #include "common/split_mix64.h"
+#include "engine/lsh/hash_family.h"
 #include "engine/signature/k_means.h"
 #include "engine/signature/word_distance.h"
 

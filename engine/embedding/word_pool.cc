@@ -11,8 +11,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "engine/embedding/word_input.h"
 #include "common/split_mix64.h"
+#include "engine/embedding/word_input.h"
 #include "engine/signature/word_stream.h"
 
 namespace motif {

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/split_mix64.h"
 #include "common/status.h"
 #include "engine/distance/pose_features.h"
-#include "common/split_mix64.h"
 
 namespace motif {
 

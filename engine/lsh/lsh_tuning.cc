@@ -8,9 +8,9 @@
 #include <cmath>
 #include <vector>
 
+#include "common/split_mix64.h"
 #include "engine/lsh/hash_family.h"
 #include "engine/lsh/query_distance.h"
-#include "common/split_mix64.h"
 
 namespace motif {
 namespace {

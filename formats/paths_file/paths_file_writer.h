@@ -1,4 +1,5 @@
-// WritePathsFile: the path grower's candidates (formats/paths_file/path_candidate.h) as a paths file
+// WritePathsFile: the path grower's candidates (formats/paths_file/path_candidate.h) as a paths
+// file
 // (.mpa, docs/formats/paths_file.md): a header naming the trellis the paths were grown from
 // and the grow parameters, then the candidates as one zstd-compressed section of delta-coded
 // records, everything checksummed. The file is small (tens of bytes a thousand candidates) and

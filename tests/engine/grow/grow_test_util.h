@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "common/status.h"
-#include "formats/paths_file/path_candidate.h"
 #include "engine/grow/path_grower.h"
+#include "formats/paths_file/path_candidate.h"
 #include "formats/trellis_file/trellis_column.h"
 
 namespace motif {

@@ -8,9 +8,9 @@
 #include <cstring>
 #include <vector>
 
+#include "common/split_mix64.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/query_distance.h"
-#include "common/split_mix64.h"
 
 namespace motif {
 namespace {

@@ -3,8 +3,8 @@
 // tensors that are missing, of the wrong shape or inconsistent (Corruption naming the tensor).
 #include <gtest/gtest.h>
 
-#include "engine/embedding/embedding_file.h"
 #include "common/split_mix64.h"
+#include "engine/embedding/embedding_file.h"
 #include "engine/words/word_files.h"
 
 namespace motif {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/peak_memory.h"
 #include "tests/formats/frame_file/frame_file_test_util.h"
 #include "tests/testing/temp_dir.h"
 
@@ -205,18 +206,7 @@ TEST(FrameFileReader, OpenReportsAMissingFileAsNotFound) {
 
 #if defined(__linux__)
 // Resident file-backed pages of this process (RssFile in /proc/self/status), in bytes.
-uint64_t ResidentFileBytes() {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == "RssFile:") {
-      uint64_t kb = 0;
-      status >> kb;
-      return kb * 1024;
-    }
-  }
-  return 0;
-}
+uint64_t ResidentFileBytes() { return ProcessStatusBytes("RssFile:"); }
 
 TEST(FrameFileReader, StreamGivesBackThePagesOfConsumedBlocks) {
   TempDir dir;
