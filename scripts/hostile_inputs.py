@@ -12,8 +12,8 @@ fuzz inputs in tests/data/fuzz/ and generated files:
              names that are not UTF-8; damaged and truncated archives
   special    a FIFO, /dev/zero and /dev/urandom linked as takes, a dangling link, a link loop, a
              folder named like a take, a socket
-  huge       a sparse take one byte over the 1 GiB limit, a take of 900 MB (mostly a sparse hole),
-             a 64 MB line, a valid take of 200,000 frames
+  huge       a sparse take one byte over the 1 GiB limit, a take of 300 MB (mostly a sparse hole),
+             a 64 MB line, a valid take of 100,000 frames of one still pose
   deep       BVH hierarchies 4,096 (the limit), 4,097 and 100,000 joints deep, an ASF of 100,000
              bones, 1,000,000 nested braces
 
@@ -189,10 +189,10 @@ def make_corpus(root, tool, seed):
     # Huge.
     sparse(os.path.join(root, "over-limit.bvh"), (1 << 30) + 1, good.encode())
     c.take("huge", "over-limit.bvh")
-    sparse(os.path.join(root, "hole.bvh"), 900 << 20, base.replace("Frames: 4", "Frames: 9").encode())
+    sparse(os.path.join(root, "hole.bvh"), 300 << 20, base.replace("Frames: 4", "Frames: 9").encode())
     c.take("huge", "hole.bvh")
     c.take("huge", "long-line.bvh", base[:-1] + " " + "7" * (64 << 20) + "\n")
-    c.take("huge", "long.bvh", bvh_text(joints_deep=2, frames=200000))
+    c.take("huge", "long.bvh", bvh_text(joints_deep=2, frames=100000))
     # Deep.
     c.take("deep", "deep-4096.bvh", bvh_text(joints_deep=4096, frames=2))
     c.take("deep", "deep-4097.bvh", bvh_text(joints_deep=4097, frames=2))

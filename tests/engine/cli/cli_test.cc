@@ -146,7 +146,7 @@ TEST(MotifmineTool, ATakeLargerThanTheLimitIsRefusedBeforeItIsRead) {
 TEST(MotifmineTool, ReportAndExportMotifWorkFromAnyDirectory) {
   testing::TempDir dir;
   const std::string in_dir = "cd " + dir.path() + " && " + MOTIF_TOOL + " ";
-  ASSERT_EQ(RunShell(in_dir + "synth s.mfs --frames 20000 --motifs 3 --seed 2 --quiet").exit_code,
+  ASSERT_EQ(RunShell(in_dir + "synth s.mfs --frames 6000 --motifs 1 --seed 2 --quiet").exit_code,
             0);
   ASSERT_EQ(RunShell(in_dir + "mine s.mfs --out out --quiet --no-report").exit_code, 0);
   const nlohmann::json motifs =
