@@ -17,6 +17,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "common/peak_memory.h"
+
 namespace motif::bench {
 
 // Resets the kernel's peak-RSS mark of this process (Linux: "5" to /proc/self/clear_refs), so
@@ -28,17 +30,7 @@ inline void ResetPeakRss() {
 
 // A field of /proc/self/status in bytes ("VmHWM:", "VmRSS:"); 0 if absent.
 inline double StatusBytes(const char* field) {
-  std::ifstream status("/proc/self/status");
-  std::string key;
-  while (status >> key) {
-    if (key == field) {
-      double kilobytes = 0;
-      status >> kilobytes;
-      return kilobytes * 1024.0;
-    }
-    std::getline(status, key);
-  }
-  return 0;
+  return static_cast<double>(ProcessStatusBytes(field));
 }
 
 // Peak resident set size (VmHWM) in bytes.

@@ -2,31 +2,19 @@
 
 namespace motifmine {
 
+// The public codes are the engine's plus 10, the tool's exit codes (docs/guide.md).
+inline constexpr int kExitCodeBase = 10;
+static_assert(static_cast<int>(Status::Code::kNotFound) ==
+              kExitCodeBase + static_cast<int>(motif::Status::Code::kNotFound));
+static_assert(static_cast<int>(Status::Code::kBusy) ==
+              kExitCodeBase + static_cast<int>(motif::Status::Code::kBusy));
+
 std::string Status::ToString() const {
   if (ok()) return "OK";
   // The engine's names, so the library and the tool say the same.
-  const auto engine_code = [](Code code) {
-    switch (code) {
-      case Code::kOk:
-        return motif::Status::Code::kOk;
-      case Code::kNotFound:
-        return motif::Status::Code::kNotFound;
-      case Code::kCorruption:
-        return motif::Status::Code::kCorruption;
-      case Code::kInvalidArgument:
-        return motif::Status::Code::kInvalidArgument;
-      case Code::kIOError:
-        return motif::Status::Code::kIOError;
-      case Code::kNotSupported:
-        return motif::Status::Code::kNotSupported;
-      case Code::kResourceExhausted:
-        return motif::Status::Code::kResourceExhausted;
-      case Code::kBusy:
-        return motif::Status::Code::kBusy;
-    }
-    return motif::Status::Code::kIOError;
-  };
-  return std::string(motif::StatusCodeName(engine_code(code_))) + ": " + message_;
+  const auto engine_code =
+      static_cast<motif::Status::Code>(static_cast<int>(code_) - kExitCodeBase);
+  return std::string(motif::StatusCodeName(engine_code)) + ": " + message_;
 }
 
 }  // namespace motifmine
@@ -34,26 +22,10 @@ std::string Status::ToString() const {
 namespace motif {
 
 motifmine::Status ToPublicStatus(const Status& status) {
-  using Code = motifmine::Status::Code;
-  switch (status.code()) {
-    case Status::Code::kOk:
-      return {};
-    case Status::Code::kNotFound:
-      return {Code::kNotFound, status.message()};
-    case Status::Code::kCorruption:
-      return {Code::kCorruption, status.message()};
-    case Status::Code::kInvalidArgument:
-      return {Code::kInvalidArgument, status.message()};
-    case Status::Code::kIOError:
-      return {Code::kIOError, status.message()};
-    case Status::Code::kNotSupported:
-      return {Code::kNotSupported, status.message()};
-    case Status::Code::kResourceExhausted:
-      return {Code::kResourceExhausted, status.message()};
-    case Status::Code::kBusy:
-      return {Code::kBusy, status.message()};
-  }
-  return {Code::kIOError, status.message()};
+  if (status.ok()) return {};
+  return {static_cast<motifmine::Status::Code>(static_cast<int>(status.code()) +
+                                               motifmine::kExitCodeBase),
+          status.message()};
 }
 
 }  // namespace motif
