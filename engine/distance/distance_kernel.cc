@@ -7,6 +7,7 @@
 
 #include "common/status.h"
 #include "engine/distance/distance_kernel_avx2.h"
+#include "engine/distance/joint_term.h"
 
 namespace motif {
 namespace {
@@ -51,10 +52,17 @@ constexpr uint32_t kJointFloats = FrameBlock::kRowsPerJoint * kTile;
 using Lanes = Eigen::Array<float, kTile, 1>;
 using LanesMap = Eigen::Map<const Lanes, Eigen::AlignedMax>;
 
+// JointTermFromSums's lane operations on a tile's lanes.
+struct EigenLanes {
+  using Lane = Lanes;
+  static Lanes Abs(const Lanes& value) { return value.abs(); }
+  static Lanes AtLeastZero(const Lanes& value) { return value.max(0.0f); }
+  static Lanes Sqrt(const Lanes& value) { return value.unaryExpr(ExactSqrt()); }
+};
+
 // D of one query (lane `query_lane` of `query_tile`) against the kTile candidates of
 // `candidate_tile`. Per lane the operations and their order are PoseDistance's: the dot product
-// summed w, x, y, z; (|q|^2 + |p|^2) - 2 |q.p|, clamped at 0; sqrt; times the weight; summed
-// over the joints in order.
+// summed w, x, y, z; JointTermFromSums; times the weight; summed over the joints in order.
 inline Lanes TileDistances(const float* query_tile, uint32_t query_lane,
                            const float* candidate_tile, const float* weights,
                            uint32_t joint_count) {
@@ -67,13 +75,10 @@ inline Lanes TileDistances(const float* query_tile, uint32_t query_lane,
     const float qy = query[2 * kTile];
     const float qz = query[3 * kTile];
     const float q_norm = query[4 * kTile];
-    total += weights[joint_idx] *
-             ((LanesMap(rows + 4 * kTile) + q_norm) -
-              2.0f * (LanesMap(rows) * qw + LanesMap(rows + kTile) * qx +
-                      LanesMap(rows + 2 * kTile) * qy + LanesMap(rows + 3 * kTile) * qz)
-                         .abs())
-                 .max(0.0f)
-                 .unaryExpr(ExactSqrt());
+    const Lanes dot = LanesMap(rows) * qw + LanesMap(rows + kTile) * qx +
+                      LanesMap(rows + 2 * kTile) * qy + LanesMap(rows + 3 * kTile) * qz;
+    total += weights[joint_idx] * JointTermFromSums<EigenLanes>(Lanes::Constant(q_norm),
+                                                                LanesMap(rows + 4 * kTile), dot);
   }
   return total;
 }

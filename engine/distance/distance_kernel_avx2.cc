@@ -1,7 +1,8 @@
 // The block kernel's AVX2 path (x86-64 only): this file alone is compiled with -mavx2 and its
 // code runs only after DistanceKernel has checked that the CPU has AVX2 (runtime dispatch, so
 // the library stays portable). It deliberately uses nothing but plain pointers and the
-// always-inline intrinsics: an inline function of a template library (Eigen, the standard
+// always-inline intrinsics (and JointTermFromSums<AvxLanes>, which no portable file
+// instantiates): an inline function of a template library (Eigen, the standard
 // library) instantiated here would be an AVX2 copy that the linker could pick for the
 // portable callers too.
 //
@@ -10,6 +11,8 @@
 #include "engine/distance/distance_kernel_avx2.h"
 
 #include <immintrin.h>
+
+#include "engine/distance/joint_term.h"
 
 namespace motif::distance_internal {
 namespace {
@@ -21,8 +24,6 @@ constexpr uint32_t kJointFloats = 5 * kTile;
 
 void ComputeRowsAvx2(const KernelArgs& args) {
   const __m256 zero = _mm256_setzero_ps();
-  const __m256 two = _mm256_set1_ps(2.0f);
-  const __m256 sign_mask = _mm256_set1_ps(-0.0f);
   const uint32_t candidate_tiles = (args.candidate_count + kTile - 1) / kTile;
   for (uint32_t tile_idx = 0; tile_idx < candidate_tiles; ++tile_idx) {
     const float* candidate_tile = args.candidate_tiles + tile_idx * args.tile_floats;
@@ -50,10 +51,9 @@ void ComputeRowsAvx2(const KernelArgs& args) {
           dot = _mm256_add_ps(dot, _mm256_mul_ps(_mm256_load_ps(lane_rows + kTile), qx));
           dot = _mm256_add_ps(dot, _mm256_mul_ps(_mm256_load_ps(lane_rows + 2 * kTile), qy));
           dot = _mm256_add_ps(dot, _mm256_mul_ps(_mm256_load_ps(lane_rows + 3 * kTile), qz));
-          const __m256 norms = _mm256_add_ps(_mm256_load_ps(lane_rows + 4 * kTile), q_norm);
-          const __m256 twice_abs_dot = _mm256_mul_ps(two, _mm256_andnot_ps(sign_mask, dot));
-          const __m256 squared = _mm256_max_ps(_mm256_sub_ps(norms, twice_abs_dot), zero);
-          const __m256 term = _mm256_mul_ps(weight, _mm256_sqrt_ps(squared));
+          const __m256 root =
+              JointTermFromSums<AvxLanes>(q_norm, _mm256_load_ps(lane_rows + 4 * kTile), dot);
+          const __m256 term = _mm256_mul_ps(weight, root);
           if (half == 0) {
             total_low = _mm256_add_ps(total_low, term);
           } else {

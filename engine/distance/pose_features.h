@@ -20,6 +20,7 @@
 
 #include "common/huge_page_allocator.h"
 #include "common/status.h"
+#include "engine/distance/joint_term.h"
 #include "formats/frame_file/frame_file_reader.h"
 
 namespace motif {
@@ -87,9 +88,8 @@ class PoseFeatures {
   std::vector<uint64_t> clip_first_frames_;
 };
 
-// The term of weighted joint `joint_idx` in D, unweighted: sqrt(max(0, |q|^2 + |p|^2 - 2|q.p|)) of
-// the dequantised components of frames `a` and `b` (4 int16 per joint). Every scalar evaluation
-// of D uses it, in these IEEE single operations, so that they agree bit for bit.
+// The term of weighted joint `joint_idx` in D, unweighted (JointTermFromSums) of the dequantised
+// components of frames `a` and `b` (4 int16 per joint). Every scalar evaluation of D uses it.
 inline float JointTerm(const int16_t* a, const int16_t* b, uint32_t joint_idx) {
   const float inverse = 1.0f / PoseFeatures::kQuantScale;
   float dot = 0;
@@ -102,8 +102,7 @@ inline float JointTerm(const int16_t* a, const int16_t* b, uint32_t joint_idx) {
     norm_a += qa * qa;
     norm_b += qb * qb;
   }
-  // min(|a - b|, |a + b|)^2 = |a|^2 + |b|^2 - 2 |a.b|
-  return std::sqrt(std::max(0.0f, norm_a + norm_b - 2.0f * std::abs(dot)));
+  return JointTermFromSums<ScalarLanes>(norm_a, norm_b, dot);
 }
 
 // The exact pose distance D between two frames (dequantised components, each joint's

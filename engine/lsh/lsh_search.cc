@@ -76,7 +76,8 @@ class LshSearch::Query {
         embedding_(search.family_.embedding_dims()),
         projections_(static_cast<size_t>(search.family_.table_count()) *
                      (search.family_.hashes_per_table() + 1)),
-        distance_(search.features_) {}
+        distance_(search.features_),
+        exclusion_floor_(std::max(search.rules_.exclusion_frames, 1u)) {}
 
   // `previous`: the neighbours of column - 1 in the same chain (seeds), or null. With
   // `reverse_query`, the verified older frames within their thresholds go to *reverse.
@@ -170,6 +171,71 @@ class LshSearch::Query {
   std::vector<Gathered> gathered_;
   std::vector<Ranked> ranked_;
   std::vector<uint32_t> bin_starts_;
+
+  // The forward query of one column (Run), in named steps over column_: seeds, probing scans,
+  // farther probes. Candidates are verified in small batches whose features are prefetched one
+  // batch ahead: a candidate's 96 bytes are a random access into the archive, and overlapping
+  // those misses is most of the speed of the verification.
+  static constexpr uint32_t kBatch = 16;
+  struct ColumnState {
+    uint64_t column = 0;
+    uint32_t clip = 0;
+    float bound = 0;  // nothing farther than this can enter the column
+    uint64_t evaluations = 0;
+    uint64_t within_eps = 0;
+    // Evaluations allowed in all: the probed buckets' budget, after the seeds of a chained column.
+    uint64_t max_evaluations = 0;
+    bool budget_spent = false;
+    bool bound_stopped = false;
+    const ReverseQuery* reverse_query = nullptr;
+    std::vector<Neighbour>* reverse = nullptr;  // Run's reverse frames, or null
+    LshQueryStats stats;
+    uint32_t batch[kBatch];    // being gathered
+    uint32_t pending[kBatch];  // gathered and prefetched: verified at the next Flush
+    uint32_t batch_size = 0;
+    uint32_t pending_size = 0;
+  };
+  void BeginColumn(uint64_t column, const ReverseQuery* reverse_query,
+                   std::vector<Neighbour>* reverse);
+  // The column itself and its own clip's temporal neighbourhood are never candidates. Called
+  // for every entry read: inlined, with the rare near case out of line.
+  [[gnu::always_inline]] bool Excluded(uint64_t column, uint32_t clip_of_column,
+                                       uint32_t frame) const {
+    const uint64_t frame_gap = frame > column ? frame - column : column - frame;
+    return frame_gap < exclusion_floor_ && ExcludedNear(column, clip_of_column, frame);
+  }
+  bool ExcludedNear(uint64_t column, uint32_t clip_of_column, uint32_t frame) const;
+  void Prune();
+  // Verifies `count` candidates: the accepted ones go to best_, the reverse ones to the reverse.
+  void Verify(const uint32_t* candidates, uint32_t count);
+  // Verifies the pending batch and makes the gathered one pending.
+  void Flush();
+  // Verifies everything gathered and brings the radius up to date.
+  void VerifyGathered();
+  // Adds a candidate to the batch (prefetching it), flushing a full batch.
+  void Gather(uint32_t frame);
+  bool BudgetReached() const;
+  bool VerifySeeds(const std::vector<Neighbour>& previous);
+  Cursor& CursorOf(size_t cursor_idx, const Probe& probe, bool with_estimates);
+  void ScanBySortValue(size_t first_probe);
+  void ScanRound(const Probe& probe, uint32_t round_limit, Cursor* cursor);
+  void ScanByCode(size_t first_probe);
+  void GatherByCode(size_t first_probe);
+  bool GatherRound(const Probe& probe, size_t cursor_idx, uint32_t round_limit, float limit_squared,
+                   Cursor* cursor);
+  void RankGathered();
+  void VerifyRanked();
+  void Scan(size_t first_probe);
+  void ProbeFartherBuckets();
+  // RunReverse's verification of a batch: the frames within eps and within their columns'
+  // thresholds go to *out. Empties the batch (*count = 0); returns how many were verified.
+  uint32_t VerifyReverse(const uint32_t* frames, uint32_t* count, const ReverseQuery& reverse_query,
+                         std::vector<Neighbour>* out);
+  // A reverse frame's threshold: its column's own (negative: not wanted), or eps.
+  static float ThresholdOf(const ReverseQuery& reverse_query, float eps, uint32_t frame);
+
+  ColumnState column_;
+  uint32_t exclusion_floor_ = 1;  // frames nearer the column than this may be excluded
 };
 
 // The estimate of an entry with code c in `probe`'s bucket: per coded coordinate i, the squared
@@ -393,304 +459,362 @@ std::vector<LshSearch::ProbeInfo> LshSearch::ProbeSequence(uint64_t column) cons
   return sequence;
 }
 
-void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previous,
-                           std::vector<Neighbour>* out, ColumnWork* work,
-                           const ReverseQuery* reverse_query, std::vector<Neighbour>* reverse) {
-  const HashFamily& family = search_.family_;
-  const LshIndex& index = search_.index_;
-  const PoseFeatures& features = search_.features_;
-  const NeighbourRules& rules = search_.rules_;
-  const LshOptions& options = search_.options_;
-  const uint32_t k_max = rules.k_max;
-  const float eps = rules.eps;
-  const float sort_step = family.sort_value_step();
-
+void LshSearch::Query::BeginColumn(uint64_t column, const ReverseQuery* reverse_query,
+                                   std::vector<Neighbour>* reverse) {
   visited_.Clear();
   best_.clear();
-  const uint32_t clip_of_column = features.ClipOf(column);
-  uint64_t evaluations = 0;
-  uint64_t within_eps = 0;
-  float bound = eps;  // nothing farther than this can enter the column
-  bool budget_spent = false;
-  bool bound_stopped = false;
-  // Evaluations allowed in all: the probed buckets' budget, after the seeds of a chained column.
-  uint64_t max_evaluations = options.max_candidates;
-  LshQueryStats local;
-
   distance_.SetQuery(column);
-  // Candidates are verified in small batches whose features are prefetched one batch ahead: a
-  // candidate's 96 bytes are a random access into the archive, and overlapping those misses is
-  // most of the speed of the verification.
-  constexpr uint32_t kBatch = 16;
-  uint32_t batch[kBatch];
-  uint32_t pending[kBatch];
-  uint32_t pending_size = 0;
-  uint32_t batch_size = 0;
-  float distances[kBatch];
-  // Keeps the k_max nearest accepted so far and sets the radius to the k_max-th distance. Done
-  // when twice k_max have been accepted (amortised O(1) per candidate, where a heap would pay
-  // O(log k_max) on every improvement), and when a decision needs the exact radius.
-  auto prune = [&] { bound = KeepNearest(k_max, eps, &best_); };
+  column_ = ColumnState();
+  column_.column = column;
+  column_.clip = search_.features_.ClipOf(column);
+  column_.bound = search_.rules_.eps;
+  column_.max_evaluations = search_.options_.max_candidates;
+  column_.reverse_query = reverse_query;
+  column_.reverse = reverse;
   if (reverse != nullptr) reverse->clear();
-  auto verify = [&](const uint32_t* candidates, uint32_t count) {
-    // For the reverse neighbours every distance up to eps is needed exactly; a distance within
-    // the bound is the same either way (the joints are summed in the same order).
-    distance_.ToBatch(candidates, count, reverse != nullptr ? eps : bound, distances);
-    for (uint32_t idx = 0; idx < count; ++idx) {
-      const float distance = distances[idx];
-      ++evaluations;
-      if (reverse != nullptr && candidates[idx] < reverse_query->frame_limit && distance <= eps &&
-          (reverse_query->thresholds == nullptr ||
-           distance <= reverse_query->thresholds[candidates[idx]])) {
-        reverse->push_back({candidates[idx], distance});
-      }
-      // A value above the bound may be a partial sum: it only says D > bound. capped_columns
-      // counts a column when more than k_max candidates came out at or below eps this way.
-      if (distance <= eps) ++within_eps;
-      if (distance > bound) continue;  // cannot enter the column (bound <= eps)
-      best_.push_back({candidates[idx], distance});
-      if (best_.size() >= 2 * k_max) prune();
+}
+
+bool LshSearch::Query::ExcludedNear(uint64_t column, uint32_t clip_of_column,
+                                    uint32_t frame) const {
+  return search_.rules_.Excluded(column, frame, clip_of_column, search_.features_.ClipOf(frame));
+}
+
+// Keeps the k_max nearest accepted so far and sets the radius to the k_max-th distance. Done when
+// twice k_max have been accepted (amortised O(1) per candidate, where a heap would pay
+// O(log k_max) on every improvement), and when a decision needs the exact radius.
+void LshSearch::Query::Prune() {
+  column_.bound = KeepNearest(search_.rules_.k_max, search_.rules_.eps, &best_);
+}
+
+void LshSearch::Query::Verify(const uint32_t* candidates, uint32_t count) {
+  ColumnState& state = column_;
+  const float eps = search_.rules_.eps;
+  const size_t prune_at = 2 * static_cast<size_t>(search_.rules_.k_max);
+  const ReverseQuery* reverse_query = state.reverse_query;
+  // For the reverse neighbours every distance up to eps is needed exactly; a distance within the
+  // bound is the same either way (the joints are summed in the same order).
+  float distances[kBatch];
+  distance_.ToBatch(candidates, count, state.reverse != nullptr ? eps : state.bound, distances);
+  // Counted in locals (registers) and stored once: best_.push_back may allocate.
+  float bound = state.bound;
+  uint64_t within_eps = 0;
+  for (uint32_t idx = 0; idx < count; ++idx) {
+    const float distance = distances[idx];
+    if (state.reverse != nullptr && candidates[idx] < reverse_query->frame_limit &&
+        distance <= eps &&
+        (reverse_query->thresholds == nullptr ||
+         distance <= reverse_query->thresholds[candidates[idx]])) {
+      state.reverse->push_back({candidates[idx], distance});
     }
-  };
-  auto flush = [&] {  // verify the pending batch, and make the gathered one pending
-    verify(pending, pending_size);
-    std::copy(batch, batch + batch_size, pending);
-    pending_size = batch_size;
-    batch_size = 0;
-  };
-
-  // The column itself and its own clip's temporal neighbourhood are never candidates.
-  auto excluded = [&](uint32_t frame) {
-    const uint64_t frame_gap = frame > column ? frame - column : column - frame;
-    return frame_gap < std::max(rules.exclusion_frames, 1u) &&
-           rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame));
-  };
-
-  // Breadth first: every probed bucket is scanned outward from the query's sort value in rounds
-  // of growing depth, so the budget goes to the entries nearest the query in all tables before
-  // the far ends of the first buckets. Probes are in increasing lower bound; a probe whose bound
-  // exceeds the current radius ends the column's probing (nothing left can enter).
-  auto scan_by_sort_value = [&](size_t first_probe) {
-    cursors_.clear();
-    uint32_t depth = options.first_round_scan;
-    size_t probe_limit = probes_.size();
-    while (!budget_spent) {
-      bool more = false;  // some bucket still has entries within the radius
-      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !budget_spent; ++probe_idx) {
-        const Probe& probe = probes_[probe_idx];
-        if (probe.score > (bound + kBoundSlack) * (bound + kBoundSlack)) {
-          probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
-          bound_stopped = true;
-          break;
-        }
-        if (probe_idx - first_probe == cursors_.size()) {
-          ++local.probes;
-          cursors_.push_back(OpenBucket(probe));
-        }
-        Cursor& cursor = cursors_[probe_idx - first_probe];
-        if (cursor.done) continue;
-        const LshTableEntries& table = index.table(probe.table_idx);
-        const int16_t* sort_values = table.sort_values.data();
-        const uint32_t* frames = table.frames.data();
-        const uint32_t round_limit = std::min(depth, cursor.scan_limit);
-        while (!cursor.done && cursor.examined < round_limit) {
-          // Gather new, allowed candidates, nearest sort value first, into the batch (which
-          // continues across buckets, so the eight-wide verification stays full).
-          const uint64_t room = max_evaluations - evaluations - pending_size;
-          const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
-          while (batch_size < batch_limit && cursor.examined < round_limit) {
-            const float limit = bound + kBoundSlack;
-            uint32_t position = 0;
-            float gap = 0;
-            const Step step = NextEntry(&cursor, probe.score, sort_values, sort_step, limit * limit,
-                                        &position, &gap);
-            if (step == Step::kDone) break;
-            ++local.entries_examined;
-            if (step == Step::kSkipped) continue;
-            const uint32_t frame = frames[position];
-            if (excluded(frame)) continue;
-            if (!visited_.Insert(frame)) continue;
-            distance_.Prefetch(frame);
-            batch[batch_size++] = frame;
-          }
-          if (batch_size == batch_limit) flush();
-          if (evaluations + pending_size + batch_size >= max_evaluations) {
-            budget_spent = true;
-            break;
-          }
-        }
-        more = cursor.EndRound(&local.bucket_scans_capped) || more;
-      }
-      if (!more || depth >= options.max_bucket_scan) break;
-      depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+    // A value above the bound may be a partial sum: it only says D > bound. capped_columns
+    // counts a column when more than k_max candidates came out at or below eps this way.
+    if (distance <= eps) ++within_eps;
+    if (distance > bound) continue;  // cannot enter the column (bound <= eps)
+    best_.push_back({candidates[idx], distance});
+    if (best_.size() >= prune_at) {
+      Prune();
+      bound = state.bound;
     }
-  };
+  }
+  state.evaluations += count;
+  state.within_eps += within_eps;
+}
 
-  // Gather, rank, verify. The entries of the probed buckets within reach (the probe's lower
-  // bound plus the sort-value gap within the radius) are read breadth first, in rounds of growing
-  // depth outward from the query's sort value, up to max_entries per column. Each gets an
-  // estimate of its squared distance from the query: its position code (the quarter of the cell
-  // it sits in along each of the first 16 projections) against the query's exact position, plus
-  // the sort-value gap. Candidates are then verified in order of that estimate (a counting sort
-  // on kRankBins bins; within a bin, gathering order), up to max_candidates. Ordering by the
-  // code is what keeps recall on large archives, where a column's probed buckets hold ten times
-  // more frames than the budget can verify (docs/design/lsh.md).
-  auto scan_by_code = [&](size_t first_probe) {
-    cursors_.clear();
-    gathered_.clear();
-    const float limit = bound + kBoundSlack;
-    const float limit_squared = limit * limit;
-    // An estimate unit is 1 / kEstimateUnitsPerCell2 of a squared cell width.
-    const float gap_scale = std::sqrt(kEstimateUnitsPerCell2) / family.bucket_width();
-    uint32_t depth = options.first_round_scan;
-    size_t probe_limit = probes_.size();
-    bool entries_spent = false;
-    while (!entries_spent) {
-      bool more = false;  // some bucket still has entries within reach
-      for (size_t probe_idx = first_probe; probe_idx < probe_limit && !entries_spent; ++probe_idx) {
-        const Probe& probe = probes_[probe_idx];
-        if (probe.score > limit_squared) {
-          probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
-          bound_stopped = true;
-          break;
-        }
-        const size_t cursor_idx = probe_idx - first_probe;
-        if (cursor_idx == cursors_.size()) {
-          ++local.probes;
-          cursors_.push_back(OpenBucket(probe));
-          if (!cursors_.back().done) FillEstimateTable(probe, cursor_idx);
-        }
-        Cursor& cursor = cursors_[cursor_idx];
-        if (cursor.done) continue;
-        const LshTableEntries& table = index.table(probe.table_idx);
-        const int16_t* sort_values = table.sort_values.data();
-        const uint32_t* frames = table.frames.data();
-        const uint32_t* codes = table.codes.data();
-        const uint16_t* estimates = &estimate_tables_[cursor_idx * kEstimateTableSize];
-        const uint32_t round_limit = std::min(depth, cursor.scan_limit);
-        while (cursor.examined < round_limit) {
-          uint32_t position = 0;
-          float gap = 0;
-          const Step step = NextEntry(&cursor, probe.score, sort_values, sort_step, limit_squared,
-                                      &position, &gap);
-          if (step == Step::kDone) break;
-          ++local.entries_examined;
-          if (step == Step::kSkipped) continue;
-          const float lower_squared = probe.score + gap * gap;
-          const uint32_t frame = frames[position];
-          if (excluded(frame)) continue;
-          const uint32_t code = codes[position];
-          uint32_t estimate = 0;
-          for (uint32_t nibble = 0; nibble < 8; ++nibble) {
-            estimate += estimates[16 * nibble + ((code >> (4 * nibble)) & 15u)];
-          }
-          const float gap_units = gap * gap_scale;
-          estimate += static_cast<uint32_t>(std::min(gap_units * gap_units, 65535.0f));
-          const uint32_t bin = std::min(estimate, kRankBins - 1);
-          gathered_.push_back({frame, lower_squared, bin});
-          if (gathered_.size() >= options.max_entries) {
-            entries_spent = true;
-            break;
-          }
-        }
-        more = cursor.EndRound(&local.bucket_scans_capped) || more;
-      }
-      if (!more || depth >= options.max_bucket_scan) break;
-      depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+void LshSearch::Query::Flush() {
+  ColumnState& state = column_;
+  Verify(state.pending, state.pending_size);
+  std::copy(state.batch, state.batch + state.batch_size, state.pending);
+  state.pending_size = state.batch_size;
+  state.batch_size = 0;
+}
+
+void LshSearch::Query::VerifyGathered() {
+  Flush();
+  Flush();
+  Prune();
+}
+
+void LshSearch::Query::Gather(uint32_t frame) {
+  distance_.Prefetch(frame);
+  column_.batch[column_.batch_size++] = frame;
+  if (column_.batch_size == kBatch) Flush();
+}
+
+bool LshSearch::Query::BudgetReached() const {
+  const ColumnState& state = column_;
+  return state.evaluations + state.pending_size + state.batch_size >= state.max_evaluations;
+}
+
+// Seeds of a chained column: the predecessor's neighbours advanced by 0..chain_advance frames
+// (in frame order: neighbours come in runs, so consecutive seeds share cache lines). Verified
+// first, they give the radius of a nearly finished column, which prunes most probes and entries
+// by their lower bounds; the probed buckets then get chained_max_candidates, in every
+// chain_probe_every-th column of the chain only (the others keep their seeds and get the chain
+// sweeps, which pool what the probing columns found: docs/design/lsh.md section 3c). True if
+// this column probes.
+bool LshSearch::Query::VerifySeeds(const std::vector<Neighbour>& previous) {
+  const LshOptions& options = search_.options_;
+  ColumnState& state = column_;
+  const uint64_t frame_count = search_.features_.frame_count();
+  for (const Neighbour& neighbour : previous) {
+    for (uint32_t advance = 0; advance <= options.chain_advance; ++advance) {
+      const uint64_t frame = uint64_t{neighbour.frame} + advance;
+      if (frame >= frame_count) break;
+      const uint32_t candidate = static_cast<uint32_t>(frame);
+      if (Excluded(state.column, state.clip, candidate) || !visited_.Insert(candidate)) continue;
+      Gather(candidate);
     }
+  }
+  VerifyGathered();
+  state.stats.seed_evaluations += state.evaluations;
+  state.max_evaluations = state.evaluations + options.chained_max_candidates;
+  return (state.column % options.chain_columns) % options.chain_probe_every == 0;
+}
 
-    // Counting sort of the gathered entries by estimate bin (stable: gathering order within a
-    // bin, so the verification order depends only on the index and the query).
-    bin_starts_.assign(kRankBins + 1, 0);
-    for (const Gathered& entry : gathered_) ++bin_starts_[entry.bin + 1];
-    for (uint32_t bin = 0; bin < kRankBins; ++bin) bin_starts_[bin + 1] += bin_starts_[bin];
-    ranked_.resize(gathered_.size());
-    for (const Gathered& entry : gathered_) {
-      ranked_[bin_starts_[entry.bin]++] = {entry.frame, entry.lower_squared};
-    }
+// Opens the cursor of probe `probe_idx` (the cursor_idx-th of this scan) when it is the next one.
+LshSearch::Query::Cursor& LshSearch::Query::CursorOf(size_t cursor_idx, const Probe& probe,
+                                                     bool with_estimates) {
+  if (cursor_idx == cursors_.size()) {
+    ++column_.stats.probes;
+    cursors_.push_back(OpenBucket(probe));
+    if (with_estimates && !cursors_.back().done) FillEstimateTable(probe, cursor_idx);
+  }
+  return cursors_[cursor_idx];
+}
 
-    for (const Ranked& candidate : ranked_) {
-      if (evaluations + pending_size + batch_size >= max_evaluations) {
-        budget_spent = true;
+// Breadth first: every probed bucket is scanned outward from the query's sort value in rounds of
+// growing depth, so the budget goes to the entries nearest the query in all tables before the
+// far ends of the first buckets. Probes are in increasing lower bound; a probe whose bound
+// exceeds the current radius ends the column's probing (nothing left can enter).
+void LshSearch::Query::ScanBySortValue(size_t first_probe) {
+  const LshOptions& options = search_.options_;
+  ColumnState& state = column_;
+  cursors_.clear();
+  uint32_t depth = options.first_round_scan;
+  size_t probe_limit = probes_.size();
+  while (!state.budget_spent) {
+    bool more = false;  // some bucket still has entries within the radius
+    for (size_t probe_idx = first_probe; probe_idx < probe_limit && !state.budget_spent;
+         ++probe_idx) {
+      const Probe& probe = probes_[probe_idx];
+      if (probe.score > (state.bound + kBoundSlack) * (state.bound + kBoundSlack)) {
+        probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
+        state.bound_stopped = true;
         break;
       }
-      const float radius = bound + kBoundSlack;
-      if (candidate.lower_squared > radius * radius) continue;  // cannot enter the column
-      if (!visited_.Insert(candidate.frame)) continue;          // seen in another table
-      distance_.Prefetch(candidate.frame);
-      batch[batch_size++] = candidate.frame;
-      if (batch_size == kBatch) flush();
+      Cursor& cursor = CursorOf(probe_idx - first_probe, probe, false);
+      if (cursor.done) continue;
+      ScanRound(probe, std::min(depth, cursor.scan_limit), &cursor);
+      more = cursor.EndRound(&state.stats.bucket_scans_capped) || more;
     }
-  };
+    if (!more || depth >= options.max_bucket_scan) break;
+    depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
+  }
+}
 
-  const bool by_code = options.ranking == LshRanking::kPositionCode;
-  auto scan = [&](size_t first_probe) {
-    if (by_code) {
-      scan_by_code(first_probe);
-    } else {
-      scan_by_sort_value(first_probe);
+// One round of a bucket's scan by sort value, up to `round_limit` entries examined: new, allowed
+// candidates, nearest sort value first, go into the batch (which continues across buckets, so
+// the eight-wide verification stays full) until the budget is spent.
+void LshSearch::Query::ScanRound(const Probe& probe, uint32_t round_limit, Cursor* cursor) {
+  ColumnState& state = column_;
+  const LshTableEntries& table = search_.index_.table(probe.table_idx);
+  const int16_t* sort_values = table.sort_values.data();
+  const uint32_t* frames = table.frames.data();
+  const float sort_step = search_.family_.sort_value_step();
+  uint64_t examined = 0;  // counted here, in a register, and added once
+  while (!cursor->done && cursor->examined < round_limit) {
+    const uint64_t room = state.max_evaluations - state.evaluations - state.pending_size;
+    const uint32_t batch_limit = static_cast<uint32_t>(std::min<uint64_t>(kBatch, room));
+    while (state.batch_size < batch_limit && cursor->examined < round_limit) {
+      const float limit = state.bound + kBoundSlack;
+      uint32_t position = 0;
+      float gap = 0;
+      const Step step =
+          NextEntry(cursor, probe.score, sort_values, sort_step, limit * limit, &position, &gap);
+      if (step == Step::kDone) break;
+      ++examined;
+      if (step == Step::kSkipped) continue;
+      const uint32_t frame = frames[position];
+      if (Excluded(state.column, state.clip, frame)) continue;
+      if (!visited_.Insert(frame)) continue;
+      distance_.Prefetch(frame);
+      state.batch[state.batch_size++] = frame;
     }
-  };
+    if (state.batch_size == batch_limit) Flush();
+    if (BudgetReached()) {
+      state.budget_spent = true;
+      break;
+    }
+  }
+  state.stats.entries_examined += examined;
+}
 
-  // Seeds of a chained column: the predecessor's neighbours advanced by 0..chain_advance frames
-  // (in frame order: neighbours come in runs, so consecutive seeds share cache lines). Verified
-  // first, they give the radius of a nearly finished column, which prunes most probes and
-  // entries by their lower bounds; the probed buckets then get chained_max_candidates, in every
-  // chain_probe_every-th column of the chain only (the others keep their seeds and get the
-  // chain sweeps, which pool what the probing columns found: docs/design/lsh.md section 3c).
-  bool probing = true;
-  if (previous != nullptr) {
-    const uint64_t frame_count = features.frame_count();
-    for (const Neighbour& neighbour : *previous) {
-      for (uint32_t advance = 0; advance <= options.chain_advance; ++advance) {
-        const uint64_t frame = uint64_t{neighbour.frame} + advance;
-        if (frame >= frame_count) break;
-        const uint32_t candidate = static_cast<uint32_t>(frame);
-        if (excluded(candidate) || !visited_.Insert(candidate)) continue;
-        distance_.Prefetch(candidate);
-        batch[batch_size++] = candidate;
-        if (batch_size == kBatch) flush();
+// Gather, rank, verify. The entries of the probed buckets within reach (the probe's lower bound
+// plus the sort-value gap within the radius) are read breadth first, in rounds of growing depth
+// outward from the query's sort value, up to max_entries per column. Each gets an estimate of
+// its squared distance from the query: its position code (the quarter of the cell it sits in
+// along each of the first 16 projections) against the query's exact position, plus the
+// sort-value gap. Candidates are then verified in order of that estimate (a counting sort on
+// kRankBins bins; within a bin, gathering order), up to max_candidates. Ordering by the code is
+// what keeps recall on large archives, where a column's probed buckets hold ten times more
+// frames than the budget can verify (docs/design/lsh.md).
+void LshSearch::Query::ScanByCode(size_t first_probe) {
+  GatherByCode(first_probe);
+  RankGathered();
+  VerifyRanked();
+}
+
+void LshSearch::Query::GatherByCode(size_t first_probe) {
+  const LshOptions& options = search_.options_;
+  ColumnState& state = column_;
+  cursors_.clear();
+  gathered_.clear();
+  const float limit = state.bound + kBoundSlack;
+  const float limit_squared = limit * limit;
+  uint32_t depth = options.first_round_scan;
+  size_t probe_limit = probes_.size();
+  bool entries_spent = false;
+  while (!entries_spent) {
+    bool more = false;  // some bucket still has entries within reach
+    for (size_t probe_idx = first_probe; probe_idx < probe_limit && !entries_spent; ++probe_idx) {
+      const Probe& probe = probes_[probe_idx];
+      if (probe.score > limit_squared) {
+        probe_limit = probe_idx;  // sorted by score: all later probes are beyond the radius too
+        state.bound_stopped = true;
+        break;
       }
+      const size_t cursor_idx = probe_idx - first_probe;
+      Cursor& cursor = CursorOf(cursor_idx, probe, true);
+      if (cursor.done) continue;
+      entries_spent = GatherRound(probe, cursor_idx, std::min(depth, cursor.scan_limit),
+                                  limit_squared, &cursor);
+      more = cursor.EndRound(&state.stats.bucket_scans_capped) || more;
     }
-    flush();
-    flush();
-    prune();
-    local.seed_evaluations += evaluations;
-    max_evaluations = evaluations + options.chained_max_candidates;
-    probing = (column % options.chain_columns) % options.chain_probe_every == 0;
+    if (!more || depth >= options.max_bucket_scan) break;
+    depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
   }
+}
 
-  // Sparse columns: when the probes are used up before the budget and the column is not full,
-  // or its k_max-th neighbour is much farther than the archive's typical one (the cells were
-  // sized for the typical column), more distant buckets are probed: 4x the probes per table,
-  // then 16x, each stage visiting only the new ones.
-  if (probing) {
-    Prepare(column);
-    scan(0);
+// One round of a bucket's gathering by code, up to `round_limit` entries examined: each allowed
+// entry within reach goes to gathered_ with its estimate bin. True when max_entries are gathered.
+bool LshSearch::Query::GatherRound(const Probe& probe, size_t cursor_idx, uint32_t round_limit,
+                                   float limit_squared, Cursor* cursor) {
+  ColumnState& state = column_;
+  const LshTableEntries& table = search_.index_.table(probe.table_idx);
+  const int16_t* sort_values = table.sort_values.data();
+  const uint32_t* frames = table.frames.data();
+  const uint32_t* codes = table.codes.data();
+  const uint16_t* estimates = &estimate_tables_[cursor_idx * kEstimateTableSize];
+  const float sort_step = search_.family_.sort_value_step();
+  // An estimate unit is 1 / kEstimateUnitsPerCell2 of a squared cell width.
+  const float gap_scale = std::sqrt(kEstimateUnitsPerCell2) / search_.family_.bucket_width();
+  uint64_t examined = 0;  // counted here, in a register, and added once
+  bool spent = false;
+  while (cursor->examined < round_limit) {
+    uint32_t position = 0;
+    float gap = 0;
+    const Step step =
+        NextEntry(cursor, probe.score, sort_values, sort_step, limit_squared, &position, &gap);
+    if (step == Step::kDone) break;
+    ++examined;
+    if (step == Step::kSkipped) continue;
+    const float lower_squared = probe.score + gap * gap;
+    const uint32_t frame = frames[position];
+    if (Excluded(state.column, state.clip, frame)) continue;
+    const uint32_t code = codes[position];
+    uint32_t estimate = 0;
+    for (uint32_t nibble = 0; nibble < 8; ++nibble) {
+      estimate += estimates[16 * nibble + ((code >> (4 * nibble)) & 15u)];
+    }
+    const float gap_units = gap * gap_scale;
+    estimate += static_cast<uint32_t>(std::min(gap_units * gap_units, 65535.0f));
+    const uint32_t bin = std::min(estimate, kRankBins - 1);
+    gathered_.push_back({frame, lower_squared, bin});
+    if (gathered_.size() >= search_.options_.max_entries) {
+      spent = true;
+      break;
+    }
   }
+  state.stats.entries_examined += examined;
+  return spent;
+}
+
+// Counting sort of the gathered entries by estimate bin (stable: gathering order within a bin,
+// so the verification order depends only on the index and the query).
+void LshSearch::Query::RankGathered() {
+  bin_starts_.assign(kRankBins + 1, 0);
+  for (const Gathered& entry : gathered_) ++bin_starts_[entry.bin + 1];
+  for (uint32_t bin = 0; bin < kRankBins; ++bin) bin_starts_[bin + 1] += bin_starts_[bin];
+  ranked_.resize(gathered_.size());
+  for (const Gathered& entry : gathered_) {
+    ranked_[bin_starts_[entry.bin]++] = {entry.frame, entry.lower_squared};
+  }
+}
+
+void LshSearch::Query::VerifyRanked() {
+  ColumnState& state = column_;
+  for (const Ranked& candidate : ranked_) {
+    if (BudgetReached()) {
+      state.budget_spent = true;
+      break;
+    }
+    const float radius = state.bound + kBoundSlack;
+    if (candidate.lower_squared > radius * radius) continue;  // cannot enter the column
+    if (!visited_.Insert(candidate.frame)) continue;          // seen in another table
+    Gather(candidate.frame);
+  }
+}
+
+void LshSearch::Query::Scan(size_t first_probe) {
+  if (search_.options_.ranking == LshRanking::kPositionCode) {
+    ScanByCode(first_probe);
+  } else {
+    ScanBySortValue(first_probe);
+  }
+}
+
+// Sparse columns: when the probes are used up before the budget and the column is not full, or
+// its k_max-th neighbour is much farther than the archive's typical one (the cells were sized
+// for the typical column), more distant buckets are probed: 4x the probes per table, then 16x,
+// each stage visiting only the new ones.
+void LshSearch::Query::ProbeFartherBuckets() {
+  const LshOptions& options = search_.options_;
+  ColumnState& state = column_;
   uint32_t per_table = options.probes_per_table;
-  for (uint32_t stage = 0; probing && stage < options.extension_stages; ++stage) {
-    if (budget_spent || bound_stopped) break;
-    flush();
-    flush();  // everything gathered is verified: the radius is up to date
-    prune();
-    if (best_.size() == k_max && bound <= search_.extension_radius_) break;
+  for (uint32_t stage = 0; stage < options.extension_stages; ++stage) {
+    if (state.budget_spent || state.bound_stopped) break;
+    VerifyGathered();  // everything gathered is verified: the radius is up to date
+    if (best_.size() == search_.rules_.k_max && state.bound <= search_.extension_radius_) break;
     const size_t first_new = probes_.size();
     AddProbes(per_table * 4, per_table);
     per_table *= 4;
-    ++local.extensions;
-    scan(first_new);
+    ++state.stats.extensions;
+    Scan(first_new);
   }
-  flush();
-  flush();
-  if (budget_spent) ++local.columns_budget_capped;
-  if (bound_stopped) ++local.columns_bound_stopped;
+}
 
+void LshSearch::Query::Run(uint64_t column, const std::vector<Neighbour>* previous,
+                           std::vector<Neighbour>* out, ColumnWork* work,
+                           const ReverseQuery* reverse_query, std::vector<Neighbour>* reverse) {
+  BeginColumn(column, reverse_query, reverse);
+  const bool probing = previous == nullptr || VerifySeeds(*previous);
+  if (probing) {
+    Prepare(column);
+    Scan(0);
+    ProbeFartherBuckets();
+  }
+  Flush();
+  Flush();
+  const ColumnState& state = column_;
+  LshQueryStats stats = state.stats;
+  if (state.budget_spent) ++stats.columns_budget_capped;
+  if (state.bound_stopped) ++stats.columns_bound_stopped;
+  const uint32_t k_max = search_.rules_.k_max;
   out->assign(best_.begin(), best_.end());
   FinishColumn(k_max, out);
-  work->evaluations += evaluations;
-  work->capped = work->capped || within_eps > k_max;
-  work->lsh.Add(local);
+  work->evaluations += state.evaluations;
+  work->capped = work->capped || state.within_eps > k_max;
+  work->lsh.Add(stats);
 }
 
 void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from, int direction,
@@ -715,14 +839,7 @@ void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from
     for (int64_t candidate = low; candidate <= high; ++candidate) {
       while (held < out->size() && (*out)[held].frame < candidate) ++held;
       if (held < out->size() && (*out)[held].frame == candidate) continue;
-      const uint64_t gap = static_cast<uint64_t>(candidate > static_cast<int64_t>(column)
-                                                     ? candidate - static_cast<int64_t>(column)
-                                                     : static_cast<int64_t>(column) - candidate);
-      if (gap < std::max(rules.exclusion_frames, 1u) &&
-          rules.Excluded(column, static_cast<uint64_t>(candidate), clip_of_column,
-                         features.ClipOf(static_cast<uint64_t>(candidate)))) {
-        continue;
-      }
+      if (Excluded(column, clip_of_column, static_cast<uint32_t>(candidate))) continue;
       sweep_candidates_.push_back(static_cast<uint32_t>(candidate));
     }
     next = std::max(next, high + 1);
@@ -736,7 +853,6 @@ void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from
     bound = std::min(eps, farthest);
   }
   distance_.SetQuery(column);
-  constexpr uint32_t kBatch = 16;
   float distances[kBatch];
   uint64_t within_eps = 0;
   best_.clear();  // the candidates accepted
@@ -777,6 +893,26 @@ void LshSearch::Query::Sweep(uint64_t column, const std::vector<Neighbour>& from
   out->swap(merged_);
 }
 
+float LshSearch::Query::ThresholdOf(const ReverseQuery& reverse_query, float eps, uint32_t frame) {
+  return reverse_query.thresholds != nullptr ? reverse_query.thresholds[frame] : eps;
+}
+
+uint32_t LshSearch::Query::VerifyReverse(const uint32_t* frames, uint32_t* count,
+                                         const ReverseQuery& reverse_query,
+                                         std::vector<Neighbour>* out) {
+  const float eps = search_.rules_.eps;
+  float distances[kBatch];
+  distance_.ToBatch(frames, *count, eps, distances);
+  for (uint32_t idx = 0; idx < *count; ++idx) {
+    if (distances[idx] <= eps && distances[idx] <= ThresholdOf(reverse_query, eps, frames[idx])) {
+      out->push_back({frames[idx], distances[idx]});
+    }
+  }
+  const uint32_t verified = *count;
+  *count = 0;
+  return verified;
+}
+
 // A new frame n enters an old column t when D(n, t) is below t's own k_max-th distance, which
 // may well be farther than n's: so n's probed buckets are scanned breadth first out to eps (not
 // to n's shrinking radius, as the forward query does), and each older frame is skipped without
@@ -797,29 +933,9 @@ void LshSearch::Query::RunReverse(uint64_t column, const ReverseQuery& reverse_q
   visited_.Clear();
   distance_.SetQuery(column);
   const uint32_t clip_of_column = features.ClipOf(column);
-  constexpr uint32_t kBatch = 16;
   uint32_t batch[kBatch];
-  float distances[kBatch];
   uint32_t batch_size = 0;
   uint32_t evaluations = 0;
-  auto threshold_of = [&](uint32_t frame) {
-    return reverse_query.thresholds ? reverse_query.thresholds[frame] : eps;
-  };
-  auto flush = [&] {
-    distance_.ToBatch(batch, batch_size, eps, distances);
-    for (uint32_t idx = 0; idx < batch_size; ++idx) {
-      if (distances[idx] <= eps && distances[idx] <= threshold_of(batch[idx])) {
-        out->push_back({batch[idx], distances[idx]});
-      }
-    }
-    evaluations += batch_size;
-    batch_size = 0;
-  };
-  auto excluded = [&](uint32_t frame) {
-    const uint64_t frame_gap = frame > column ? frame - column : column - frame;
-    return frame_gap < rules.exclusion_frames &&
-           rules.Excluded(column, frame, clip_of_column, features.ClipOf(frame));
-  };
   // New frames come in runs (clips), and so do the old frames they match: the previous column's
   // reverse frames, advanced, are the likeliest ones of this column. Not counted in the budget.
   if (seeds != nullptr) {
@@ -828,13 +944,16 @@ void LshSearch::Query::RunReverse(uint64_t column, const ReverseQuery& reverse_q
         const uint64_t frame = uint64_t{seed.frame} + advance;
         if (frame >= reverse_query.frame_limit) break;
         const uint32_t candidate = static_cast<uint32_t>(frame);
-        if (threshold_of(candidate) < 0 || excluded(candidate)) continue;
+        if (ThresholdOf(reverse_query, eps, candidate) < 0 ||
+            Excluded(column, clip_of_column, candidate))
+          continue;
         if (!visited_.Insert(candidate)) continue;
         batch[batch_size++] = candidate;
-        if (batch_size == kBatch) flush();
+        if (batch_size == kBatch)
+          evaluations += VerifyReverse(batch, &batch_size, reverse_query, out);
       }
     }
-    flush();
+    VerifyReverse(batch, &batch_size, reverse_query, out);
     evaluations = 0;
   }
   cursors_.clear();
@@ -860,14 +979,15 @@ void LshSearch::Query::RunReverse(uint64_t column, const ReverseQuery& reverse_q
         if (step == Step::kSkipped) continue;
         const uint32_t frame = table.frames[position];
         if (frame >= reverse_query.frame_limit) continue;  // a new frame: searched itself
-        const float threshold = threshold_of(frame);
+        const float threshold = ThresholdOf(reverse_query, eps, frame);
         if (threshold < 0) continue;  // its column is not wanted
         const float reach = threshold + kBoundSlack;
         if (probe.score + gap * gap > reach * reach) continue;  // cannot enter that column
-        if (excluded(frame) || !visited_.Insert(frame)) continue;
+        if (Excluded(column, clip_of_column, frame) || !visited_.Insert(frame)) continue;
         distance_.Prefetch(frame);
         batch[batch_size++] = frame;
-        if (batch_size == kBatch) flush();
+        if (batch_size == kBatch)
+          evaluations += VerifyReverse(batch, &batch_size, reverse_query, out);
         if (evaluations + batch_size >= budget) {
           budget_spent = true;
           break;
@@ -878,7 +998,7 @@ void LshSearch::Query::RunReverse(uint64_t column, const ReverseQuery& reverse_q
     if (!more || depth >= options.max_bucket_scan) break;
     depth = depth >= options.max_bucket_scan / 4 ? options.max_bucket_scan : depth * 4;
   }
-  flush();
+  VerifyReverse(batch, &batch_size, reverse_query, out);
 }
 
 LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,

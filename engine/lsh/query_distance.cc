@@ -7,6 +7,8 @@
 #include <emmintrin.h>
 #endif
 
+#include "engine/distance/joint_term.h"
+
 #if defined(MOTIF_LSH_AVX2)
 #include "engine/lsh/query_distance_avx2.h"
 #endif
@@ -63,9 +65,6 @@ float QueryDistance::To(uint64_t frame, float limit) const {
   uint32_t joint_idx = 0;
 #if defined(__SSE2__)
   const __m128 scale = _mm_set1_ps(inverse);
-  const __m128 two = _mm_set1_ps(2.0f);
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 sign_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
   for (uint32_t group_idx = 0; group_idx < group_count_; ++group_idx, joint_idx += 4) {
     // 16 int16: joints j..j+3, each (w, x, y, z). Sign-extend to int32, convert, scale.
     const __m128i low = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 4 * joint_idx));
@@ -93,11 +92,7 @@ float QueryDistance::To(uint64_t frame, float limit) const {
     norm = _mm_add_ps(norm, _mm_mul_ps(joint1, joint1));
     norm = _mm_add_ps(norm, _mm_mul_ps(joint2, joint2));
     norm = _mm_add_ps(norm, _mm_mul_ps(joint3, joint3));
-    const __m128 sum = _mm_add_ps(_mm_loadu_ps(lanes + 16), norm);
-    const __m128 value = _mm_sub_ps(sum, _mm_mul_ps(two, _mm_and_ps(dot, sign_mask)));
-    // max(0, v): PoseDistance's std::max(0.0f, v) keeps 0 unless 0 < v; maxps(v, 0) returns the
-    // second operand when they compare equal or unordered, the same value.
-    const __m128 root = _mm_sqrt_ps(_mm_max_ps(value, zero));
+    const __m128 root = JointTermFromSums<SseLanes>(_mm_loadu_ps(lanes + 16), norm, dot);
     const __m128 weighted = _mm_mul_ps(_mm_loadu_ps(lanes + 20), root);
     alignas(16) float joint_terms[4];
     _mm_store_ps(joint_terms, weighted);

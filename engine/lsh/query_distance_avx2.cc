@@ -2,19 +2,18 @@
 
 #include <immintrin.h>
 
+#include "engine/distance/joint_term.h"
+
 namespace motif::lsh_internal {
 
 // Lanes hold candidates in the order [0 2 4 6 | 1 3 5 7] (a 4x4 transpose inside each 128-bit
 // half); every lane runs the operations of PoseDistance for its candidate, in the same order:
-// per joint the dot product and |b|^2 summed w, x, y, z, then (|a|^2 + |b|^2) - 2|a.b|, max with
-// 0, sqrt, times the weight, added to the lane's total joint by joint. No operation mixes lanes,
-// so each lane's result is PoseDistance's, bit for bit.
+// per joint the dot product and |b|^2 summed w, x, y, z, then JointTermFromSums, times the weight,
+// added to the lane's total joint by joint. No operation mixes lanes, so each lane's result is
+// PoseDistance's, bit for bit.
 void DistanceBatch8Avx2(const BatchArgs& args) {
   constexpr float kInverse = 1.0f / 32767.0f;  // PoseFeatures::kQuantScale
   const __m256 scale = _mm256_set1_ps(kInverse);
-  const __m256 two = _mm256_set1_ps(2.0f);
-  const __m256 zero = _mm256_setzero_ps();
-  const __m256 sign_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
   const __m256 limit = _mm256_set1_ps(args.limit);
   const int16_t* const* c = args.candidates;
   __m256 total = _mm256_setzero_ps();
@@ -48,9 +47,7 @@ void DistanceBatch8Avx2(const BatchArgs& args) {
     norm = _mm256_add_ps(norm, _mm256_mul_ps(x, x));
     norm = _mm256_add_ps(norm, _mm256_mul_ps(y, y));
     norm = _mm256_add_ps(norm, _mm256_mul_ps(z, z));
-    const __m256 sum = _mm256_add_ps(_mm256_set1_ps(q[4]), norm);
-    const __m256 value = _mm256_sub_ps(sum, _mm256_mul_ps(two, _mm256_and_ps(dot, sign_mask)));
-    const __m256 root = _mm256_sqrt_ps(_mm256_max_ps(value, zero));
+    const __m256 root = JointTermFromSums<AvxLanes>(_mm256_set1_ps(q[4]), norm, dot);
     total = _mm256_add_ps(total, _mm256_mul_ps(_mm256_set1_ps(q[5]), root));
     // Every lane already beyond the limit: none can enter; their partial sums say so.
     if ((joint_idx & 3) == 3 &&

@@ -77,8 +77,7 @@ void CellRun(const float* __restrict a, const float* __restrict b, size_t padded
         dot += qx * x[col];
         dot += qy * y[col];
         dot += qz * z[col];
-        const float squared = q_norm + norm[col] - 2.0f * std::abs(dot);
-        out[col] += weight * std::sqrt(std::max(0.0f, squared));
+        out[col] += weight * JointTermFromSums<ScalarLanes>(q_norm, norm[col], dot);
       }
     }
   }
