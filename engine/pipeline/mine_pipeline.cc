@@ -228,11 +228,10 @@ Status MinePipeline::ScoreStage() {
 
 std::string MinePipeline::ParametersText() const {
   const TrellisReport& trellis = result_.trellis;
+  // What motifs.json's params do not say: how the radius was chosen, and the search.
   std::ostringstream parameters;
-  parameters << "eps " << trellis.params.eps << " (" << trellis.eps_how << "), k_max "
-             << trellis.params.k_max << ", B " << result_.paths.params.branch << ", min length "
-             << result_.paths.params.min_length << " frames, groups " << options_.groups_text
-             << ", seed " << options_.seed << ", search " << TrellisSearchModeName(trellis.search);
+  parameters << "radius: " << trellis.eps_how
+             << "; neighbour search: " << TrellisSearchModeName(trellis.search);
   return parameters.str();
 }
 

@@ -597,10 +597,8 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     ReportInfo info;
     info.archive_path = archive_path;
     std::ostringstream text;
-    text << "reindex version " << version << " (" << plan.kind << "), eps " << params.eps
-         << ", k_max " << params.k_max << ", B " << params.branch << ", min length "
-         << params.min_length << " frames, seed " << params.seed << ", search "
-         << (params.exact ? "exact" : "lsh");
+    text << "reindex version " << version << " (" << plan.kind
+         << "); neighbour search: " << (params.exact ? "exact" : "lsh");
     info.parameters_text = text.str();
     info.timings = {{"import", report.import_seconds},
                     {"trellis", report.trellis_seconds},

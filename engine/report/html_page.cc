@@ -16,6 +16,8 @@ table.t{border-collapse:collapse}table.t td{padding:1px 14px 1px 0}table.t td:nt
 .tlrow{display:flex;align-items:center;margin:3px 0}
 .tlrow .n{width:170px;flex:none;overflow:hidden;text-overflow:ellipsis;white-space:nowrap;font-size:12px}
 .tlrow .w{flex:1;min-width:0}
+.axis{position:relative;height:14px;font-size:10px;color:#555;border-bottom:1px solid #bbb}
+.axis span{position:absolute;bottom:0;border-left:1px solid #999;padding-left:2px;white-space:nowrap}
 .tl{display:block;height:16px;background:#e6e6e6}
 .tl rect{fill:currentColor;stroke:currentColor;stroke-width:1px;vector-effect:non-scaling-stroke;cursor:pointer}
 .tl rect:hover{opacity:.6}
@@ -23,8 +25,18 @@ table.t{border-collapse:collapse}table.t td{padding:1px 14px 1px 0}table.t td:nt
 .motif h3{margin:0;font-size:16px}
 .sw{display:inline-block;width:12px;height:12px;margin-right:7px;border-radius:2px;vertical-align:-1px;background:currentColor}
 .meta{margin:2px 0 8px;color:#444;font-size:13px}
+.playbox{margin:4px 0 8px}
+.player{border:1px solid #ddd;padding:6px;margin-top:4px}
+.pbar{display:flex;flex-wrap:wrap;gap:8px;align-items:center;font-size:12px}
+.pbar .scrub{flex:1;min-width:160px}
+.pmain{display:block;border:1px solid #eee;cursor:grab;margin:4px 0}
+.pcmd{display:block;font-size:11px;user-select:all;margin-bottom:4px}
+.psmall{display:flex;flex-wrap:wrap;gap:4px}
+.pcell{border:2px solid transparent;cursor:pointer;font-size:10px;text-align:center}
+.pcell.on{border-color:#888}
 .insts{display:flex;flex-wrap:wrap;gap:8px 28px;min-height:138px}
 .strip .lbl{font-size:11px;color:#555;white-space:nowrap}
+.strip .kf{color:#888;font-size:10px}
 .figs{display:flex;min-height:120px}
 .fig{flex:none;background:#f6f6f6;margin-right:2px}
 .fig path{fill:none;stroke:currentColor;stroke-width:1.7;stroke-linecap:round;stroke-linejoin:round}
@@ -83,6 +95,10 @@ std::string HtmlCommas(uint64_t value) {
     text += digits[idx];
   }
   return text;
+}
+
+std::string HtmlCount(uint64_t count, const std::string& noun) {
+  return HtmlCommas(count) + " " + noun + (count == 1 ? "" : "s");
 }
 
 std::string HtmlSeconds(uint64_t frames, double fps) {

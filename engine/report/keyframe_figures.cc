@@ -34,14 +34,9 @@ Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const Cli
   const uint64_t global_end = clip.first_frame + end;
   MOTIF_RETURN_IF_ERROR(EnsureCached(global_start, global_end));
   std::vector<float> rows(keyframes * stride_);
-  const uint64_t length = end - start;
+  const std::vector<uint64_t> frames = KeyframeFrames(start, end);
   for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-    const uint64_t offset =
-        keyframes == 1 ? 0
-                       : static_cast<uint64_t>(std::llround(static_cast<double>(key_idx) *
-                                                            static_cast<double>(length - 1) /
-                                                            (keyframes - 1)));
-    const float* row = &cache_[(global_start + offset - cache_first_) * stride_];
+    const float* row = &cache_[(clip.first_frame + frames[key_idx] - cache_first_) * stride_];
     std::copy(row, row + stride_, rows.begin() + key_idx * stride_);
   }
   // The keyframes are not consecutive, so the root's integrated horizontal path is
@@ -63,6 +58,19 @@ Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const Cli
     projected[key_idx] = ProjectFigure(layout_, positions[key_idx], projection);
   }
   return projected;
+}
+
+std::vector<uint64_t> KeyframeFigures::KeyframeFrames(uint64_t start, uint64_t end) const {
+  std::vector<uint64_t> frames;
+  const uint64_t length = end - start;
+  for (uint32_t key_idx = 0; key_idx < keyframes_; ++key_idx) {
+    frames.push_back(start + (keyframes_ == 1
+                                  ? 0
+                                  : static_cast<uint64_t>(std::llround(
+                                        static_cast<double>(key_idx) *
+                                        static_cast<double>(length - 1) / (keyframes_ - 1)))));
+  }
+  return frames;
 }
 
 Result<std::string> KeyframeFigures::Svg(const ClipInfo& clip, uint64_t start, uint64_t end) {

@@ -28,6 +28,8 @@ class KeyframeFigures {
   // Errors of the reader pass through.
   Result<std::vector<std::vector<FigurePoint>>> Project(const ClipInfo& clip, uint64_t start,
                                                         uint64_t end);
+  // The clip frames Project draws for [start, end): the first and last and evenly spaced ones.
+  std::vector<uint64_t> KeyframeFrames(uint64_t start, uint64_t end) const;
   // The same, as SVG strings side by side.
   Result<std::string> Svg(const ClipInfo& clip, uint64_t start, uint64_t end);
 

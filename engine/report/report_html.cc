@@ -8,7 +8,11 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include <nlohmann/json.hpp>
+
 #include "common/file_util.h"
+#include "engine/report/instance_playback.h"
+#include "engine/report/instance_player_script.h"
 #include "engine/report/keyframe_figures.h"
 #include "engine/report/motifs_archive_check.h"
 #include "formats/motion/quaternion_math.h"
@@ -69,6 +73,55 @@ var all=document.getElementById('draw-all');if(all)all.onclick=function(){boxes.
 })();
 )js";
 
+// The player's data for every instance of every motif, in rank order while the budget lasts:
+// per motif a JSON text ("" when over budget), and the figure. No "</" inside (script blocks).
+struct PlaybackBlocks {
+  std::vector<std::string> motifs;
+  std::string figure;
+};
+
+Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameFileReader& reader,
+                                    const StickFigureLayout& layout, const std::string& archive,
+                                    const std::unordered_map<std::string, const ClipInfo*>& clips,
+                                    uint64_t budget) {
+  InstancePlayback playback(reader, layout);
+  PlaybackBlocks blocks;
+  blocks.figure = playback.FigureJson();
+  uint64_t used = 0;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    uint64_t samples = 0;
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      samples += (instance.length() - 1) / playback.step() + 1;
+    }
+    const uint64_t bytes = samples * layout.points.size() * 8;  // base64 of 3 int16
+    if (used + bytes > budget) {
+      blocks.motifs.emplace_back();
+      used = budget;  // keep the rank order: no later, smaller motif jumps ahead
+      continue;
+    }
+    used += bytes;
+    nlohmann::json instances = nlohmann::json::array();
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      MOTIF_ASSIGN_OR_RETURN(PlaybackInstance data, playback.Encode(*clips.at(instance.clip),
+                                                                    instance.start, instance.end));
+      instances.push_back({{"clip", instance.clip},
+                           {"start", data.start},
+                           {"end", data.end},
+                           {"samples", data.samples},
+                           {"scale", data.scale},
+                           {"origin", data.origin},
+                           {"heading", data.heading_rad},
+                           {"points", data.points_base64}});
+    }
+    std::string text = nlohmann::json({{"archive", archive}, {"instances", instances}}).dump();
+    for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
+      text.replace(at, 2, "<\\/");
+    }
+    blocks.motifs.push_back(std::move(text));
+  }
+  return blocks;
+}
+
 std::string ViewName(FigureView view) { return view == FigureView::kSide ? "side" : "front"; }
 
 void AppendOverview(const MotifsDocument& document, const FrameFileReader& reader,
@@ -84,20 +137,23 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
   row("archive", "<code>" + HtmlEscape(archive) + "</code>");
   row("frames", HtmlCommas(reader.frame_count()) + " (" +
                     HtmlNumber("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) +
-                    " at " + HtmlNumber("%g fps", fps) + "), " + HtmlCommas(reader.clips().size()) +
-                    " clips, skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
+                    " at " + HtmlNumber("%g fps", fps) + "), " +
+                    HtmlCount(reader.clips().size(), "clip") + ", skeleton " +
+                    HtmlEscape(reader.skeleton().family()) + " (" +
                     std::to_string(reader.skeleton().joint_count()) + " joints)");
+  // Plain names first, the papers' symbols beside them, each once.
   const MotifsJsonParams& params = document.params;
-  row("parameters", "&epsilon; " + HtmlNumber("%.4g", params.eps) + ", K<sub>max</sub> " +
-                        std::to_string(params.kmax) + ", branching B " +
-                        std::to_string(params.branch) + ", minimum length &lambda; " +
-                        HtmlCommas(params.min_length) + " frames (" +
-                        HtmlSeconds(params.min_length, fps) + "), groups " +
-                        (params.groups ? std::to_string(params.groups) : std::string("auto")) +
-                        ", seed " + std::to_string(params.seed) +
-                        (info.parameters_text.empty()
-                             ? std::string()
-                             : "<br><code>" + HtmlEscape(info.parameters_text) + "</code>"));
+  row("parameters",
+      "match radius &epsilon; " + HtmlNumber("%.4g", params.eps) +
+          " &middot; neighbours kept per frame K<sub>max</sub> " + std::to_string(params.kmax) +
+          " &middot; frames a path may skip B " + std::to_string(params.branch) +
+          " &middot; shortest motif &lambda; " + HtmlCount(params.min_length, "frame") + " (" +
+          HtmlSeconds(params.min_length, fps) + ") &middot; motif groups " +
+          (params.groups ? std::to_string(params.groups) : std::string("automatic")) +
+          " &middot; random seed " + std::to_string(params.seed) +
+          (info.parameters_text.empty()
+               ? std::string()
+               : "<br><span class=\"note\">" + HtmlEscape(info.parameters_text) + "</span>"));
   if (!info.timings.empty()) {
     std::string table = "<table class=\"t\">";
     double total = 0;
@@ -111,7 +167,7 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
   }
   if (info.peak_memory_bytes > 0) row("peak memory", HtmlBytes(info.peak_memory_bytes));
   row("motifs",
-      HtmlCommas(document.motifs.size()) + " motifs, " + HtmlCommas(instance_count) + " instances");
+      HtmlCount(document.motifs.size(), "motif") + ", " + HtmlCount(instance_count, "instance"));
   row("coverage",
       HtmlCommas(covered_frames) + " frames in some instance (" +
           HtmlNumber("%.1f%%", reader.frame_count() ? 100.0 * static_cast<double>(covered_frames) /
@@ -123,11 +179,11 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
     row("planted motifs",
         (info.truth_path.empty() ? std::string()
                                  : "<code>" + HtmlEscape(info.truth_path) + "</code>: ") +
-            std::to_string(score.planted_motifs) + " motifs, " + HtmlCommas(score.planted) +
-            " instances; recall " + HtmlNumber("%.3f", score.recall) + " (" +
-            HtmlCommas(score.planted_hit) + " hit), precision " +
-            HtmlNumber("%.3f", score.precision) + " (" + HtmlCommas(score.found_hitting) + " of " +
-            HtmlCommas(score.found) + " found instances), adjusted Rand index " +
+            HtmlCount(score.planted_motifs, "motif") + ", " + HtmlCount(score.planted, "instance") +
+            "; recall " + HtmlNumber("%.3f", score.recall) + " (" + HtmlCommas(score.planted_hit) +
+            " hit), precision " + HtmlNumber("%.3f", score.precision) + " (" +
+            HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
+            " found instances), adjusted Rand index " +
             HtmlNumber("%.3f", score.adjusted_rand_index));
   }
   row("figures", ViewName(options.view) + " view, heading removed; " +
@@ -139,6 +195,32 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
       "</table>\n<p class=\"note\">Frame ranges are 0-based within their clip, the end "
       "excluded (as in motifs.json). Write a motif's instances as BVH files with "
       "<code>motifmine export-motif DIR --motif ID --out FOLDER</code>.</p></section>\n";
+}
+
+// The timeline's time axis: the bars are to the scale of the longest clip, `longest` frames; a
+// tick every 1, 2 or 5 times a power of ten seconds (or 15 s, 30 s, minutes), 4 to 10 of them.
+void AppendTimeAxis(uint64_t longest, double fps, std::string* html) {
+  if (fps <= 0) return;
+  const double seconds = static_cast<double>(longest) / fps;
+  static constexpr double kSteps[] = {0.1, 0.2, 0.5, 1,   2,    5,    10,   15,   30,
+                                      60,  120, 300, 600, 1800, 3600, 7200, 18000};
+  double step = kSteps[0];
+  for (double candidate : kSteps) {
+    step = candidate;
+    if (seconds / candidate <= 10) break;
+  }
+  std::string& out = *html;
+  out +=
+      "<div class=\"tlrow\"><span class=\"n\">time</span><span class=\"w\"><div "
+      "class=\"axis\">";
+  for (int tick = 0; tick * step <= seconds + 1e-9; ++tick) {
+    const double at = tick * step;
+    const std::string label =
+        step >= 60 ? HtmlNumber("%g min", at / 60) : HtmlNumber(step < 1 ? "%.1f s" : "%g s", at);
+    out += "<span style=\"left:" + HtmlNumber("%.2f", 100.0 * at / seconds) + "%\">" + label +
+           "</span>";
+  }
+  out += "</div></span></div>\n";
 }
 
 void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reader,
@@ -162,6 +244,7 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
       "<section id=\"timeline\"><h2>Timeline</h2><p class=\"note\">One bar per clip that "
       "holds instances, its length to scale; each rectangle is an instance, coloured by "
       "motif. Hover for its frames, click to go to its motif.</p>\n";
+  AppendTimeAxis(longest, fps, &out);
   std::vector<const ClipInfo*> empty_clips;
   for (const ClipInfo& clip : reader.clips()) {
     auto found = marks.find(clip.name);
@@ -192,8 +275,8 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
     out += "</svg></span></div>\n";
   }
   if (!empty_clips.empty()) {
-    out += "<details><summary>" + HtmlCommas(empty_clips.size()) +
-           " clips without instances</summary><p class=\"note\">";
+    out += "<details><summary>" + HtmlCount(empty_clips.size(), "clip") +
+           " without instances</summary><p class=\"note\">";
     for (size_t idx = 0; idx < empty_clips.size(); ++idx) {
       if (idx > 0) out += ", ";
       out += HtmlEscape(empty_clips[idx]->name);
@@ -280,6 +363,9 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
   AppendOverview(document, reader, info, options, instance_count, covered_frames, &html);
   AppendTimeline(document, reader, &html);
 
+  MOTIF_ASSIGN_OR_RETURN(PlaybackBlocks playback,
+                         PlaybackData(document, reader, renderer.layout(), archive, clips_by_name,
+                                      options.playback_bytes));
   html += "<section id=\"motifs\"><h2>Motifs</h2>";
   if (document.motifs.empty()) html += "<p>No motifs were found.</p>";
   if (document.motifs.size() > options.eager_motifs) {
@@ -323,7 +409,19 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
       html += " +" + HtmlCommas(clip_names.size() - options.clip_names_per_motif) + " more";
     }
     const bool eager = motif_idx < options.eager_motifs;
-    html += "</p><div class=\"insts c" + id + "\"" +
+    html += "</p><div class=\"playbox\">";
+    if (playback.motifs[motif_idx].empty()) {
+      html += "<p class=\"note\">Playback of this motif is not in the page (over its " +
+              HtmlBytes(options.playback_bytes) +
+              " of playback data): <code>motifmine report DIR --playback-mb N</code> raises "
+              "the limit.</p>";
+    } else {
+      html +=
+          "<button type=\"button\" class=\"play\" data-play=\"" + id + "\">&#9654; play " +
+          (count == 1 ? std::string("the instance") : "all " + HtmlCommas(count) + " instances") +
+          "</button>";
+    }
+    html += "</div><div class=\"insts c" + id + "\"" +
             (eager ? std::string() : " data-m=\"" + id + "\"") + ">";
     if (!eager) {
       if (!lazy_json.empty()) lazy_json += ",\n";
@@ -331,9 +429,14 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     }
     for (size_t slot = 0; slot < chosen[motif_idx].size(); ++slot) {
       const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
+      std::string keyframes;
+      for (uint64_t frame : renderer.KeyframeFrames(instance.start, instance.end)) {
+        keyframes += (keyframes.empty() ? "" : " \u00b7 ") + std::to_string(frame);
+      }
       html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(instance.clip) + " " +
               std::to_string(instance.start) + "\u2013" + std::to_string(instance.end) + " (" +
-              HtmlSeconds(instance.length(), fps) + ")</div><div class=\"figs\">" +
+              HtmlSeconds(instance.length(), fps) + ")<br><span class=\"kf\">frames " + keyframes +
+              "</span></div><div class=\"figs\">" +
               (eager ? strips[motif_idx][slot] : std::string()) + "</div></div>";
       if (!eager) {
         if (slot > 0) lazy_json += ",";
@@ -369,7 +472,16 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     }
     html += "],\"motifs\":{\n" + lazy_json + "}}</script>\n";
   }
+  // The player's data after the page's content, decoded only when a player opens.
+  html += "<script type=\"application/json\" id=\"play-figure\">" + playback.figure + "</script>\n";
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    if (playback.motifs[motif_idx].empty()) continue;
+    html += "<script type=\"application/json\" id=\"play-" +
+            std::to_string(document.motifs[motif_idx].id) + "\">" + playback.motifs[motif_idx] +
+            "</script>\n";
+  }
   html += std::string("<script>") + kScript + "</script>\n";
+  html += std::string("<script>") + kInstancePlayerScript + "</script>\n";
   html += HtmlPageEnd();
   return html;
 }

@@ -50,6 +50,9 @@ struct ReportOptions {
   uint32_t instances_per_motif = 4;    // instances drawn per motif (other clips preferred)
   uint32_t eager_motifs = 50;          // motifs drawn as SVG in the file; the rest by the script
   uint32_t clip_names_per_motif = 12;  // clip names listed per motif before "+N more"
+  // Playback data embedded for the player (instance_playback.h), motif by motif in rank order,
+  // up to this many bytes; the later motifs say how to raise it.
+  uint64_t playback_bytes = uint64_t{32} << 20;
 };
 
 // The report's HTML. InvalidArgument if the document does not match the archive

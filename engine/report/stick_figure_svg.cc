@@ -26,10 +26,6 @@ size_t StickFigureLayout::bone_count() const {
   return count;
 }
 
-namespace {
-
-// The largest extent of the skeleton's rest pose along an axis: its size (not just its height,
-// so a skeleton whose rest pose lies along another axis still gets a sensible scale).
 double RestPoseExtent(const Skeleton& skeleton) {
   const std::vector<Eigen::Vector3d> rest = RestPosePositions(skeleton);
   if (rest.empty()) return 0;
@@ -41,6 +37,8 @@ double RestPoseExtent(const Skeleton& skeleton) {
   }
   return (high - low).maxCoeff();
 }
+
+namespace {
 
 double Length(const std::array<double, 3>& offset) {
   return std::sqrt(offset[0] * offset[0] + offset[1] * offset[1] + offset[2] * offset[2]);

@@ -45,6 +45,10 @@ struct StickFigureLayout {
 // `min_bone_fraction` of the rest pose's size (zero-length hip joints; hand, finger and thumb
 // bones, under 3 px in an 80x120 figure) is not drawn: its child is drawn at its parent's point,
 // so a figure has fewer points to store and looks the same. A one-joint skeleton has no bones.
+// The largest extent of the skeleton's rest pose along an axis: its size (not just its height,
+// so a skeleton whose rest pose lies along another axis still gets a sensible scale).
+double RestPoseExtent(const Skeleton& skeleton);
+
 StickFigureLayout MakeStickFigureLayout(const Skeleton& skeleton, double min_bone_fraction = 0.035);
 
 using FigurePoint = std::array<double, 2>;  // x right, y down, px

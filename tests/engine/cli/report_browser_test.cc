@@ -4,12 +4,9 @@
 // script error and hold every motif section and every stick figure. A screenshot is saved under
 // the test's working directory (the build tree) and its path printed, for a person to look at.
 //
-// The report is checked through an instrumented copy: a first script records uncaught errors
-// (window "error" events), a last one, after load, clicks the button and writes what it counted
-// into a hidden <pre id="e2e-result"> that --dump-dom then shows. Chromium's console log
-// (--enable-logging=stderr) is searched for "Uncaught" as well.
-// Skips when no Chromium is installed (Debian: apt-get install chromium; scripts/install_deps.sh
-// installs it). $MOTIF_CHROMIUM names another browser binary.
+// The report is checked through an instrumented copy (tests/testing/headless_chromium.h): after
+// load, a last script clicks the button and writes what it counted. Chromium's console log is
+// searched for "Uncaught" as well. Skips when no Chromium is installed.
 
 #include <cstdio>
 #include <cstdlib>
@@ -25,6 +22,7 @@
 #include "engine/cluster/motifs_json.h"
 #include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_reader.h"
+#include "tests/testing/headless_chromium.h"
 #include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
 
@@ -34,33 +32,6 @@ namespace {
 using testing::RunResult;
 using testing::RunShell;
 using testing::RunTool;
-
-// The browser binary, or "" when there is none.
-std::string FindChromium() {
-  if (const char* named = std::getenv("MOTIF_CHROMIUM"); named != nullptr && *named != '\0') {
-    return named;
-  }
-  for (const char* name : {"chromium", "chromium-browser", "google-chrome"}) {
-    RunResult found = RunShell(std::string("command -v ") + name + " 2>/dev/null");
-    if (found.exit_code == 0 && !found.output.empty()) {
-      return found.output.substr(0, found.output.find('\n'));
-    }
-  }
-  return "";
-}
-
-// Flags for a headless run that works as root in a container and touches no network.
-std::string ChromiumCommand(const std::string& chromium, const std::string& profile_dir) {
-  return "'" + chromium + "' --headless --no-sandbox --disable-gpu " +
-         "--disable-background-networking --disable-component-update --disable-sync " +
-         "--no-first-run --hide-scrollbars --user-data-dir='" + profile_dir + "' " +
-         "--virtual-time-budget=5000 --enable-logging=stderr --v=0 ";
-}
-
-constexpr char kHeadScript[] =
-    "<script>window.__e2eErrors=[];window.addEventListener('error',function(e){"
-    "window.__e2eErrors.push(String(e.message)+' (line '+e.lineno+':'+e.colno+')');});"
-    "</script>";
 
 constexpr char kTailScript[] =
     "<script>window.addEventListener('load',function(){"
@@ -78,7 +49,7 @@ constexpr char kTailScript[] =
     "document.body.appendChild(m);window.scrollTo(0,0);},300);});</script>";
 
 TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
-  const std::string chromium = FindChromium();
+  const std::string chromium = testing::FindChromium();
   if (chromium.empty()) {
     GTEST_SKIP() << "no Chromium found (apt-get install chromium, or set MOTIF_CHROMIUM): "
                     "report.html is not checked in a browser";
@@ -128,35 +99,13 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
 
   auto html = ReadFileToString(dir.File("out/report.html"));
   ASSERT_TRUE(html.ok());
-  std::string page = *html;
-  const size_t head = page.find("<head>");
-  page.insert(head == std::string::npos ? 0 : head + 6, kHeadScript);
-  const size_t body_end = page.rfind("</body>");
-  ASSERT_NE(body_end, std::string::npos);
-  page.insert(body_end, kTailScript);
   const std::string instrumented = dir.File("out/report.e2e.html");
-  ASSERT_TRUE(AtomicWriteFile(instrumented, page).ok());
-
-  // The page after its scripts ran.
-  const std::string command = ChromiumCommand(chromium, dir.File("profile")) +
-                              "--dump-dom 'file://" + instrumented + "' 2>'" +
-                              dir.File("chromium.log") + "'";
-  RunResult dom = RunShell("timeout 180 " + command);
-  auto log = ReadFileToString(dir.File("chromium.log"));
-  ASSERT_EQ(dom.exit_code, 0) << (log.ok() ? *log : "");
-  const size_t marker = dom.output.find("<pre id=\"e2e-result\"");
-  ASSERT_NE(marker, std::string::npos) << "the page's load handler did not run\n"
-                                       << dom.output.substr(0, 2000);
-  const size_t text_start = dom.output.find('>', marker) + 1;
-  const std::string text =
-      dom.output.substr(text_start, dom.output.find("</pre>", text_start) - text_start);
-  // The DOM text is HTML-escaped; the counts and messages hold no & < > except in errors.
-  const nlohmann::json result = nlohmann::json::parse(text, nullptr, false);
-  ASSERT_TRUE(result.is_object()) << text;
+  const testing::InstrumentedRun run =
+      testing::RunInstrumentedPage(chromium, *html, kTailScript, instrumented, dir.path());
+  ASSERT_TRUE(run.error.empty()) << run.error;
+  const nlohmann::json& result = run.result;
   EXPECT_TRUE(result["errors"].empty()) << result["errors"].dump(2);
-  if (log.ok()) {
-    EXPECT_EQ(log->find("Uncaught"), std::string::npos) << *log;
-  }
+  EXPECT_EQ(run.log.find("Uncaught"), std::string::npos) << run.log;
   EXPECT_TRUE(result["button"].get<bool>()) << "no Draw all figures button";
   EXPECT_EQ(result["motifs"].get<size_t>(), document.motifs.size());
   EXPECT_EQ(result["figures"].get<size_t>(), expected_figures);
@@ -169,9 +118,10 @@ TEST(ReportBrowser, RendersEveryFigureWithoutScriptErrors) {
   std::filesystem::create_directories(artefacts);
   const std::string png = (artefacts / "report.png").string();
   std::filesystem::remove(png);
-  RunResult shot = RunShell("timeout 180 " + ChromiumCommand(chromium, dir.File("profile2")) +
-                            "--window-size=1200,3000 --screenshot='" + png + "' 'file://" +
-                            instrumented + "' >/dev/null 2>&1");
+  RunResult shot =
+      RunShell("timeout 180 " + testing::ChromiumCommand(chromium, dir.File("profile2")) +
+               "--window-size=1200,3000 --screenshot='" + png + "' 'file://" + instrumented +
+               "' >/dev/null 2>&1");
   ASSERT_EQ(shot.exit_code, 0);
   std::filesystem::copy_file(instrumented, artefacts / "report.e2e.html",
                              std::filesystem::copy_options::overwrite_existing);

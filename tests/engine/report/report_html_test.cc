@@ -1,6 +1,7 @@
 #include "engine/report/report_html.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -223,6 +224,53 @@ TEST_F(ReportHtmlTest, EmptyDocumentStillRenders) {
   EXPECT_EQ(CheckTagBalance(*html), "");
 }
 
+// Every motif gets a player with every instance's samples; over the budget, a note instead.
+TEST_F(ReportHtmlTest, EveryMotifHasAPlayerOfAllItsInstances) {
+  auto html = ReportHtmlText(synthetic_.document, *reader_, {});
+  ASSERT_TRUE(html.ok()) << html.status().ToString();
+  EXPECT_EQ(CountOf(*html, "<button type=\"button\" class=\"play\""),
+            synthetic_.document.motifs.size());
+  EXPECT_EQ(CountOf(*html, "id=\"play-figure\""), 1u);
+  for (const MotifsJsonMotif& motif : synthetic_.document.motifs) {
+    const std::string id = std::to_string(motif.id);
+    const size_t block = html->find("<script type=\"application/json\" id=\"play-" + id + "\">");
+    ASSERT_NE(block, std::string::npos) << "motif " << id;
+    const size_t begin = html->find('>', block) + 1;
+    const nlohmann::json data =
+        nlohmann::json::parse(html->substr(begin, html->find("</script>", begin) - begin));
+    ASSERT_EQ(data["instances"].size(), motif.instances.size());
+    for (size_t idx = 0; idx < motif.instances.size(); ++idx) {
+      const nlohmann::json& instance = data["instances"][idx];
+      EXPECT_EQ(instance["clip"].get<std::string>(), motif.instances[idx].clip);
+      EXPECT_EQ(instance["start"].get<uint64_t>(), motif.instances[idx].start);
+      EXPECT_EQ(instance["end"].get<uint64_t>(), motif.instances[idx].end);
+    }
+  }
+  ReportOptions tiny;
+  tiny.playback_bytes = 1;
+  auto without = ReportHtmlText(synthetic_.document, *reader_, {}, tiny);
+  ASSERT_TRUE(without.ok());
+  EXPECT_EQ(CountOf(*without, "class=\"play\""), 0u);
+  EXPECT_EQ(CountOf(*without, "Playback of this motif is not in the page"),
+            synthetic_.document.motifs.size());
+}
+
+// The overview's counts are singular or plural as they should be; the parameters are named
+// once, in words with the symbols beside them; the timeline has a time axis.
+TEST_F(ReportHtmlTest, OverviewSaysOneClipAndNamesParametersOnce) {
+  MotifsDocument one = synthetic_.document;
+  one.motifs.resize(1);
+  auto html = ReportHtmlText(one, *reader_, {});
+  ASSERT_TRUE(html.ok());
+  EXPECT_NE(html->find(">1 motif, "), std::string::npos);
+  EXPECT_EQ(html->find("1 motifs"), std::string::npos);
+  EXPECT_NE(html->find("match radius &epsilon; "), std::string::npos);
+  EXPECT_EQ(CountOf(*html, "&epsilon;"), 1u);
+  EXPECT_NE(html->find("shortest motif &lambda; "), std::string::npos);
+  EXPECT_NE(html->find("class=\"axis\"><span style=\"left:0.00%\">0 s</span>"), std::string::npos);
+  EXPECT_NE(html->find("<span class=\"kf\">frames "), std::string::npos);
+}
+
 // 1,000 motifs of 3 to 8 instances (random, overlapping: only the size and the time matter):
 // the page must stay small. Prints the size for the record.
 TEST_F(ReportHtmlTest, ThousandMotifsStaySmall) {
@@ -245,6 +293,14 @@ TEST_F(ReportHtmlTest, ThousandMotifsStaySmall) {
     instance_count += motif.instances.size();
     large.motifs.push_back(motif);
   }
+  // Without the player's data first: the page itself.
+  ReportOptions no_playback;
+  no_playback.playback_bytes = 0;
+  auto page = ReportHtmlText(large, *reader_, {}, no_playback);
+  ASSERT_TRUE(page.ok()) << page.status().ToString();
+  EXPECT_LT(page->size(), 5u * 1000 * 1000);
+  EXPECT_EQ(CountOf(*page, "class=\"play\""), 0u);
+
   const auto started = std::chrono::steady_clock::now();
   auto html = ReportHtmlText(large, *reader_, {});
   const double seconds =
@@ -257,7 +313,12 @@ TEST_F(ReportHtmlTest, ThousandMotifsStaySmall) {
     const Status dumped = AtomicWriteFile(dump, *html);
     EXPECT_TRUE(dumped.ok()) << dumped.ToString();
   }
-  EXPECT_LT(html->size(), 5u * 1000 * 1000);
+  // The player's data stays within its budget (base64 plus a little JSON per instance).
+  const ReportOptions defaults;
+  EXPECT_LT(html->size(), 5u * 1000 * 1000 + defaults.playback_bytes * 21 / 20);
+  EXPECT_GT(CountOf(*html, "class=\"play\""), 0u);
+  EXPECT_EQ(CountOf(*html, "class=\"play\"") + CountOf(*html, "Playback of this motif is not"),
+            large.motifs.size());
   EXPECT_EQ(CountOf(*html, "<rect"), instance_count);
   EXPECT_EQ(CheckTagBalance(*html), "");
 }
