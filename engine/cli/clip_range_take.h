@@ -5,6 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+
+#include <boost/program_options.hpp>
 
 #include "common/status.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -20,5 +23,15 @@ Take SliceTake(const Take& take, size_t start, size_t end);
 // range is empty or outside the clip; Corruption if a block does not decode.
 Result<Take> ReadClipRangeAsTake(const FrameFileReader& reader, const ClipInfo& clip,
                                  uint64_t start, uint64_t end);
+
+// The --names option of export and export-motif: "source" (the default: the joints keep the
+// names of the file the clip was imported from, where the import renamed them) or "canonical"
+// (the archive's names).
+void AddJointNamesOption(boost::program_options::options_description* options);
+// Checks the option's value; false after printing a usage error naming the flag (exit 2).
+bool CheckJointNamesOption(const std::string& command, const std::string& usage,
+                           const boost::program_options::variables_map& vm);
+// Renames `take`'s joints to the source's names when the option says so and the clip has them.
+void ApplyJointNamesOption(const boost::program_options::variables_map& vm, Take* take);
 
 }  // namespace motif::cli

@@ -43,7 +43,9 @@ std::string MotifIdRange(const MotifsDocument& document) {
 int RunExportMotif(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "export-motif";
-  spec.usage = "motifmine export-motif DIR --motif ID --out FOLDER [--archive PATH]";
+  spec.usage =
+      "motifmine export-motif DIR --motif ID --out FOLDER [--archive PATH] "
+      "[--names source|canonical]";
   spec.summary =
       "Writes every instance of motif ID of DIR/motifs.json (the output of `motifmine cluster`)\n"
       "as a BVH file FOLDER/motif<ID>_<k>_<clip>_<start>-<end>.bvh (k counts the instances from\n"
@@ -55,9 +57,11 @@ int RunExportMotif(const std::vector<std::string>& args) {
       "out", po::value<std::string>()->required(), "folder for the BVH files (created if missing)")(
       "archive", po::value<std::string>()->default_value(""),
       "the archive (default: the one named in motifs.json)");
+  AddJointNamesOption(&spec.options);
   spec.positional = {{"dir", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  if (!CheckJointNamesOption("export-motif", spec.usage, vm)) return kExitUsage;
   Result<MinedMotifs> mined =
       OpenMinedMotifs(vm["dir"].as<std::string>(), vm["archive"].as<std::string>());
   if (!mined.ok()) return ReportError("export-motif", mined.status());
@@ -87,6 +91,7 @@ int RunExportMotif(const std::vector<std::string>& args) {
     const ClipInfo* clip = FindClip(reader, instance.clip);  // checked by OpenMinedMotifs
     Result<Take> take = ReadClipRangeAsTake(reader, *clip, instance.start, instance.end);
     if (!take.ok()) return ReportError("export-motif", take.status());
+    ApplyJointNamesOption(vm, &*take);
     const std::string name = "motif" + std::to_string(motif_id) + "_" +
                              std::to_string(instance_idx) + "_" + FileNamePart(instance.clip) +
                              "_" + std::to_string(instance.start) + "-" +

@@ -57,7 +57,11 @@ int RunInfo(const std::vector<std::string>& args) {
                        {"frames", clip.frame_count},
                        {"fps", clip.fps},
                        {"source_fps", clip.source_fps},
+                       {"source_first_frame", clip.source_first_frame},
                        {"first_frame", clip.first_frame}});
+      if (!clip.source_joint_names.empty()) {
+        clips.back()["source_joint_names"] = clip.source_joint_names;
+      }
     }
     out["clips"] = clips;
     std::printf("%s\n", out.dump(2).c_str());
@@ -74,8 +78,8 @@ int RunInfo(const std::vector<std::string>& args) {
   for (const Joint& joint : skeleton.joints()) weighted += joint.weight > 0;
   std::printf("skeleton     %s, %zu joints (%zu weighted in the pose distance)\n",
               skeleton.family().c_str(), skeleton.joint_count(), weighted);
-  std::printf("size         %s bytes on disk, %s blocks of up to %u frames\n",
-              WithCommas(summary.file_bytes).c_str(), WithCommas(summary.block_count).c_str(),
+  std::printf("size         %s bytes on disk, %s of up to %u frames\n",
+              WithCommas(summary.file_bytes).c_str(), CountOf(summary.block_count, "block").c_str(),
               summary.block_frames);
   if (summary.compressed_bytes > 0) {
     std::printf("compression  %.2fx against raw float32 (%s bytes)\n",
@@ -100,17 +104,24 @@ int RunInfo(const std::vector<std::string>& args) {
   }
   const size_t limit = vm["clips"].as<size_t>();
   const auto& clips = reader.clips();
-  std::printf("\n  %-24s %10s %12s %8s  %s\n", "clip", "frames", "first frame", "fps", "source");
+  // "file frame": the source file's frame (0-based, in the file's order) of the clip's frame 0;
+  // clip frame k is file frame F + k (times source fps / fps for a resampled take).
+  std::printf("\n  %-24s %10s %12s %8s %10s  %s\n", "clip", "frames", "first frame", "fps",
+              "file frame", "source");
   for (size_t clip_idx = 0; clip_idx < clips.size(); ++clip_idx) {
     if (limit > 0 && clip_idx >= limit) {
       std::printf("  ... %zu more (use --clips 0 to list all)\n", clips.size() - clip_idx);
       break;
     }
     const ClipInfo& clip = clips[clip_idx];
-    std::printf("  %-24s %10s %12s %8g  %s\n", clip.name.c_str(),
+    std::printf("  %-24s %10s %12s %8g %10s  %s\n", clip.name.c_str(),
                 WithCommas(clip.frame_count).c_str(), WithCommas(clip.first_frame).c_str(),
-                clip.fps, clip.source_path.c_str());
+                clip.fps, WithCommas(clip.source_first_frame).c_str(), clip.source_path.c_str());
   }
+  std::printf(
+      "\n  frames are 0-based; clip frame k is frame (file frame + k) of its source file, counted "
+      "from 0 in the file's order (an AMC labels it one more); a take resampled from another "
+      "rate: file frame + k x source fps / fps\n");
   return kExitOk;
 }
 

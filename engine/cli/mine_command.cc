@@ -213,8 +213,8 @@ int RunMine(const std::vector<std::string>& args) {
   if (!result.ok()) return fail(result.status());
   PrintSummary(*result);
   if (result->skipped_takes.empty()) return kExitOk;
-  std::printf("  skipped      %s bad takes (--skip-bad; named on stderr)\n",
-              WithCommas(result->skipped_takes.size()).c_str());
+  std::printf("  skipped      %s (--skip-bad; named on stderr)\n",
+              CountOf(result->skipped_takes.size(), "bad take").c_str());
   ReportSkippedTakes("mine", result->skipped_takes, ProgressModeFrom(vm));
   return kExitWarnings;  // mined the good takes
 }

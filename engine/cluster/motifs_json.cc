@@ -50,8 +50,8 @@ Result<MotifsDocument> MakeMotifsDocument(const ClusterResult& result,
   document.params = params;
   document.covered_frames = result.report.covered_frames;
   for (const ClipInfo& clip : clips) {
-    document.clips.push_back(
-        {clip.name, clip.source_path, clip.frame_count, clip.fps, clip.first_frame});
+    document.clips.push_back({clip.name, clip.source_path, clip.frame_count, clip.fps,
+                              clip.first_frame, clip.source_first_frame});
   }
   for (size_t rank = 0; rank < result.motifs.size(); ++rank) {
     MotifsJsonMotif motif;
@@ -105,6 +105,7 @@ std::string MotifsJsonText(const MotifsDocument& document) {
     entry["frames"] = clip.frames;
     entry["fps"] = clip.fps;
     entry["first_frame"] = clip.first_frame;
+    entry["source_first_frame"] = clip.source_first_frame;
     text += (idx == 0 ? "\n    " : ",\n    ") + Dump(entry);
   }
   text += document.clips.empty() ? "],\n" : "\n  ],\n";
@@ -249,6 +250,9 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
     MOTIF_RETURN_IF_ERROR(Get(entry, "frames", where, &clip.frames));
     MOTIF_RETURN_IF_ERROR(Get(entry, "fps", where, &clip.fps));
     MOTIF_RETURN_IF_ERROR(Get(entry, "first_frame", where, &clip.first_frame));
+    if (entry.contains("source_first_frame")) {
+      MOTIF_RETURN_IF_ERROR(Get(entry, "source_first_frame", where, &clip.source_first_frame));
+    }
     first_frame_of[clip.name] = clip.first_frame;
     document.clips.push_back(std::move(clip));
   }

@@ -42,6 +42,9 @@ struct MotifsJsonClip {
   uint64_t frames = 0;
   double fps = 0;
   uint64_t first_frame = 0;
+  // The source file's frame of the clip's frame 0 (ClipInfo::source_first_frame); 0 when the
+  // document does not say (written before it had the field).
+  uint64_t source_first_frame = 0;
   bool operator==(const MotifsJsonClip&) const = default;
 };
 

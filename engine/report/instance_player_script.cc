@@ -47,7 +47,8 @@ for(i=0;i<I.length;i++){var cell=el('div','pcell'),cv=el('canvas');cv.width=120;
 (function(k){cell.onclick=function(){P.select(k);};})(i);row.appendChild(cell);smalls.push(cell);}
 ui.appendChild(bar);ui.appendChild(main);ui.appendChild(cmd);ui.appendChild(row);box.appendChild(ui);
 function render(){var n=I[sel].samples;scrub.max=Math.max(0,n-1);scrub.value=sampleOf(sel);
-lab.textContent='instance '+(sel+1)+' of '+I.length+' \u00b7 '+I[sel].clip+' \u00b7 clip frame '+frameOf(sel);
+var ff=frameOf(sel),file=I[sel].file_first+Math.round(ff*I[sel].file_rate);
+lab.textContent='instance '+(sel+1)+' of '+I.length+' \u00b7 '+I[sel].clip+' \u00b7 clip frame '+ff+' (source file frame '+file+')';
 draw(main,sel,true);for(var k=0;k<I.length;k++){draw(smalls[k].firstChild,k,false);smalls[k].lastChild.textContent=I[k].clip+' '+frameOf(k);
 smalls[k].className=k==sel?'pcell on':'pcell';}}
 function tick(now){if(!playing)return;var n=I[sel].samples;if(last&&n>1){var span=(n-1)*F.step/F.fps;t+=(now-last)/1000*speed/span;t-=Math.floor(t);}
@@ -55,7 +56,7 @@ last=now;render();requestAnimationFrame(tick);}
 P.play=function(){if(playing)return;playing=true;last=0;pp.innerHTML='&#10074;&#10074; pause';requestAnimationFrame(tick);};
 P.pause=function(){playing=false;pp.innerHTML='&#9654; play';render();};
 P.select=function(k){sel=k;is.value=k;cmd.textContent='motifmine export '+data.archive+' --clip '+I[k].clip+' --start '+I[k].start+' --end '+I[k].end+' --out '+I[k].clip+'_'+I[k].start+'.bvh';render();};
-P.state=function(){var w=[];for(var p=0;p<NP;p++)w.push(point(sel,p,true));return{instance:sel,clip:I[sel].clip,frame:frameOf(sel),playing:playing,points:w,drawn:P.drawn,canvas:main};};
+P.state=function(){var w=[];for(var p=0;p<NP;p++)w.push(point(sel,p,true));return{instance:sel,clip:I[sel].clip,frame:frameOf(sel),label:lab.textContent,playing:playing,points:w,drawn:P.drawn,canvas:main};};
 pp.onclick=function(){if(playing)P.pause();else P.play();};
 scrub.oninput=function(){var n=I[sel].samples;t=n>1?scrub.value/(n-1):0;render();};
 sp.onchange=function(){speed=parseFloat(sp.value);};

@@ -102,8 +102,9 @@ Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameF
     used += bytes;
     nlohmann::json instances = nlohmann::json::array();
     for (const MotifsJsonInstance& instance : motif.instances) {
-      MOTIF_ASSIGN_OR_RETURN(PlaybackInstance data, playback.Encode(*clips.at(instance.clip),
-                                                                    instance.start, instance.end));
+      const ClipInfo& clip = *clips.at(instance.clip);
+      MOTIF_ASSIGN_OR_RETURN(PlaybackInstance data,
+                             playback.Encode(clip, instance.start, instance.end));
       instances.push_back({{"clip", instance.clip},
                            {"start", data.start},
                            {"end", data.end},
@@ -111,6 +112,9 @@ Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameF
                            {"scale", data.scale},
                            {"origin", data.origin},
                            {"heading", data.heading_rad},
+                           // clip frame k is source-file frame file_first + k * file_rate
+                           {"file_first", clip.source_first_frame},
+                           {"file_rate", clip.fps > 0 ? clip.source_fps / clip.fps : 1.0},
                            {"points", data.points_base64}});
     }
     std::string text = nlohmann::json({{"archive", archive}, {"instances", instances}}).dump();

@@ -78,6 +78,9 @@ void EncodeJoint(const Joint& joint, std::string* out) {
 //   name str | source_path str | first_frame u64 | frame_count u64 | fps f64 | source_fps f64
 //   meters_per_unit f64 | content_hash u64 | start_position f64 x3 | joint_count u32
 //   joint_offsets f32 x3 x joint_count | end_sites f32 x3 x joint_count
+//   [source_first_frame u64 | name_count u32 | source_joint_names str x name_count]
+// The bracketed source fields are appended only when a clip has them (not 0 / no names), so
+// the records of clips without them stay as 1.0 wrote them.
 void EncodeClip(const ClipInfo& clip, std::string* out) {
   std::string record;
   PutString(&record, clip.name);
@@ -95,6 +98,11 @@ void EncodeClip(const ClipInfo& clip, std::string* out) {
   }
   for (const auto& end_site : clip.end_sites) {
     for (float value : end_site) PutF32(&record, value);
+  }
+  if (clip.source_first_frame != 0 || !clip.source_joint_names.empty()) {
+    PutU64(&record, clip.source_first_frame);
+    PutU32(&record, static_cast<uint32_t>(clip.source_joint_names.size()));
+    for (const std::string& name : clip.source_joint_names) PutString(&record, name);
   }
   PutRecord(out, record);
 }
@@ -242,6 +250,29 @@ Status DecodeColumns(SectionDecoder* section, ArchiveMetadata* metadata) {
   return Status::Ok();
 }
 
+// The optional source fields after a clip's end sites (EncodeClip): absent in older records.
+Status DecodeClipSource(SectionDecoder* record, const std::string& what, uint32_t joint_count,
+                        ClipInfo* clip) {
+  ByteReader* fields = record->reader();
+  if (fields->remaining() == 0) return Status::Ok();
+  uint32_t name_count = 0;
+  if (!fields->GetU64(&clip->source_first_frame) || !fields->GetU32(&name_count)) {
+    return record->Truncated(what + " source fields");
+  }
+  if (name_count != 0 && name_count != joint_count) {
+    return record->Error(what + " has " + std::to_string(name_count) +
+                         " source joint names, the archive " + std::to_string(joint_count) +
+                         " joints");
+  }
+  if (fields->remaining() / 4 < name_count) return record->Truncated(what + " source joint names");
+  clip->source_joint_names.resize(name_count);
+  for (std::string& name : clip->source_joint_names) {
+    if (!fields->GetString(&name)) return record->Truncated(what + " source joint names");
+    if (name.empty()) return record->Error(what + " has an empty source joint name");
+  }
+  return Status::Ok();
+}
+
 Status DecodeClips(SectionDecoder* section, ArchiveMetadata* metadata) {
   ByteReader* reader = section->reader();
   uint64_t clip_count = 0;
@@ -280,6 +311,7 @@ Status DecodeClips(SectionDecoder* section, ArchiveMetadata* metadata) {
     for (auto& end_site : clip.end_sites) {
       for (float& value : end_site) fields->GetF32(&value);
     }
+    MOTIF_RETURN_IF_ERROR(DecodeClipSource(&record, what, joint_count, &clip));
     if (clip.name.empty()) return record.Error(what + " has an empty name");
     if (!names.insert(clip.name).second) {
       return record.Error(what + ": name \"" + clip.name + "\" appears twice");

@@ -260,6 +260,13 @@ class FrameFileWriter::Impl {
         !AllFinite(info.end_sites)) {
       return Invalid(what + " has a non-finite rate, start position, offset or end site");
     }
+    if (!info.source_joint_names.empty() && info.source_joint_names.size() != joint_count) {
+      return Invalid(what + " has " + std::to_string(info.source_joint_names.size()) +
+                     " source joint names, the archive " + std::to_string(joint_count) + " joints");
+    }
+    for (const std::string& name : info.source_joint_names) {
+      if (name.empty()) return Invalid(what + " has an empty source joint name");
+    }
     return Status::Ok();
   }
 

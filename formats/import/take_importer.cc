@@ -240,6 +240,7 @@ Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& optio
                                      ": has a single frame, dropping the first leaves none");
     }
     DropFirstFrame(&take);
+    take.source_first_frame = 1;
   }
   CanonicalizeSkeleton(&take);
   return take;

@@ -78,6 +78,13 @@ void ReorderJoints(const std::vector<int>& order, std::vector<Joint> new_joints,
   }
   take->rotations = std::move(rotations);
   take->skeleton = Skeleton(take->skeleton.family(), std::move(new_joints));
+  if (!take->source_joint_names.empty()) {
+    std::vector<std::string> names(joint_count);
+    for (size_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
+      names[joint_idx] = take->source_joint_names[order[joint_idx]];
+    }
+    take->source_joint_names = std::move(names);
+  }
 }
 
 void SetDefaultWeights(Skeleton* skeleton) {
@@ -143,6 +150,14 @@ bool CanonicalizeSkeleton(Take* take) {
     take->skeleton.set_family("custom");
     SetDefaultWeights(&take->skeleton);
     return false;
+  }
+  // The source's names, kept when they are not the canonical ones (BVH: "LeftUpLeg").
+  bool renamed = false;
+  for (size_t joint_idx = 0; joint_idx < skeleton.joint_count(); ++joint_idx) {
+    renamed = renamed || skeleton.joint(joint_idx).name != canonical_of[joint_idx];
+  }
+  if (renamed && take->source_joint_names.empty()) {
+    for (const Joint& joint : skeleton.joints()) take->source_joint_names.push_back(joint.name);
   }
   std::vector<Joint> joints;
   for (size_t canonical_idx = 0; canonical_idx < names.size(); ++canonical_idx) {

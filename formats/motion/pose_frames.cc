@@ -19,6 +19,8 @@ ClipFrames TakeToClipFrames(const Take& take) {
   info.source_fps = take.source_fps;
   info.meters_per_unit = take.meters_per_unit;
   info.content_hash = take.content_hash;
+  info.source_first_frame = take.source_first_frame;
+  info.source_joint_names = take.source_joint_names;
   if (frame_count > 0) {
     const Eigen::Vector3d& start = take.root_positions[0];
     info.start_position = {start.x(), start.y(), start.z()};
@@ -86,6 +88,8 @@ Take ClipFramesToTake(const Skeleton& skeleton, const ClipInfo& info, const floa
   take.source_fps = info.source_fps;
   take.meters_per_unit = info.meters_per_unit;
   take.content_hash = info.content_hash;
+  take.source_first_frame = info.source_first_frame;
+  take.source_joint_names = info.source_joint_names;
   take.skeleton = skeleton;
   for (size_t joint_idx = 0; joint_idx < joint_count && joint_idx < info.joint_offsets.size();
        ++joint_idx) {

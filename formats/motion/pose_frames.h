@@ -43,6 +43,8 @@ struct ClipInfo {
   double meters_per_unit = 0;              // 0 if unknown
   uint64_t content_hash = 0;               // XXH3-64 of the source bytes, 0 for synthetic clips
   std::array<double, 3> start_position{};  // root world position at the clip's first frame
+  uint64_t source_first_frame = 0;         // Take::source_first_frame
+  std::vector<std::string> source_joint_names;  // Take::source_joint_names (empty: the same)
   // Per joint (archive skeleton order): this clip's bone offsets and end sites. Subjects differ
   // in bone lengths, so export uses the clip's own.
   std::vector<std::array<float, 3>> joint_offsets;

@@ -24,6 +24,13 @@ struct Take {
   double source_fps = 120.0;   // the rate of the source file before any resampling
   double meters_per_unit = 0;  // length unit in metres when the source says (ASF), 0 if unknown
   uint64_t content_hash = 0;   // XXH3-64 of the source file bytes (identifies a take on re-import)
+  // Where frame 0 is in the source file: the 0-based index of that frame among the file's frames
+  // (1 when the importer dropped a converter's T-pose). Resampled takes: source frame
+  // source_first_frame + k * source_fps / fps is frame k.
+  uint64_t source_first_frame = 0;
+  // The source file's name of each joint (skeleton order) when the importer renamed them (a BVH
+  // take's "LeftUpLeg" is the canonical "lfemur"); empty when the names are the source's.
+  std::vector<std::string> source_joint_names;
   Skeleton skeleton;
   std::vector<Eigen::Vector3d> root_positions;  // per frame, world, source length units
   std::vector<Eigen::Quaterniond> rotations;    // frame-major: [frame * joint_count + joint]

@@ -55,7 +55,7 @@ for(var c=0;c<F.chains.length;c++){var ch=F.chains[c];for(var j=1;j<ch.length;j+
 var a=s.drawn[ch[j-1]],e=s.drawn[ch[j]];if(Math.hypot(a[0]-e[0],a[1]-e[1])<4)continue;++bones;
 var px=g.getImageData(Math.round((a[0]+e[0])/2),Math.round((a[1]+e[1])/2),1,1).data;
 if(Math.min(px[0],px[1],px[2])<200)++painted;}}
-return{scrub:k,instance:s.instance,clip:s.clip,frame:s.frame,points:s.points,bones:bones,painted:painted};}
+return{scrub:k,instance:s.instance,clip:s.clip,frame:s.frame,label:s.label,points:s.points,bones:bones,painted:painted};}
 function done(){out.errors=window.__e2eErrors;var m=document.createElement('pre');m.id='e2e-result';
 m.hidden=true;m.textContent=JSON.stringify(out);document.body.appendChild(m);}
 });</script>)js";
@@ -88,6 +88,13 @@ void ExpectArchivePose(const nlohmann::json& seen, const MotifsDocument& documen
     if (info.name == instance.clip) clip = &info;
   }
   ASSERT_NE(clip, nullptr);
+  // The label names both frames: the clip's and the source file's.
+  const std::string file_frame =
+      "(source file frame " + std::to_string(frame + clip->source_first_frame) + ")";
+  EXPECT_NE(seen["label"].get<std::string>().find("clip frame " + std::to_string(frame) + " " +
+                                                  file_frame),
+            std::string::npos)
+      << seen["label"];
   const std::vector<Eigen::Vector3d> expected = ArchivePose(reader, *clip, instance.start, frame);
   const nlohmann::json& points = seen["points"];
   ASSERT_EQ(points.size(), expected.size());
