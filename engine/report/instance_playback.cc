@@ -48,20 +48,37 @@ InstancePlayback::InstancePlayback(const FrameFileReader& reader, const StickFig
   height_ = std::max(1e-9, RestPoseExtent(skeleton));
 }
 
+Status InstancePlayback::EnsureCached(uint64_t global_start, uint64_t global_end) {
+  if (global_start >= cache_first_ && global_end <= cache_first_ + cache_count_) {
+    return Status::Ok();
+  }
+  constexpr uint64_t kChunkFrames = 4096;
+  const uint64_t count = std::min(std::max(global_end - global_start, kChunkFrames),
+                                  reader_.frame_count() - global_start);
+  MOTIF_RETURN_IF_ERROR(reader_.ReadFrames(global_start, count, &cache_));
+  cache_first_ = global_start;
+  cache_count_ = count;
+  return Status::Ok();
+}
+
 Result<PlaybackInstance> InstancePlayback::Encode(const ClipInfo& clip, uint64_t start,
-                                                  uint64_t end) const {
+                                                  uint64_t end) {
   PlaybackInstance instance;
   instance.start = start;
   instance.end = end;
   instance.samples = static_cast<uint32_t>((end - start - 1) / step_ + 1);
   // Consecutive frames, so that the root's path integrates as in the clip.
-  std::vector<float> rows;
-  MOTIF_RETURN_IF_ERROR(reader_.ReadFrames(clip.first_frame + start, end - start, &rows));
-  const Take take = ClipFramesToTake(reader_.skeleton(), clip, rows.data(), end - start);
+  MOTIF_RETURN_IF_ERROR(EnsureCached(clip.first_frame + start, clip.first_frame + end));
+  const size_t stride = reader_.layout().stride();
+  const float* rows = &cache_[(clip.first_frame + start - cache_first_) * stride];
+  const Take take = ClipFramesToTake(reader_.skeleton(), clip, rows, end - start);
   std::vector<Eigen::Vector3d> points;
   points.reserve(static_cast<size_t>(instance.samples) * layout_.points.size());
   double floor = std::numeric_limits<double>::max();
+  instance.sample_rows.reserve(static_cast<size_t>(instance.samples) * stride);
   for (uint32_t sample = 0; sample < instance.samples; ++sample) {
+    const float* row = &rows[static_cast<size_t>(sample) * step_ * stride];
+    instance.sample_rows.insert(instance.sample_rows.end(), row, row + stride);
     const std::vector<Eigen::Vector3d> pose =
         TakeFramePositions(take, static_cast<size_t>(sample) * step_);
     for (uint32_t point : layout_.points) {

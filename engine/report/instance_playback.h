@@ -34,6 +34,7 @@ struct PlaybackInstance {
   std::array<double, 3> origin{};  // added to every decoded point
   double heading_rad = 0;          // the root's heading at the first sample
   std::string points_base64;       // samples * points * 3 int16, little-endian
+  std::vector<float> sample_rows;  // the samples' archive rows (samples * stride floats)
 };
 
 class InstancePlayback {
@@ -43,18 +44,26 @@ class InstancePlayback {
 
   // Archive frames per sample: round(fps / kPlaybackFps), at least 1.
   uint32_t step() const { return step_; }
+  size_t stride() const { return reader_.layout().stride(); }
 
   // The samples of clip frames [start, end) (start < end <= clip.frame_count). Errors of the
-  // reader pass through.
-  Result<PlaybackInstance> Encode(const ClipInfo& clip, uint64_t start, uint64_t end) const;
+  // reader pass through. Frames are read in chunks of at least 4,096 and kept: encode the
+  // instances in archive order, and a block is decoded about once.
+  Result<PlaybackInstance> Encode(const ClipInfo& clip, uint64_t start, uint64_t end);
 
   // {"step":S,"fps":F,"height":H,"root":R,"sides":[...],"chains":[[...],...]}: what the page
   // needs to draw any instance (R and the chains index the layout's points).
   std::string FigureJson() const;
 
  private:
+  // Rows of global frames [global_start, global_end) in cache_ from cache_first_.
+  Status EnsureCached(uint64_t global_start, uint64_t global_end);
+
   const FrameFileReader& reader_;
   const StickFigureLayout& layout_;
+  std::vector<float> cache_;
+  uint64_t cache_first_ = 0;
+  uint64_t cache_count_ = 0;
   uint32_t step_ = 1;
   std::vector<uint8_t> sides_;  // per layout point
   double height_ = 1;

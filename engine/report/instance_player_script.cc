@@ -14,7 +14,12 @@ function Player(box,id,data){
 var P=this,I=data.instances,t=0,sel=0,playing=false,speed=1,keep=false,yaw=-0.7,pitch=0.3,last=0,A=[];
 for(var i=0;i<I.length;i++)A.push(null);
 function pts(i){if(!A[i])A[i]=decode(I[i].points);return A[i];}
-function sampleOf(i){var n=I[i].samples;return n>1?Math.round(t*(n-1)):0;}
+// t: the motif's time, 0..1 over the first instance's samples; align[r]: instance i's sample
+// shown with the first instance's sample r (dynamic time warping, instance_alignment.h).
+var NR=I[0].samples;function refOf(){return NR>1?Math.round(t*(NR-1)):0;}
+function sampleOf(i){var a=I[i].align;if(a&&a.length==NR)return a[refOf()];var n=I[i].samples;return n>1?Math.round(t*(n-1)):0;}
+function timeOfSample(i,k){var a=I[i].align;if(a&&a.length==NR){for(var r=0;r<NR;r++)if(a[r]>=k)return NR>1?r/(NR-1):0;return 1;}
+var n=I[i].samples;return n>1?k/(n-1):0;}
 function frameOf(i){return I[i].start+sampleOf(i)*F.step;}
 // point p of instance i at its current sample: relative to the first root on the ground, heading
 // kept or removed; world adds the origin back (heading kept).
@@ -51,14 +56,15 @@ var ff=frameOf(sel),file=I[sel].file_first+Math.round(ff*I[sel].file_rate);
 lab.textContent='instance '+(sel+1)+' of '+I.length+' \u00b7 '+I[sel].clip+' \u00b7 clip frame '+ff+' (source file frame '+file+')';
 draw(main,sel,true);for(var k=0;k<I.length;k++){draw(smalls[k].firstChild,k,false);smalls[k].lastChild.textContent=I[k].clip+' '+frameOf(k);
 smalls[k].className=k==sel?'pcell on':'pcell';}}
-function tick(now){if(!playing)return;var n=I[sel].samples;if(last&&n>1){var span=(n-1)*F.step/F.fps;t+=(now-last)/1000*speed/span;t-=Math.floor(t);}
-last=now;render();requestAnimationFrame(tick);}
-P.play=function(){if(playing)return;playing=true;last=0;pp.innerHTML='&#10074;&#10074; pause';requestAnimationFrame(tick);};
+// Timer-driven at the samples' rate (timers also run in a headless browser's virtual time).
+function tick(){if(!playing)return;var now=performance.now();if(last&&NR>1){var span=(NR-1)*F.step/F.fps;t+=(now-last)/1000*speed/span;t-=Math.floor(t);}
+last=now;render();setTimeout(tick,1000*F.step/F.fps);}
+P.play=function(){if(playing)return;playing=true;last=0;pp.innerHTML='&#10074;&#10074; pause';tick();};
 P.pause=function(){playing=false;pp.innerHTML='&#9654; play';render();};
 P.select=function(k){sel=k;is.value=k;cmd.textContent='motifmine export '+data.archive+' --clip '+I[k].clip+' --start '+I[k].start+' --end '+I[k].end+' --out '+I[k].clip+'_'+I[k].start+'.bvh';render();};
 P.state=function(){var w=[];for(var p=0;p<NP;p++)w.push(point(sel,p,true));return{instance:sel,clip:I[sel].clip,frame:frameOf(sel),label:lab.textContent,playing:playing,points:w,drawn:P.drawn,canvas:main};};
 pp.onclick=function(){if(playing)P.pause();else P.play();};
-scrub.oninput=function(){var n=I[sel].samples;t=n>1?scrub.value/(n-1):0;render();};
+scrub.oninput=function(){t=timeOfSample(sel,+scrub.value);render();};
 sp.onchange=function(){speed=parseFloat(sp.value);};
 hd.firstChild.onchange=function(){keep=hd.firstChild.checked;render();};
 is.onchange=function(){P.select(parseInt(is.value,10));};

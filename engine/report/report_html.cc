@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/file_util.h"
+#include "engine/report/instance_alignment.h"
 #include "engine/report/instance_playback.h"
 #include "engine/report/instance_player_script.h"
 #include "engine/report/keyframe_figures.h"
@@ -80,6 +81,63 @@ struct PlaybackBlocks {
   std::string figure;
 };
 
+// Which motifs get playback: in rank order while the estimated bytes fit the budget (base64 of
+// 3 int16 a point a sample, and about 5 characters per alignment entry).
+std::vector<bool> MotifsWithPlayback(const MotifsDocument& document, uint32_t step, size_t points,
+                                     uint64_t budget) {
+  std::vector<bool> chosen;
+  uint64_t used = 0;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    uint64_t samples = 0;
+    for (const MotifsJsonInstance& instance : motif.instances) {
+      samples += (instance.length() - 1) / step + 1;
+    }
+    const uint64_t reference =
+        motif.instances.empty() ? 0 : (motif.instances[0].length() - 1) / step + 1;
+    const uint64_t bytes = samples * points * 8 + motif.instances.size() * reference * 5;
+    // Over the budget, no later (smaller) motif jumps ahead: the rank order is kept.
+    const bool fits = used + bytes <= budget;
+    used = fits ? used + bytes : budget;
+    chosen.push_back(fits && !motif.instances.empty());
+  }
+  return chosen;
+}
+
+// One motif's player data: its instances (encoded), each aligned to the first.
+std::string PlaybackJson(const MotifsJsonMotif& motif, const std::vector<PlaybackInstance>& encoded,
+                         const FrameFileReader& reader, size_t stride, const std::string& archive,
+                         const std::unordered_map<std::string, const ClipInfo*>& clips) {
+  nlohmann::json instances = nlohmann::json::array();
+  for (size_t idx = 0; idx < encoded.size(); ++idx) {
+    const PlaybackInstance& data = encoded[idx];
+    const ClipInfo& clip = *clips.at(motif.instances[idx].clip);
+    // Each instance's sample shown with each of the first instance's (the motif's time).
+    const std::vector<uint32_t> align =
+        AlignToReference(reader.skeleton(), stride, encoded[0].sample_rows, encoded[0].samples,
+                         data.sample_rows, data.samples);
+    instances.push_back({{"clip", clip.name},
+                         {"start", data.start},
+                         {"end", data.end},
+                         {"samples", data.samples},
+                         {"scale", data.scale},
+                         {"origin", data.origin},
+                         {"heading", data.heading_rad},
+                         // clip frame k is source-file frame file_first + k * file_rate
+                         {"file_first", clip.source_first_frame},
+                         {"file_rate", clip.fps > 0 ? clip.source_fps / clip.fps : 1.0},
+                         {"align", align},
+                         {"points", data.points_base64}});
+  }
+  std::string text = nlohmann::json({{"archive", archive}, {"instances", instances}}).dump();
+  for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
+    text.replace(at, 2, "<\\/");
+  }
+  return text;
+}
+
+// The player's data for every instance of the motifs within the budget, per motif a JSON text
+// ("" for the others), and the figure. The instances are encoded in archive order (each block
+// decoded about once), then grouped by motif. No "</" inside (they go in script blocks).
 Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameFileReader& reader,
                                     const StickFigureLayout& layout, const std::string& archive,
                                     const std::unordered_map<std::string, const ClipInfo*>& clips,
@@ -87,41 +145,40 @@ Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameF
   InstancePlayback playback(reader, layout);
   PlaybackBlocks blocks;
   blocks.figure = playback.FigureJson();
-  uint64_t used = 0;
-  for (const MotifsJsonMotif& motif : document.motifs) {
-    uint64_t samples = 0;
-    for (const MotifsJsonInstance& instance : motif.instances) {
-      samples += (instance.length() - 1) / playback.step() + 1;
+  const std::vector<bool> chosen =
+      MotifsWithPlayback(document, playback.step(), layout.points.size(), budget);
+  struct Job {
+    uint64_t global_start;
+    size_t motif_idx;
+    size_t instance_idx;
+  };
+  std::vector<Job> jobs;
+  std::vector<std::vector<PlaybackInstance>> encoded(document.motifs.size());
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    if (!chosen[motif_idx]) continue;
+    const MotifsJsonMotif& motif = document.motifs[motif_idx];
+    encoded[motif_idx].resize(motif.instances.size());
+    for (size_t idx = 0; idx < motif.instances.size(); ++idx) {
+      const MotifsJsonInstance& instance = motif.instances[idx];
+      jobs.push_back({clips.at(instance.clip)->first_frame + instance.start, motif_idx, idx});
     }
-    const uint64_t bytes = samples * layout.points.size() * 8;  // base64 of 3 int16
-    if (used + bytes > budget) {
-      blocks.motifs.emplace_back();
-      used = budget;  // keep the rank order: no later, smaller motif jumps ahead
-      continue;
-    }
-    used += bytes;
-    nlohmann::json instances = nlohmann::json::array();
-    for (const MotifsJsonInstance& instance : motif.instances) {
-      const ClipInfo& clip = *clips.at(instance.clip);
-      MOTIF_ASSIGN_OR_RETURN(PlaybackInstance data,
-                             playback.Encode(clip, instance.start, instance.end));
-      instances.push_back({{"clip", instance.clip},
-                           {"start", data.start},
-                           {"end", data.end},
-                           {"samples", data.samples},
-                           {"scale", data.scale},
-                           {"origin", data.origin},
-                           {"heading", data.heading_rad},
-                           // clip frame k is source-file frame file_first + k * file_rate
-                           {"file_first", clip.source_first_frame},
-                           {"file_rate", clip.fps > 0 ? clip.source_fps / clip.fps : 1.0},
-                           {"points", data.points_base64}});
-    }
-    std::string text = nlohmann::json({{"archive", archive}, {"instances", instances}}).dump();
-    for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
-      text.replace(at, 2, "<\\/");
-    }
-    blocks.motifs.push_back(std::move(text));
+  }
+  std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) {
+    return std::tie(a.global_start, a.motif_idx, a.instance_idx) <
+           std::tie(b.global_start, b.motif_idx, b.instance_idx);
+  });
+  for (const Job& job : jobs) {
+    const MotifsJsonInstance& instance = document.motifs[job.motif_idx].instances[job.instance_idx];
+    MOTIF_ASSIGN_OR_RETURN(encoded[job.motif_idx][job.instance_idx],
+                           playback.Encode(*clips.at(instance.clip), instance.start, instance.end));
+  }
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    blocks.motifs.push_back(chosen[motif_idx]
+                                ? PlaybackJson(document.motifs[motif_idx], encoded[motif_idx],
+                                               reader, playback.stride(), archive, clips)
+                                : std::string());
+    encoded[motif_idx].clear();
+    encoded[motif_idx].shrink_to_fit();
   }
   return blocks;
 }
