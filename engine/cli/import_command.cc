@@ -3,6 +3,7 @@
 
 #include "engine/cli/cli_common.h"
 #include "engine/ingest/archive_import.h"
+#include "formats/import/take_descriptions.h"
 
 namespace motif::cli {
 
@@ -32,7 +33,10 @@ int RunImport(const std::vector<std::string>& args) {
       "keep; drop")("skip-bad",
                     "import the good takes and report the bad ones (default: all or nothing)")(
       "block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")(
-      "threads", po::value<int>()->default_value(0), "parser threads (0: all cores)");
+      "descriptions", po::value<std::string>()->default_value(""),
+      "a tab-separated index with 'file' and 'description' columns (a take's stem is matched); "
+      "the clips keep their descriptions")("threads", po::value<int>()->default_value(0),
+                                           "parser threads (0: all cores)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}, {"paths", -1}};
   po::variables_map vm;
@@ -57,6 +61,11 @@ int RunImport(const std::vector<std::string>& args) {
     return ReportError("import", Status::InvalidArgument("frame rates must be positive"));
   }
   options.skip_bad = vm.count("skip-bad") > 0;
+  if (const std::string index = vm["descriptions"].as<std::string>(); !index.empty()) {
+    Result<std::unordered_map<std::string, std::string>> descriptions = ReadTakeDescriptions(index);
+    if (!descriptions.ok()) return ReportError("import", descriptions.status());
+    options.import.descriptions = std::move(*descriptions);
+  }
   options.block_frames = vm["block-frames"].as<uint32_t>();
   if (options.block_frames == 0) {
     return ReportError("import", Status::InvalidArgument("--block-frames must be at least 1"));

@@ -62,6 +62,7 @@ int RunInfo(const std::vector<std::string>& args) {
       if (!clip.source_joint_names.empty()) {
         clips.back()["source_joint_names"] = clip.source_joint_names;
       }
+      if (!clip.description.empty()) clips.back()["description"] = clip.description;
     }
     out["clips"] = clips;
     std::printf("%s\n", out.dump(2).c_str());
@@ -116,7 +117,9 @@ int RunInfo(const std::vector<std::string>& args) {
     const ClipInfo& clip = clips[clip_idx];
     std::printf("  %-24s %10s %12s %8g %10s  %s\n", clip.name.c_str(),
                 WithCommas(clip.frame_count).c_str(), WithCommas(clip.first_frame).c_str(),
-                clip.fps, WithCommas(clip.source_first_frame).c_str(), clip.source_path.c_str());
+                clip.fps, WithCommas(clip.source_first_frame).c_str(),
+                (clip.source_path + (clip.description.empty() ? "" : " (" + clip.description + ")"))
+                    .c_str());
   }
   std::printf(
       "\n  frames are 0-based; clip frame k is frame (file frame + k) of its source file, counted "

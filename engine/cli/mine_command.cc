@@ -149,7 +149,9 @@ int RunMine(const std::vector<std::string>& args) {
       "synth-motifs", po::value<uint32_t>()->default_value(defaults.synth.motifs),
       "no INPUT: planted motifs of the synthetic archive")(
       "skip-bad", "import: report malformed takes and import the others")(
-      "no-report", "do not write report.html");
+      "descriptions", po::value<std::string>()->default_value(""),
+      "import: a tab-separated index with 'file' and 'description' columns; the report shows "
+      "each take's description")("no-report", "do not write report.html");
   AddEpsilonRuleOptions(spec);
   AddPauseOptions(spec);
   AddProgressOptions(spec);
@@ -167,6 +169,7 @@ int RunMine(const std::vector<std::string>& args) {
   options.seed = vm["seed"].as<uint64_t>();
   options.threads = vm["threads"].as<int>();
   options.skip_bad = vm.count("skip-bad") > 0;
+  options.descriptions_path = vm["descriptions"].as<std::string>();
   options.write_report = vm.count("no-report") == 0;
   options.synth.frames = vm["synth-frames"].as<uint64_t>();
   options.synth.motifs = vm["synth-motifs"].as<uint32_t>();

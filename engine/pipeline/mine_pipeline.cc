@@ -19,6 +19,7 @@
 #include "engine/synth/truth_json_reader.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
+#include "formats/import/take_descriptions.h"
 
 namespace motif {
 
@@ -93,6 +94,9 @@ Status MinePipeline::CheckOptions() const {
 Result<MinePipelineResult> MinePipeline::Run() {
   const Clock::time_point job_start = Clock::now();
   MOTIF_RETURN_IF_ERROR(CheckOptions());
+  if (!options_.descriptions_path.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(descriptions_, ReadTakeDescriptions(options_.descriptions_path));
+  }
   std::error_code error;
   std::filesystem::create_directories(options_.out_dir, error);
   if (error) {
@@ -153,6 +157,7 @@ Status MinePipeline::MakeArchive() {
     }
   } else {
     ArchiveImportOptions import_options;
+    import_options.import.descriptions = descriptions_;
     import_options.skip_bad = options_.skip_bad;
     import_options.threads = options_.threads;
     import_options.note = options_.note;

@@ -18,6 +18,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "common/status.h"
@@ -36,8 +37,9 @@ struct MinePipelineOptions {
   // BVH / ASF+AMC takes and folders (imported into OUT/archive.mfs), one archive (.mfs), or none:
   // a synthetic archive with planted motifs (`synth`) is written to OUT/archive.mfs.
   std::vector<std::string> inputs;
-  bool skip_bad = false;  // import: pass over takes that fail, and mine the others
-  SynthOptions synth;     // no inputs; its seed and threads are set from the ones below
+  bool skip_bad = false;          // import: pass over takes that fail, and mine the others
+  std::string descriptions_path;  // import: an index of take descriptions (take_descriptions.h)
+  SynthOptions synth;             // no inputs; its seed and threads are set from the ones below
   TrellisOptions trellis;
   PathsOptions paths;
   ClusterOptions cluster;
@@ -98,6 +100,7 @@ class MinePipeline {
   void Progress(const std::string& stage, uint64_t done, uint64_t total, const std::string& unit);
 
   MinePipelineOptions options_;
+  std::unordered_map<std::string, std::string> descriptions_;  // read before anything is made
   MinePipelineResult result_;
   std::unique_ptr<FrameFileReader> archive_;
 };

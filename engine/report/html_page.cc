@@ -16,6 +16,7 @@ table.t{border-collapse:collapse}table.t td{padding:1px 14px 1px 0}table.t td:nt
 .tlrow{display:flex;align-items:center;margin:3px 0}
 .tlrow .n{width:170px;flex:none;overflow:hidden;text-overflow:ellipsis;white-space:nowrap;font-size:12px}
 .tlrow .w{flex:1;min-width:0}
+.tlrow .n small{color:#777}
 .axis{position:relative;height:14px;font-size:10px;color:#555;border-bottom:1px solid #bbb}
 .axis span{position:absolute;bottom:0;border-left:1px solid #999;padding-left:2px;white-space:nowrap}
 .tl{display:block;height:16px;background:#e6e6e6}

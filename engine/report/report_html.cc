@@ -319,8 +319,13 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
     const std::string name = HtmlEscape(clip.name);
     const double width_percent =
         std::max(2.0, 100.0 * static_cast<double>(clip.frame_count) / longest);
-    out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + " (" +
-           HtmlCommas(clip.frame_count) + " frames)\">" + name + "</span><span class=\"w\"><svg " +
+    // The take's description, when the import was given one, after its name.
+    const std::string described =
+        clip.description.empty() ? std::string() : " \u2014 " + HtmlEscape(clip.description);
+    out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + described + " (" +
+           HtmlCount(clip.frame_count, "frame") + ")\">" + name +
+           (described.empty() ? "" : "<small>" + described + "</small>") +
+           "</span><span class=\"w\"><svg " +
            "class=\"tl\" style=\"width:" + HtmlNumber("%.1f", width_percent) +
            "%\" viewBox=\"0 0 " + std::to_string(clip.frame_count) +
            " 1\" preserveAspectRatio=\"none\">";
@@ -465,6 +470,8 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     for (size_t idx = 0; idx < clip_names.size() && idx < options.clip_names_per_motif; ++idx) {
       if (idx > 0) html += ", ";
       html += HtmlEscape(clip_names[idx]);
+      const std::string& description = clips_by_name.at(clip_names[idx])->description;
+      if (!description.empty()) html += " (" + HtmlEscape(description) + ")";
     }
     if (clip_names.size() > options.clip_names_per_motif) {
       html += " +" + HtmlCommas(clip_names.size() - options.clip_names_per_motif) + " more";

@@ -78,9 +78,10 @@ void EncodeJoint(const Joint& joint, std::string* out) {
 //   name str | source_path str | first_frame u64 | frame_count u64 | fps f64 | source_fps f64
 //   meters_per_unit f64 | content_hash u64 | start_position f64 x3 | joint_count u32
 //   joint_offsets f32 x3 x joint_count | end_sites f32 x3 x joint_count
-//   [source_first_frame u64 | name_count u32 | source_joint_names str x name_count]
-// The bracketed source fields are appended only when a clip has them (not 0 / no names), so
-// the records of clips without them stay as 1.0 wrote them.
+//   [source_first_frame u64 | name_count u32 | source_joint_names str x name_count
+//    | description str]
+// The bracketed source fields are appended only when a clip has one of them (not 0, names, a
+// description), so the records of clips without them stay as 1.0 wrote them.
 void EncodeClip(const ClipInfo& clip, std::string* out) {
   std::string record;
   PutString(&record, clip.name);
@@ -99,10 +100,12 @@ void EncodeClip(const ClipInfo& clip, std::string* out) {
   for (const auto& end_site : clip.end_sites) {
     for (float value : end_site) PutF32(&record, value);
   }
-  if (clip.source_first_frame != 0 || !clip.source_joint_names.empty()) {
+  if (clip.source_first_frame != 0 || !clip.source_joint_names.empty() ||
+      !clip.description.empty()) {
     PutU64(&record, clip.source_first_frame);
     PutU32(&record, static_cast<uint32_t>(clip.source_joint_names.size()));
     for (const std::string& name : clip.source_joint_names) PutString(&record, name);
+    PutString(&record, clip.description);
   }
   PutRecord(out, record);
 }
@@ -270,6 +273,7 @@ Status DecodeClipSource(SectionDecoder* record, const std::string& what, uint32_
     if (!fields->GetString(&name)) return record->Truncated(what + " source joint names");
     if (name.empty()) return record->Error(what + " has an empty source joint name");
   }
+  if (!fields->GetString(&clip->description)) return record->Truncated(what + " description");
   return Status::Ok();
 }
 

@@ -222,6 +222,10 @@ Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& optio
   take.name = fs::path(source.path).stem().string();
   take.source_path = source.path;
   take.content_hash = XXH3_64bits(text.data(), text.size());
+  if (auto described = options.descriptions.find(take.name);
+      described != options.descriptions.end()) {
+    take.description = described->second;
+  }
   bool drop_first = false;
   switch (options.first_frame) {
     case FirstFramePolicy::kAuto:

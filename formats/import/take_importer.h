@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "common/status.h"
@@ -50,6 +51,8 @@ struct ImportOptions {
   double bvh_fps = 0;      // > 0 overrides every BVH file's Frame Time
   std::string asf_path;    // if set, the skeleton for every AMC file
   FirstFramePolicy first_frame = FirstFramePolicy::kAuto;
+  // Descriptions by take name (ReadTakeDescriptions): a take found here gets its description.
+  std::unordered_map<std::string, std::string> descriptions;
 };
 
 enum class TakeFormat { kBvh, kAmc };

@@ -21,6 +21,7 @@ ClipFrames TakeToClipFrames(const Take& take) {
   info.content_hash = take.content_hash;
   info.source_first_frame = take.source_first_frame;
   info.source_joint_names = take.source_joint_names;
+  info.description = take.description;
   if (frame_count > 0) {
     const Eigen::Vector3d& start = take.root_positions[0];
     info.start_position = {start.x(), start.y(), start.z()};
@@ -90,6 +91,7 @@ Take ClipFramesToTake(const Skeleton& skeleton, const ClipInfo& info, const floa
   take.content_hash = info.content_hash;
   take.source_first_frame = info.source_first_frame;
   take.source_joint_names = info.source_joint_names;
+  take.description = info.description;
   take.skeleton = skeleton;
   for (size_t joint_idx = 0; joint_idx < joint_count && joint_idx < info.joint_offsets.size();
        ++joint_idx) {

@@ -45,6 +45,7 @@ struct ClipInfo {
   std::array<double, 3> start_position{};  // root world position at the clip's first frame
   uint64_t source_first_frame = 0;         // Take::source_first_frame
   std::vector<std::string> source_joint_names;  // Take::source_joint_names (empty: the same)
+  std::string description;                      // Take::description
   // Per joint (archive skeleton order): this clip's bone offsets and end sites. Subjects differ
   // in bone lengths, so export uses the clip's own.
   std::vector<std::array<float, 3>> joint_offsets;

@@ -31,6 +31,7 @@ struct Take {
   // The source file's name of each joint (skeleton order) when the importer renamed them (a BVH
   // take's "LeftUpLeg" is the canonical "lfemur"); empty when the names are the source's.
   std::vector<std::string> source_joint_names;
+  std::string description;  // what the take shows, from an index the user gave; may be empty
   Skeleton skeleton;
   std::vector<Eigen::Vector3d> root_positions;  // per frame, world, source length units
   std::vector<Eigen::Quaterniond> rotations;    // frame-major: [frame * joint_count + joint]

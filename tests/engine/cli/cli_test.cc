@@ -391,6 +391,56 @@ TEST(MotifmineTool, SkipBadStoresTheGoodTakesNamesTheBadOnesAndExitsThree) {
   EXPECT_FALSE(std::filesystem::exists(dir.File("b.mfs")));
 }
 
+// Take descriptions from an index the user gives: import and mine keep them in the archive's
+// clips, info lists them, the report shows them beside the take's name; a malformed index is
+// refused by name before anything is written.
+TEST(MotifmineTool, TakeDescriptionsFromAnIndexReachInfoAndTheReport) {
+  testing::TempDir dir;
+  const std::string synth = dir.File("s.mfs");
+  ASSERT_EQ(RunTool("synth " + synth + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code, 0);
+  std::filesystem::create_directories(dir.File("takes"));
+  for (const char* clip : {"synth_000000", "synth_000001"}) {
+    ASSERT_EQ(RunTool("export " + synth + " --clip " + clip + " --out " +
+                      dir.File(std::string("takes/") + clip + ".bvh"))
+                  .exit_code,
+              0);
+  }
+  const std::string index = dir.File("index.tsv");
+  ASSERT_TRUE(AtomicWriteFile(index,
+                              "file\tdescription\n"
+                              "takes/synth_000000.bvh\tjumping <jacks> & claps\n")
+                  .ok());
+  const std::string archive = dir.File("a.mfs");
+  const RunResult import = RunTool("import " + archive + " " + dir.File("takes") +
+                                   " --descriptions " + index + " --quiet");
+  ASSERT_EQ(import.exit_code, 0) << import.output;
+  const nlohmann::json clips =
+      nlohmann::json::parse(RunTool("info " + archive + " --json").output)["clips"];
+  ASSERT_EQ(clips.size(), 2u);
+  EXPECT_EQ(clips[0]["description"], "jumping <jacks> & claps");
+  EXPECT_FALSE(clips[1].contains("description"));
+
+  const RunResult mine = RunTool("mine " + dir.File("takes") + " --descriptions " + index +
+                                 " --out " + dir.File("m") + " --quiet");
+  ASSERT_EQ(mine.exit_code, 0) << mine.output;
+  const std::string html = ReadFileToString(dir.File("m/report.html")).value();
+  EXPECT_NE(html.find("synth_000000<small> \u2014 jumping &lt;jacks&gt; &amp; claps</small>"),
+            std::string::npos);
+
+  const std::string bad = dir.File("bad.tsv");
+  ASSERT_TRUE(AtomicWriteFile(bad, "name\tdescription\nx\ty\n").ok());
+  const RunResult refused = RunTool("mine " + dir.File("takes") + " --descriptions " + bad +
+                                    " --out " + dir.File("n") + " --quiet");
+  EXPECT_EQ(refused.exit_code, 13) << refused.output;
+  EXPECT_NE(refused.output.find(bad + ":1"), std::string::npos) << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.File("n")));
+  EXPECT_EQ(RunTool("import " + dir.File("b.mfs") + " " + dir.File("takes") + " --descriptions " +
+                    bad + " --quiet")
+                .exit_code,
+            13);
+  EXPECT_FALSE(std::filesystem::exists(dir.File("b.mfs")));
+}
+
 TEST(MotifmineTool, BvhRoundTripKeepsRotationsWithinTheQuantisationBound) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string source = testing::MocapDir() + "/bvh/05_01.bvh";

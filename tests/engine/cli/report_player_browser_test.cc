@@ -118,7 +118,7 @@ TEST(ReportPlayerBrowser, PlaysEveryInstanceOfTheFirstMotifAndScrubsToTheArchive
                     "the player is not checked in a browser";
   }
   testing::TempDir dir;
-  // Squat bounces, repeated: its first motif has several instances.
+  // A Russian dance of repeated squat bounces: its first motif has several instances.
   const std::string take = testing::MocapDir() + "/asfamc/90/90_30.amc";
   testing::RunResult mined = testing::RunTool("mine " + take + " --out " + dir.File("out"));
   ASSERT_EQ(mined.exit_code, 0) << mined.output;

@@ -149,6 +149,9 @@ void ExpectSameClipInfo(const ClipInfo& expected, const ClipInfo& actual) {
   EXPECT_EQ(expected.start_position, actual.start_position);
   EXPECT_EQ(expected.joint_offsets, actual.joint_offsets);
   EXPECT_EQ(expected.end_sites, actual.end_sites);
+  EXPECT_EQ(expected.source_first_frame, actual.source_first_frame) << expected.name;
+  EXPECT_EQ(expected.source_joint_names, actual.source_joint_names) << expected.name;
+  EXPECT_EQ(expected.description, actual.description) << expected.name;
 }
 
 void ExpectSameSkeleton(const Skeleton& expected, const Skeleton& actual) {

@@ -89,6 +89,40 @@ TEST(FrameFileWriter, KeepsEveryClipAndSkeletonField) {
   EXPECT_EQ((*reader)->frame_count(), first_frame);
 }
 
+// The optional source fields of a clip record: a clip with any of them keeps all three; a clip
+// with none writes the record of 1.0 (its record is as long as before the fields existed).
+TEST(FrameFileWriter, KeepsTheSourceFieldsOfTheClipsThatHaveThem) {
+  TempDir dir;
+  const Skeleton skeleton = MakeSkeleton(kWriterJoints);
+  std::vector<ClipFrames> clips = SomeClips(4, 40);
+  clips[0].info.source_first_frame = 1;
+  clips[1].info.source_joint_names = {"Hips", "LeftUpLeg", "LeftLeg", "RightUpLeg", "RightLeg"};
+  clips[2].info.description = "walk, then a turn \u00e0 gauche";
+  const std::string with = dir.File("with.mfs");
+  WriteArchive(with, skeleton, clips, SmallBlocks(32));
+  auto reader = FrameFileReader::Open(with);
+  ASSERT_TRUE(reader.ok());
+  uint64_t first_frame = 0;
+  for (size_t clip_idx = 0; clip_idx < clips.size(); ++clip_idx) {
+    clips[clip_idx].info.first_frame = first_frame;
+    first_frame += clips[clip_idx].info.frame_count;
+    ExpectSameClipInfo(clips[clip_idx].info, (*reader)->clips()[clip_idx]);
+  }
+  // Without them, each record is as 1.0 wrote it: the file is shorter by exactly the three
+  // clips' fields (u64, name count u32, description length u32; the 5 names; the text).
+  for (ClipFrames& clip : clips) {
+    clip.info.source_first_frame = 0;
+    clip.info.source_joint_names.clear();
+    clip.info.description.clear();
+  }
+  const std::string without = dir.File("without.mfs");
+  WriteArchive(without, skeleton, clips, SmallBlocks(32));
+  const uint64_t names = 5 * 4 + 4 + 9 + 7 + 10 + 8;  // lengths and "Hips".."RightLeg"
+  const uint64_t description = std::string("walk, then a turn \u00e0 gauche").size();
+  EXPECT_EQ(std::filesystem::file_size(with) - std::filesystem::file_size(without),
+            3 * 16 + names + description);
+}
+
 TEST(FrameFileWriter, BlocksSpanClipBoundaries) {
   TempDir dir;
   const std::string path = dir.File("a.mfs");
