@@ -101,15 +101,39 @@ void ProgressReporter::Note(const std::string& message) {
   drawn_in_place_ = false;
 }
 
+double ProgressRate(uint64_t done, double elapsed_seconds) {
+  // No rate from the first moments of a stage: a stage reported first with work already done
+  // (reused, or faster than the clock) would show billions a second.
+  constexpr double kLeastElapsedForRate = 0.25;
+  return elapsed_seconds >= kLeastElapsedForRate ? static_cast<double>(done) / elapsed_seconds
+                                                 : 0.0;
+}
+
+std::string ProgressLine(const std::string& stage, const std::string& unit, uint64_t done,
+                         uint64_t total, double elapsed_seconds, bool final_line) {
+  const double rate = ProgressRate(done, elapsed_seconds);
+  const std::string rate_text = rate > 0 ? FormatCount(rate) + " " + unit + "/s" : "";
+  char line[256];
+  if (final_line) {
+    std::snprintf(line, sizeof line, "[%s] %s %s in %s%s%s%s", stage.c_str(),
+                  FormatCount(static_cast<double>(done)).c_str(), unit.c_str(),
+                  FormatSeconds(elapsed_seconds).c_str(), rate > 0 ? " (" : "", rate_text.c_str(),
+                  rate > 0 ? ")" : "");
+  } else {
+    const double percent = total > 0 ? 100.0 * static_cast<double>(done) / total : 0.0;
+    const double eta = rate > 0 && total >= done ? static_cast<double>(total - done) / rate : -1.0;
+    std::snprintf(line, sizeof line, "[%s] %s/%s %s (%.0f%%)%s%s  ETA %s", stage.c_str(),
+                  FormatCount(static_cast<double>(done)).c_str(),
+                  FormatCount(static_cast<double>(total)).c_str(), unit.c_str(), percent,
+                  rate > 0 ? "  " : "", rate_text.c_str(), FormatSeconds(eta).c_str());
+  }
+  return line;
+}
+
 void ProgressReporter::Draw(uint64_t done, bool final_line) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start_).count();
-  // No rate from the first moments of a stage: a stage reported first with work already done
-  // would show billions a second.
-  constexpr double kLeastElapsedForRate = 0.25;
-  const double rate = elapsed >= kLeastElapsedForRate || (final_line && elapsed > 0)
-                          ? static_cast<double>(done) / elapsed
-                          : 0.0;
+  const double rate = ProgressRate(done, elapsed);
   const double eta = rate > 0 && total_ >= done ? static_cast<double>(total_ - done) / rate : -1.0;
   if (mode_ == ProgressMode::kJson) {
     nlohmann::json line = {{"stage", stage_},      {"done", done},          {"total", total_},
@@ -118,18 +142,8 @@ void ProgressReporter::Draw(uint64_t done, bool final_line) {
     std::fprintf(stderr, "%s\n", line.dump().c_str());
     return;
   }
-  char line[256];
-  if (final_line) {
-    std::snprintf(line, sizeof line, "[%s] %s %s in %s (%s %s/s)", stage_.c_str(),
-                  FormatCount(static_cast<double>(done)).c_str(), unit_.c_str(),
-                  FormatSeconds(elapsed).c_str(), FormatCount(rate).c_str(), unit_.c_str());
-  } else {
-    const double percent = total_ > 0 ? 100.0 * static_cast<double>(done) / total_ : 0.0;
-    std::snprintf(line, sizeof line, "[%s] %s/%s %s (%.0f%%)  %s %s/s  ETA %s", stage_.c_str(),
-                  FormatCount(static_cast<double>(done)).c_str(),
-                  FormatCount(static_cast<double>(total_)).c_str(), unit_.c_str(), percent,
-                  FormatCount(rate).c_str(), unit_.c_str(), FormatSeconds(eta).c_str());
-  }
+  const std::string text = ProgressLine(stage_, unit_, done, total_, elapsed, final_line);
+  const char* line = text.c_str();
   if (is_terminal_) {
     std::fprintf(stderr, "\r\033[K%s%s", line, final_line ? "\n" : "");
     drawn_in_place_ = !final_line;

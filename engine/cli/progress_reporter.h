@@ -48,4 +48,13 @@ class ProgressReporter {
 // Parses "auto" | "json" | "quiet" (also used for --quiet). Returns false on other text.
 bool ParseProgressMode(const std::string& text, ProgressMode* mode);
 
+// Units a second after `elapsed_seconds`, or 0 (not shown) before a quarter of a second: a stage
+// that starts with its work done (reused) or ends within the clock's noise has no human rate.
+double ProgressRate(uint64_t done, double elapsed_seconds);
+// The line drawn for a stage: "[trellis] 1.20M/2.40M columns (50%)  40.0k columns/s  ETA 30.0s"
+// while it runs, "[trellis] 2.40M columns in 1m00s (40.0k columns/s)" at its end; no rate while
+// ProgressRate gives none.
+std::string ProgressLine(const std::string& stage, const std::string& unit, uint64_t done,
+                         uint64_t total, double elapsed_seconds, bool final_line);
+
 }  // namespace motif

@@ -384,6 +384,9 @@ TEST(MotifmineTool, SkipBadStoresTheGoodTakesNamesTheBadOnesAndExitsThree) {
                                  " --skip-bad --quiet --no-report");
   EXPECT_EQ(mine.exit_code, 3) << mine.output;
   EXPECT_NE(mine.output.find("skipped: " + bad), std::string::npos) << mine.output;
+  // Counts read as words do (one clip, three takes), the rate as a number.
+  EXPECT_NE(mine.output.find(" at 120 fps) in 1 clip\n"), std::string::npos) << mine.output;
+  EXPECT_NE(mine.output.find("skipped      3 bad takes"), std::string::npos) << mine.output;
   EXPECT_TRUE(std::filesystem::exists(dir.File("m/motifs.json")));
   // Without --skip-bad one bad take stops the import, and nothing is stored.
   EXPECT_EQ(RunTool("import " + dir.File("b.mfs") + " " + dir.File("takes") + " --quiet").exit_code,
