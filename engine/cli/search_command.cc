@@ -77,6 +77,12 @@ nlohmann::json SearchJson(const SearchResult& result, const FrameFileReader& rea
   json["motifs"] = info.motifs;
   json["windows"] = result.windows;
   json["shorter_takes"] = result.shorter_takes;  // left out: fewer words than the query
+  nlohmann::json left_out = nlohmann::json::array();
+  for (uint32_t clip : result.shorter_clips) {
+    left_out.push_back(
+        {{"clip", reader.clips()[clip].name}, {"reason", "fewer motion words than the query"}});
+  }
+  json["left_out"] = left_out;
   json["seconds"] = info.seconds;
   nlohmann::json matches = nlohmann::json::array();
   for (size_t rank = 0; rank < result.matches.size(); ++rank) {
@@ -253,9 +259,18 @@ int RunSearch(const std::vector<std::string>& args) {
   std::printf("  compared     %s windows in %.2fs\n", WithCommas(result->windows).c_str(),
               info.seconds);
   if (result->shorter_takes > 0) {
-    std::printf("  left out     %s shorter than the query (fewer words than its %s)\n",
+    // Named, up to a screenful; the JSON's "left_out" lists them all.
+    constexpr size_t kNamed = 10;
+    std::string names;
+    for (size_t idx = 0; idx < result->shorter_clips.size() && idx < kNamed; ++idx) {
+      names += (idx ? ", " : ": ") + frames.clips()[result->shorter_clips[idx]].name;
+    }
+    if (result->shorter_clips.size() > kNamed) {
+      names += " and " + WithCommas(result->shorter_clips.size() - kNamed) + " more";
+    }
+    std::printf("  left out     %s shorter than the query (fewer words than its %s)%s\n",
                 CountOf(result->shorter_takes, "take").c_str(),
-                WithCommas(info.query_words).c_str());
+                WithCommas(info.query_words).c_str(), names.c_str());
   }
   std::printf("  wrote        %s, %s\n", json_path.c_str(), html_path.c_str());
   return kExitOk;

@@ -139,7 +139,9 @@ Result<SearchResult> SlidingWindowSearch(const FrameFileReader& reader, const Lo
   SearchResult result = Rank(reader, words, best, q, top);
   result.windows = windows;
   for (size_t clip = 0; clip < clips; ++clip) {
-    result.shorter_takes += words.signatures.clip_words[clip] < q;
+    if (words.signatures.clip_words[clip] >= q) continue;
+    ++result.shorter_takes;
+    result.shorter_clips.push_back(static_cast<uint32_t>(clip));
   }
   return result;
 }

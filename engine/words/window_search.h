@@ -48,6 +48,7 @@ struct SearchResult {
   std::vector<std::vector<float>> profiles;  // per match: the EMD of every window of its take
   uint64_t windows = 0;                      // windows compared in all
   uint64_t shorter_takes = 0;  // sliding window: takes of fewer words than the query, left out
+  std::vector<uint32_t> shorter_clips;  // those takes (clip indices, in archive order)
 };
 
 // `top` >= 1 takes. InvalidArgument: an empty query, top 0, a motif id out of range.

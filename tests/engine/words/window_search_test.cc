@@ -137,6 +137,12 @@ TEST(WindowSearch, WholeTakesAndErrors) {
   EXPECT_GT(shorter, 0u);
   EXPECT_EQ(long_query->shorter_takes, shorter);
   EXPECT_EQ(long_query->matches.size(), clip_words.size() - shorter);
+  // And named: exactly the clips with fewer words, in archive order.
+  std::vector<uint32_t> expected;
+  for (uint32_t clip = 0; clip < clip_words.size(); ++clip) {
+    if (clip_words[clip] < longest) expected.push_back(clip);
+  }
+  EXPECT_EQ(long_query->shorter_clips, expected);
 }
 
 }  // namespace
