@@ -29,7 +29,8 @@ namespace {
 Result<std::vector<uint32_t>> QueryFileMotifs(const std::string& path,
                                               const FrameFileReader& reader,
                                               const LoadedWords& words,
-                                              const std::vector<float>& weights, int threads) {
+                                              const std::vector<float>& weights, int threads,
+                                              Take* fitted) {
   ImportOptions import_options;
   MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources, DiscoverTakes({path}, import_options));
   if (sources.size() != 1) {
@@ -40,7 +41,8 @@ Result<std::vector<uint32_t>> QueryFileMotifs(const std::string& path,
   if (Status status = ConformToSkeleton(reader.skeleton(), &take); !status.ok()) {
     return status.WithContext(path + ": does not fit the archive's skeleton");
   }
-  const ClipFrames clip = TakeToClipFrames(ResampleTake(take, reader.fps()));
+  *fitted = ResampleTake(take, reader.fps());
+  const ClipFrames clip = TakeToClipFrames(*fitted);
   MOTIF_ASSIGN_OR_RETURN(ClipWords clip_words,
                          ClipWords::FromRows(clip.rows, reader.fps(), reader.layout(), weights,
                                              words.signatures.words));
@@ -170,6 +172,7 @@ int RunSearch(const std::vector<std::string>& args) {
   const auto start_time = std::chrono::steady_clock::now();
   SearchPageInfo info;
   info.archive = archive;
+  Take query_take;  // a file query, fitted to the archive: its keyframes head the page
   info.motifs = words->motifs.motif_count();
   Result<SearchResult> result = Status::InvalidArgument("no query");
   std::string query_kind;
@@ -223,12 +226,13 @@ int RunSearch(const std::vector<std::string>& args) {
         LoadDistanceWeights(frames.skeleton(), vm["weights"].as<std::string>());
     if (!weights.ok()) return fail(weights.status());
     Result<std::vector<uint32_t>> motifs =
-        QueryFileMotifs(query_file, frames, *words, *weights, threads);
+        QueryFileMotifs(query_file, frames, *words, *weights, threads, &query_take);
     if (!motifs.ok()) return fail(motifs.status());
     WindowQuery query;
     query.motifs = std::move(motifs.value());
     info.query_words = query.motifs.size();
     info.query_text = "file " + query_file;
+    info.query_take = &query_take;
     query_kind = "file";
     result = SlidingWindowSearch(frames, *words, query, top, threads);
   }

@@ -43,17 +43,24 @@ Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const Cli
   // meaningless; each figure is centred on its own root below, which cancels it. Height,
   // heading and joint rotations come straight from each row.
   const Take take = ClipFramesToTake(reader_.skeleton(), clip, rows.data(), keyframes);
-  std::vector<std::vector<Eigen::Vector3d>> positions(keyframes);
+  std::vector<size_t> all(keyframes);
+  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) all[key_idx] = key_idx;
+  return ProjectTakeFrames(take, all);
+}
+
+std::vector<std::vector<FigurePoint>> KeyframeFigures::ProjectTakeFrames(
+    const Take& take, const std::vector<size_t>& frames) const {
+  std::vector<std::vector<Eigen::Vector3d>> positions(frames.size());
   double floor = std::numeric_limits<double>::max();
-  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-    positions[key_idx] = TakeFramePositions(take, key_idx);
+  for (size_t key_idx = 0; key_idx < frames.size(); ++key_idx) {
+    positions[key_idx] = TakeFramePositions(take, frames[key_idx]);
     for (const Eigen::Vector3d& point : positions[key_idx]) floor = std::min(floor, point.y());
   }
   FigureProjection projection = projection_;
-  projection.heading_rad = HeadingOf(take.rotation(0, 0));
-  std::vector<std::vector<FigurePoint>> projected(keyframes);
-  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-    const Eigen::Vector3d& root = take.root_positions[key_idx];
+  projection.heading_rad = HeadingOf(take.rotation(frames.front(), 0));
+  std::vector<std::vector<FigurePoint>> projected(frames.size());
+  for (size_t key_idx = 0; key_idx < frames.size(); ++key_idx) {
+    const Eigen::Vector3d& root = take.root_positions[frames[key_idx]];
     projection.origin = Eigen::Vector3d(root.x(), floor, root.z());
     projected[key_idx] = ProjectFigure(layout_, positions[key_idx], projection);
   }
@@ -71,6 +78,16 @@ std::vector<uint64_t> KeyframeFigures::KeyframeFrames(uint64_t start, uint64_t e
                                         static_cast<double>(length - 1) / (keyframes_ - 1)))));
   }
   return frames;
+}
+
+std::string KeyframeFigures::TakeSvg(const Take& take) const {
+  std::vector<size_t> frames;
+  for (uint64_t frame : KeyframeFrames(0, take.frame_count())) frames.push_back(frame);
+  std::string svg;
+  for (const std::vector<FigurePoint>& points : ProjectTakeFrames(take, frames)) {
+    svg += StickFigureSvg(layout_, points, projection_.width_px, projection_.height_px);
+  }
+  return svg;
 }
 
 Result<std::string> KeyframeFigures::Svg(const ClipInfo& clip, uint64_t start, uint64_t end) {

@@ -30,10 +30,17 @@ class KeyframeFigures {
                                                         uint64_t end);
   // The clip frames Project draws for [start, end): the first and last and evenly spaced ones.
   std::vector<uint64_t> KeyframeFrames(uint64_t start, uint64_t end) const;
+  // The keyframes of a whole take in the archive's skeleton (a query file fitted to it), as SVG
+  // strings side by side, drawn as an instance's are.
+  std::string TakeSvg(const Take& take) const;
   // The same, as SVG strings side by side.
   Result<std::string> Svg(const ClipInfo& clip, uint64_t start, uint64_t end);
 
  private:
+  // The figures of frames `frames` of `take`, each centred on its root, all over the lowest
+  // point among them, the heading of the first removed.
+  std::vector<std::vector<FigurePoint>> ProjectTakeFrames(const Take& take,
+                                                          const std::vector<size_t>& frames) const;
   Status EnsureCached(uint64_t global_start, uint64_t global_end);
 
   const FrameFileReader& reader_;

@@ -64,6 +64,11 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
     html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(clip.name) + " " +
             std::to_string(info.query_start) + "\u2013" + std::to_string(info.query_end) +
             "</div><div class=\"figs\">" + svg + "</div></div>\n";
+  } else if (info.query_take != nullptr && info.query_take->frame_count() > 0) {
+    const std::string svg = figures.TakeSvg(*info.query_take);
+    html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(info.query_text) + ", " +
+            HtmlCount(info.query_take->frame_count(), "frame") + " at the archive's rate" +
+            "</div><div class=\"figs\">" + svg + "</div></div>\n";
   }
   html +=
       "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "

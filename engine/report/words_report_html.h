@@ -16,6 +16,7 @@
 #include "engine/words/take_classification.h"
 #include "engine/words/window_search.h"
 #include "formats/frame_file/frame_file_reader.h"
+#include "formats/motion/take.h"
 
 namespace motif {
 
@@ -26,6 +27,7 @@ struct SearchPageInfo {
   uint32_t query_clip = 0;  // when query_in_archive: the clip and frames drawn
   uint64_t query_start = 0;
   uint64_t query_end = 0;
+  const Take* query_take = nullptr;  // a file query fitted to the archive (drawn), or null
   uint64_t query_words = 0;
   uint32_t motifs = 0;
   double seconds = 0;

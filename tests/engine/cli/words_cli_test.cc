@@ -100,6 +100,18 @@ TEST_F(WordsCliTest, SearchFindsAnExportedRangeAndTheWholeTake) {
   const int64_t start = json["matches"][0]["start"].get<int64_t>();
   const int64_t end = json["matches"][0]["end"].get<int64_t>();
   EXPECT_LT(std::max<int64_t>(start, 600), std::min<int64_t>(end, 1200)) << file.output;
+  // The page draws the query file's keyframes above the matches, as it draws a clip range's.
+  const std::string page = ReadFileToString(dir_->File("file/search.html")).value();
+  const size_t matches_at = page.find("id=\"matches\"");
+  ASSERT_NE(matches_at, std::string::npos);
+  const std::string query_part = page.substr(0, matches_at);
+  EXPECT_NE(query_part.find("file " + dir_->File("q.bvh") + ", 600 frames"), std::string::npos);
+  size_t figures = 0;
+  for (size_t at = query_part.find("<svg class=\"fig\""); at != std::string::npos;
+       at = query_part.find("<svg class=\"fig\"", at + 1)) {
+    ++figures;
+  }
+  EXPECT_EQ(figures, 5u) << "the query's keyframes";
   // The whole take: every other take ranked.
   RunResult whole = RunTool("search " + archive_ + " --clip synth_000001 --top 100 --out " +
                             dir_->File("whole") + " --quiet");
