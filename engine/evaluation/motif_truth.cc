@@ -3,6 +3,7 @@
 #include <charconv>
 #include <sstream>
 
+#include <boost/algorithm/string/split.hpp>
 #include <nlohmann/json.hpp>
 
 #include "common/file_util.h"
@@ -15,14 +16,8 @@ namespace {
 
 std::vector<std::string> SplitTabs(const std::string& line) {
   std::vector<std::string> fields;
-  size_t begin = 0;
-  while (true) {
-    const size_t tab = line.find('\t', begin);
-    fields.push_back(
-        line.substr(begin, tab == std::string::npos ? std::string::npos : tab - begin));
-    if (tab == std::string::npos) return fields;
-    begin = tab + 1;
-  }
+  boost::algorithm::split(fields, line, [](char c) { return c == '\t'; });
+  return fields;
 }
 
 bool ParseFrame(const std::string& text, uint64_t* frame) {

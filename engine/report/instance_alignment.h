@@ -19,8 +19,9 @@ inline constexpr uint64_t kMaxAlignmentCells = uint64_t{4} << 20;
 
 // For each of the reference's samples, the instance's sample shown with it: non-decreasing,
 // from 0 to instance_samples - 1 (of the instance samples the DTW path pairs with that
-// reference sample, the nearest; the earliest of equals). `reference` and `instance` hold the samples' quaternion rows: 4 floats per joint of
-// `skeleton`, `stride` floats per sample (the archive's row layout).
+// reference sample, the nearest; the earliest of equals). `reference` and `instance` hold the
+// samples' quaternion rows: 4 floats per joint of `skeleton`, `stride` floats per sample (the
+// archive's row layout).
 std::vector<uint32_t> AlignToReference(const Skeleton& skeleton, size_t stride,
                                        const std::vector<float>& reference,
                                        uint32_t reference_samples,

@@ -35,7 +35,7 @@ std::string Base64(const uint8_t* bytes, size_t size) {
 }
 
 InstancePlayback::InstancePlayback(const FrameFileReader& reader, const StickFigureLayout& layout)
-    : reader_(reader), layout_(layout) {
+    : reader_(reader), layout_(layout), cache_(reader) {
   step_ = static_cast<uint32_t>(std::max(1.0, std::round(reader.fps() / kPlaybackFps)));
   const Skeleton& skeleton = reader.skeleton();
   // Pose points: the joints, then one end site per joint that has one, in joint order.
@@ -48,19 +48,6 @@ InstancePlayback::InstancePlayback(const FrameFileReader& reader, const StickFig
   height_ = std::max(1e-9, RestPoseExtent(skeleton));
 }
 
-Status InstancePlayback::EnsureCached(uint64_t global_start, uint64_t global_end) {
-  if (global_start >= cache_first_ && global_end <= cache_first_ + cache_count_) {
-    return Status::Ok();
-  }
-  constexpr uint64_t kChunkFrames = 4096;
-  const uint64_t count = std::min(std::max(global_end - global_start, kChunkFrames),
-                                  reader_.frame_count() - global_start);
-  MOTIF_RETURN_IF_ERROR(reader_.ReadFrames(global_start, count, &cache_));
-  cache_first_ = global_start;
-  cache_count_ = count;
-  return Status::Ok();
-}
-
 Result<PlaybackInstance> InstancePlayback::Encode(const ClipInfo& clip, uint64_t start,
                                                   uint64_t end) {
   PlaybackInstance instance;
@@ -68,9 +55,9 @@ Result<PlaybackInstance> InstancePlayback::Encode(const ClipInfo& clip, uint64_t
   instance.end = end;
   instance.samples = static_cast<uint32_t>((end - start - 1) / step_ + 1);
   // Consecutive frames, so that the root's path integrates as in the clip.
-  MOTIF_RETURN_IF_ERROR(EnsureCached(clip.first_frame + start, clip.first_frame + end));
-  const size_t stride = reader_.layout().stride();
-  const float* rows = &cache_[(clip.first_frame + start - cache_first_) * stride];
+  MOTIF_ASSIGN_OR_RETURN(const float* rows,
+                         cache_.Rows(clip.first_frame + start, clip.first_frame + end));
+  const size_t stride = cache_.stride();
   const Take take = ClipFramesToTake(reader_.skeleton(), clip, rows, end - start);
   std::vector<Eigen::Vector3d> points;
   points.reserve(static_cast<size_t>(instance.samples) * layout_.points.size());

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "engine/report/frame_chunk_cache.h"
 #include "engine/report/stick_figure_svg.h"
 #include "formats/frame_file/frame_file_reader.h"
 
@@ -56,14 +57,9 @@ class InstancePlayback {
   std::string FigureJson() const;
 
  private:
-  // Rows of global frames [global_start, global_end) in cache_ from cache_first_.
-  Status EnsureCached(uint64_t global_start, uint64_t global_end);
-
   const FrameFileReader& reader_;
   const StickFigureLayout& layout_;
-  std::vector<float> cache_;
-  uint64_t cache_first_ = 0;
-  uint64_t cache_count_ = 0;
+  FrameChunkCache cache_;
   uint32_t step_ = 1;
   std::vector<uint8_t> sides_;  // per layout point
   double height_ = 1;

@@ -8,19 +8,13 @@
 #include "formats/motion/quaternion_math.h"
 
 namespace motif {
-namespace {
-
-// Frames read from the archive at a time: ranges are visited in archive order, so one chunk
-// usually serves several of them, and a column block is decoded about once.
-constexpr uint64_t kChunkFrames = 4096;
-
-}  // namespace
 
 KeyframeFigures::KeyframeFigures(const FrameFileReader& reader, FigureView view, uint32_t keyframes)
     : reader_(reader),
       keyframes_(std::max<uint32_t>(1, keyframes)),
       layout_(MakeStickFigureLayout(reader.skeleton())),
-      stride_(reader.layout().stride()) {
+      stride_(reader.layout().stride()),
+      cache_(reader) {
   projection_.view = view;
   projection_.pixels_per_unit =
       FigureScaleFor(reader.skeleton(), projection_.height_px, projection_.margin_px);
@@ -32,11 +26,11 @@ Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const Cli
   const uint32_t keyframes = keyframes_;
   const uint64_t global_start = clip.first_frame + start;
   const uint64_t global_end = clip.first_frame + end;
-  MOTIF_RETURN_IF_ERROR(EnsureCached(global_start, global_end));
+  MOTIF_ASSIGN_OR_RETURN(const float* cached, cache_.Rows(global_start, global_end));
   std::vector<float> rows(keyframes * stride_);
   const std::vector<uint64_t> frames = KeyframeFrames(start, end);
   for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-    const float* row = &cache_[(clip.first_frame + frames[key_idx] - cache_first_) * stride_];
+    const float* row = cached + (frames[key_idx] - start) * stride_;
     std::copy(row, row + stride_, rows.begin() + key_idx * stride_);
   }
   // The keyframes are not consecutive, so the root's integrated horizontal path is
@@ -98,18 +92,6 @@ Result<std::string> KeyframeFigures::Svg(const ClipInfo& clip, uint64_t start, u
     svg += StickFigureSvg(layout_, points, projection_.width_px, projection_.height_px);
   }
   return svg;
-}
-
-Status KeyframeFigures::EnsureCached(uint64_t global_start, uint64_t global_end) {
-  if (global_start >= cache_first_ && global_end <= cache_first_ + cache_count_) {
-    return Status::Ok();
-  }
-  const uint64_t count = std::min(std::max(global_end - global_start, kChunkFrames),
-                                  reader_.frame_count() - global_start);
-  MOTIF_RETURN_IF_ERROR(reader_.ReadFrames(global_start, count, &cache_));
-  cache_first_ = global_start;
-  cache_count_ = count;
-  return Status::Ok();
 }
 
 }  // namespace motif

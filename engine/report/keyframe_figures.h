@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "engine/report/frame_chunk_cache.h"
 #include "engine/report/stick_figure_svg.h"
 #include "formats/frame_file/frame_file_reader.h"
 
@@ -41,16 +42,13 @@ class KeyframeFigures {
   // point among them, the heading of the first removed.
   std::vector<std::vector<FigurePoint>> ProjectTakeFrames(const Take& take,
                                                           const std::vector<size_t>& frames) const;
-  Status EnsureCached(uint64_t global_start, uint64_t global_end);
 
   const FrameFileReader& reader_;
   uint32_t keyframes_ = 5;
   StickFigureLayout layout_;
   FigureProjection projection_;
   size_t stride_ = 0;
-  std::vector<float> cache_;
-  uint64_t cache_first_ = 0;
-  uint64_t cache_count_ = 0;
+  FrameChunkCache cache_;
 };
 
 }  // namespace motif

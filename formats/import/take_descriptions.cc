@@ -4,25 +4,12 @@
 #include <sstream>
 #include <vector>
 
+#include <boost/algorithm/string/split.hpp>
+
 #include "common/file_util.h"
 #include "common/utf8.h"
 
 namespace motif {
-namespace {
-
-std::vector<std::string> SplitTabs(const std::string& line) {
-  std::vector<std::string> fields;
-  size_t start = 0;
-  while (true) {
-    const size_t tab = line.find('\t', start);
-    fields.push_back(
-        line.substr(start, tab == std::string::npos ? std::string::npos : tab - start));
-    if (tab == std::string::npos) return fields;
-    start = tab + 1;
-  }
-}
-
-}  // namespace
 
 Result<std::unordered_map<std::string, std::string>> ReadTakeDescriptions(const std::string& path) {
   MOTIF_ASSIGN_OR_RETURN(std::string text, ReadFileToString(path, uint64_t{64} << 20));
@@ -36,7 +23,8 @@ Result<std::unordered_map<std::string, std::string>> ReadTakeDescriptions(const 
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
-    const std::vector<std::string> fields = SplitTabs(line);
+    std::vector<std::string> fields;
+    boost::algorithm::split(fields, line, [](char c) { return c == '\t'; });
     const std::string where = path + ":" + std::to_string(line_number);
     if (file_column < 0) {  // the header
       for (size_t idx = 0; idx < fields.size(); ++idx) {
