@@ -478,7 +478,11 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     }
     const bool eager = motif_idx < options.eager_motifs;
     html += "</p><div class=\"playbox\">";
-    if (playback.motifs[motif_idx].empty()) {
+    if (motif.instances.empty()) {
+      // nothing to play
+    } else if (options.playback_bytes == 0) {
+      html += "<p class=\"note\">No player in this page (<code>--playback-mb 0</code>).</p>";
+    } else if (playback.motifs[motif_idx].empty()) {
       html += "<p class=\"note\">Playback of this motif is not in the page (over its " +
               HtmlBytes(options.playback_bytes) +
               " of playback data): <code>motifmine report DIR --playback-mb N</code> raises "

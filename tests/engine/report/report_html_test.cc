@@ -300,6 +300,7 @@ TEST_F(ReportHtmlTest, ThousandMotifsStaySmall) {
   ASSERT_TRUE(page.ok()) << page.status().ToString();
   EXPECT_LT(page->size(), 5u * 1000 * 1000);
   EXPECT_EQ(CountOf(*page, "class=\"play\""), 0u);
+  EXPECT_EQ(CountOf(*page, "No player in this page"), large.motifs.size());
 
   const auto started = std::chrono::steady_clock::now();
   auto html = ReportHtmlText(large, *reader_, {});
