@@ -44,7 +44,8 @@ var pp=el('button','pp','&#9654; play'),scrub=el('input','scrub'),lab=el('span',
 sp=el('select','speed','<option value="0.25">0.25&times;</option><option value="0.5">0.5&times;</option><option value="1" selected>1&times;</option><option value="2">2&times;</option>'),
 hd=el('label','heading','<input type="checkbox"> keep heading'),is=el('select','inst');
 pp.type='button';scrub.type='range';scrub.min=0;scrub.step=1;
-for(i=0;i<I.length;i++){var o=el('option',null,(i+1)+': '+I[i].clip+' ['+I[i].start+', '+I[i].end+')');o.value=i;is.appendChild(o);}
+// Clip names are text, never markup.
+for(i=0;i<I.length;i++){var o=el('option');o.textContent=(i+1)+': '+I[i].clip+' ['+I[i].start+', '+I[i].end+')';o.value=i;is.appendChild(o);}
 bar.appendChild(pp);bar.appendChild(scrub);bar.appendChild(lab);bar.appendChild(sp);bar.appendChild(hd);bar.appendChild(is);
 bar.appendChild(el('span','plegend','<b style="color:'+COL[1]+'">left</b> / <b style="color:'+COL[2]+'">right</b> limbs; drag the view to turn it'));
 var main=el('canvas','pmain'),cmd=el('code','pcmd'),row=el('div','psmall'),smalls=[];main.width=480;main.height=360;

@@ -129,15 +129,16 @@ std::string PlaybackJson(const MotifsJsonMotif& motif, const std::vector<Playbac
                          {"points", data.points_base64}});
   }
   std::string text = nlohmann::json({{"archive", archive}, {"instances", instances}}).dump();
-  for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
-    text.replace(at, 2, "<\\/");
+  // '<' only occurs inside JSON strings: as \u003c nothing in them can end or open a tag.
+  for (size_t at = text.find('<'); at != std::string::npos; at = text.find('<', at + 6)) {
+    text.replace(at, 1, "\\u003c");
   }
   return text;
 }
 
 // The player's data for every instance of the motifs within the budget, per motif a JSON text
 // ("" for the others), and the figure. The instances are encoded in archive order (each block
-// decoded about once), then grouped by motif. No "</" inside (they go in script blocks).
+// decoded about once), then grouped by motif. No '<' inside (they go in script blocks).
 Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameFileReader& reader,
                                     const StickFigureLayout& layout, const std::string& archive,
                                     const std::unordered_map<std::string, const ClipInfo*>& clips,

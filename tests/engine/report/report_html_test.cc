@@ -161,6 +161,8 @@ TEST_F(ReportHtmlTest, EscapesClipNames) {
   ASSERT_TRUE(html.ok()) << html.status().ToString();
   EXPECT_EQ(html->find(kOddName), std::string::npos);
   EXPECT_NE(html->find("take&lt;&amp;&quot;&gt;&#39;1"), std::string::npos);
+  // In the player's JSON the name is a JSON string whose '<' cannot end its script block.
+  EXPECT_NE(html->find(R"("clip":"take\u003c&\">'1")"), std::string::npos);
   EXPECT_EQ(CheckTagBalance(*html), "");
   EXPECT_EQ(HtmlEscape("<a href=\"x\">&'"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;");
 }
