@@ -117,9 +117,11 @@ Result<MinePipelineResult> MinePipeline::Run() {
   MOTIF_RETURN_IF_ERROR(MotifStages());
   MOTIF_RETURN_IF_ERROR(ScoreStage());
   result_.total_seconds = SecondsSince(job_start);
+  // The peak of the mining, before the report: the one figure the report, run.json and the
+  // summary show, so that `report` run again writes the page `mine` wrote.
+  result_.peak_memory_bytes = PeakResidentBytes();
   MOTIF_RETURN_IF_ERROR(ReportStage());
   result_.total_seconds = SecondsSince(job_start);
-  result_.peak_memory_bytes = PeakResidentBytes();
   MOTIF_RETURN_IF_ERROR(WriteRunStage());
   return std::move(result_);
 }
@@ -271,7 +273,7 @@ Status MinePipeline::ReportStage() {
   info.parameters_text = ParametersText();
   for (const MineStageTime& time : result_.times)
     info.timings.push_back({time.stage, time.seconds});
-  info.peak_memory_bytes = PeakResidentBytes();
+  info.peak_memory_bytes = result_.peak_memory_bytes;
   info.planted_score = result_.score;
   info.truth_path = result_.truth_path;
   result_.report_path = Join(options_.out_dir, "report.html");

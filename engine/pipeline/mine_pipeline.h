@@ -78,7 +78,7 @@ struct MinePipelineResult {
   std::vector<MineStageTime> times;        // in stage order
   std::vector<std::string> skipped_takes;  // skip_bad: the takes passed over, with the reason
   double total_seconds = 0;
-  uint64_t peak_memory_bytes = 0;
+  uint64_t peak_memory_bytes = 0;  // peak resident memory up to the report
 };
 
 class MinePipeline {
