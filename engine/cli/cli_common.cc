@@ -1,4 +1,5 @@
 #include "engine/cli/cli_common.h"
+#include "engine/report/report_html.h"
 
 #include <cmath>
 #include <cstdio>
@@ -272,6 +273,27 @@ Status PauseOptionsFrom(const boost::program_options::variables_map& vm, PauseOp
   options->max_speed = vm["pause-speed"].as<double>();
   options->min_seconds = vm["pause-seconds"].as<double>();
   return ValidatePauseOptions(*options);
+}
+
+void AddPlaybackOption(CommandSpec& spec) {
+  spec.options.add_options()(
+      "playback-mb",
+      boost::program_options::value<uint32_t>()->default_value(
+          static_cast<uint32_t>(ReportOptions().playback_bytes >> 20)),
+      "MB of playback data in report.html (the player of every instance), motifs in rank "
+      "order; 0: none");
+}
+
+bool PlaybackBytesFrom(const CommandSpec& spec, const boost::program_options::variables_map& vm,
+                       uint64_t* bytes) {
+  const uint32_t megabytes = vm["playback-mb"].as<uint32_t>();
+  if (megabytes > 4096) {
+    std::fprintf(stderr, "motifmine %s: --playback-mb must be 0 to 4096, not %u\nusage: %s\n",
+                 spec.name.c_str(), megabytes, spec.usage.c_str());
+    return false;
+  }
+  *bytes = uint64_t{megabytes} << 20;
+  return true;
 }
 
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy) {

@@ -85,6 +85,11 @@ Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisO
 // (engine/cluster/pauses.h). PauseOptionsFrom reads them back; InvalidArgument naming the flag.
 void AddPauseOptions(CommandSpec& spec);
 Status PauseOptionsFrom(const boost::program_options::variables_map& vm, PauseOptions* options);
+// --playback-mb of `report` and `mine`: the report's player data budget (ReportOptions).
+void AddPlaybackOption(CommandSpec& spec);
+// Its value in bytes; false after a usage error naming the flag (exit 2) above 4096 MB.
+bool PlaybackBytesFrom(const CommandSpec& spec, const boost::program_options::variables_map& vm,
+                       uint64_t* bytes);
 // --first-frame: "auto", "keep" or "drop". InvalidArgument otherwise.
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy);
 

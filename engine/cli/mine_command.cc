@@ -152,6 +152,7 @@ int RunMine(const std::vector<std::string>& args) {
       "descriptions", po::value<std::string>()->default_value(""),
       "import: a tab-separated index with 'file' and 'description' columns; the report shows "
       "each take's description")("no-report", "do not write report.html");
+  AddPlaybackOption(spec);
   AddEpsilonRuleOptions(spec);
   AddPauseOptions(spec);
   AddProgressOptions(spec);
@@ -171,6 +172,7 @@ int RunMine(const std::vector<std::string>& args) {
   options.skip_bad = vm.count("skip-bad") > 0;
   options.descriptions_path = vm["descriptions"].as<std::string>();
   options.write_report = vm.count("no-report") == 0;
+  if (!PlaybackBytesFrom(spec, vm, &options.report_playback_bytes)) return kExitUsage;
   options.synth.frames = vm["synth-frames"].as<uint64_t>();
   options.synth.motifs = vm["synth-motifs"].as<uint32_t>();
   const auto fail = [](const Status& status) { return ReportError("mine", status); };

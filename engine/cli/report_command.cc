@@ -38,11 +38,9 @@ int RunReport(const std::vector<std::string>& args) {
       "instances drawn per motif")(
       "eager", po::value<uint32_t>()->default_value(defaults.eager_motifs),
       "motifs whose figures are written as SVG; the rest are drawn by the page's script")(
-      "playback-mb",
-      po::value<uint32_t>()->default_value(static_cast<uint32_t>(defaults.playback_bytes >> 20)),
-      "MB of playback data in the page (the player of every instance), motifs in rank order; "
-      "0: none")("truth", po::value<std::string>()->default_value(""),
-                 "a synthetic archive's truth file: add recall, precision and ARI to the overview");
+      "truth", po::value<std::string>()->default_value(""),
+      "a synthetic archive's truth file: add recall, precision and ARI to the overview");
+  AddPlaybackOption(spec);
   spec.positional = {{"dir", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
@@ -56,11 +54,7 @@ int RunReport(const std::vector<std::string>& args) {
   options.keyframes = vm["keyframes"].as<uint32_t>();
   options.instances_per_motif = vm["instances"].as<uint32_t>();
   options.eager_motifs = vm["eager"].as<uint32_t>();
-  const uint32_t playback_mb = vm["playback-mb"].as<uint32_t>();
-  if (playback_mb > 4096) {
-    return ReportError("report", Status::InvalidArgument("--playback-mb must be 0 to 4096"));
-  }
-  options.playback_bytes = uint64_t{playback_mb} << 20;
+  if (!PlaybackBytesFrom(spec, vm, &options.playback_bytes)) return kExitUsage;
   if (options.keyframes == 0 || options.keyframes > 50) {
     return ReportError("report", Status::InvalidArgument("--keyframes must be 1 to 50"));
   }

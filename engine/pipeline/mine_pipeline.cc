@@ -277,7 +277,10 @@ Status MinePipeline::ReportStage() {
   info.planted_score = result_.score;
   info.truth_path = result_.truth_path;
   result_.report_path = Join(options_.out_dir, "report.html");
-  MOTIF_RETURN_IF_ERROR(WriteReportHtml(result_.report_path, result_.document, *archive_, info));
+  ReportOptions report_options;
+  report_options.playback_bytes = options_.report_playback_bytes;
+  MOTIF_RETURN_IF_ERROR(
+      WriteReportHtml(result_.report_path, result_.document, *archive_, info, report_options));
   result_.times.push_back({"report", SecondsSince(start), false});
   return Status::Ok();
 }

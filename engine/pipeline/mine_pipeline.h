@@ -26,6 +26,7 @@
 #include "engine/cluster/motifs_json.h"
 #include "engine/evaluation/planted_motif_score.h"
 #include "engine/grow/paths_builder.h"
+#include "engine/report/report_html.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "engine/trellis/trellis_builder.h"
 
@@ -47,6 +48,7 @@ struct MinePipelineOptions {
   uint64_t seed = 1;                 // every random choice (trellis, cluster, synth)
   int threads = 0;                   // 0: all cores
   bool write_report = true;          // OUT/report.html
+  uint64_t report_playback_bytes = ReportOptions().playback_bytes;  // its player's data budget
   // (stage, done, total, unit) as the run goes: stages "import", "synth", "trellis features",
   // "trellis eps", "trellis", "grow", "cluster"; not called for a stage that is reused.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total,

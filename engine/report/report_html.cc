@@ -545,8 +545,14 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     }
     html += "],\"motifs\":{\n" + lazy_json + "}}</script>\n";
   }
-  // The player's data after the page's content, decoded only when a player opens.
-  html += "<script type=\"application/json\" id=\"play-figure\">" + playback.figure + "</script>\n";
+  // The player's data after the page's content, decoded only when a player opens; none, and no
+  // player script, when no motif has a player.
+  const bool any_player = std::any_of(playback.motifs.begin(), playback.motifs.end(),
+                                      [](const std::string& motif) { return !motif.empty(); });
+  if (any_player) {
+    html +=
+        "<script type=\"application/json\" id=\"play-figure\">" + playback.figure + "</script>\n";
+  }
   for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
     if (playback.motifs[motif_idx].empty()) continue;
     html += "<script type=\"application/json\" id=\"play-" +
@@ -554,7 +560,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
             "</script>\n";
   }
   html += std::string("<script>") + kScript + "</script>\n";
-  html += std::string("<script>") + kInstancePlayerScript + "</script>\n";
+  if (any_player) html += std::string("<script>") + kInstancePlayerScript + "</script>\n";
   html += HtmlPageEnd();
   return html;
 }

@@ -68,6 +68,11 @@ TEST(MotifmineTool, NumbersOutOfRangeAreUsageErrorsNamingTheFlag) {
        "--pause-speed must be >= 0 (0: no trimming), not '-3'"},
       {"cluster " + archive + " --out " + dir.File("m") + " --pause-seconds 0",
        "--pause-seconds must be in (0, 3600] seconds, not '0'"},
+      {mine + "--playback-mb 5000", "--playback-mb must be 0 to 4096, not 5000"},
+      {"report " + dir.File("m") + " --playback-mb 4097",
+       "--playback-mb must be 0 to 4096, not 4097"},
+      {"export " + archive + " --clip c --names x --out " + dir.File("x.bvh"),
+       "--names must be source or canonical, not 'x'"},
   };
   for (const auto& [args, message] : cases) {
     const RunResult result = RunTool(args);
@@ -424,11 +429,14 @@ TEST(MotifmineTool, TakeDescriptionsFromAnIndexReachInfoAndTheReport) {
   EXPECT_FALSE(clips[1].contains("description"));
 
   const RunResult mine = RunTool("mine " + dir.File("takes") + " --descriptions " + index +
-                                 " --out " + dir.File("m") + " --quiet");
+                                 " --out " + dir.File("m") + " --playback-mb 0 --quiet");
   ASSERT_EQ(mine.exit_code, 0) << mine.output;
   const std::string html = ReadFileToString(dir.File("m/report.html")).value();
   EXPECT_NE(html.find("synth_000000<small> \u2014 jumping &lt;jacks&gt; &amp; claps</small>"),
             std::string::npos);
+  // mine --playback-mb 0 passes to the report: no player data in the page.
+  EXPECT_EQ(html.find("id=\"play-figure\""), std::string::npos);
+  EXPECT_NE(html.find("No player in this page"), std::string::npos);
 
   const std::string bad = dir.File("bad.tsv");
   ASSERT_TRUE(AtomicWriteFile(bad, "name\tdescription\nx\ty\n").ok());
