@@ -46,6 +46,8 @@ class [[nodiscard]] Status {
     return Status(Code::kResourceExhausted, std::move(msg));
   }
   static Status Busy(std::string msg) { return Status(Code::kBusy, std::move(msg)); }
+  // A status received as its code and message (from another process of a distributed run).
+  static Status FromCode(Code code, std::string msg) { return Status(code, std::move(msg)); }
   // An IOError built from errno: "<context>: <strerror(errno)>". ENOSPC and EDQUOT become
   // kResourceExhausted so callers can tell a full disk from a broken one.
   static Status FromErrno(const std::string& context, int errno_value);

@@ -8,12 +8,14 @@
 //   14 I/O error, 15 not supported, 16 resource exhausted (disk full).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include <boost/program_options.hpp>
 
 #include "common/peak_memory.h"  // PeakResidentBytes, for the commands' summaries
+#include "common/rank_group.h"
 #include "common/status.h"
 #include "engine/cli/progress_reporter.h"
 #include "engine/cluster/pauses.h"
@@ -119,6 +121,15 @@ int RunCluster(const std::vector<std::string>& args);
 int RunExportMotif(const std::vector<std::string>& args);
 int RunReport(const std::vector<std::string>& args);
 int RunMine(const std::vector<std::string>& args);
+// `mine` on the ranks of a distributed run (motifmine-mpi; every rank calls it with the same
+// args): rank 0 prints as `mine` does, the others only an error of their own, after which
+// `abort_all(exit code)` ends every rank. `default_threads` replaces --threads 0 (all cores).
+struct MineAcrossRanks {
+  RankGroup* ranks = nullptr;
+  int default_threads = 0;
+  std::function<void(int exit_code)> abort_all;
+};
+int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRanks& across);
 int RunWords(const std::vector<std::string>& args);
 int RunClassify(const std::vector<std::string>& args);
 int RunSearch(const std::vector<std::string>& args);

@@ -3,9 +3,13 @@
 // reads the options, shows one progress display across the stages, and prints a one-screen
 // summary.
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "engine/cli/cli_common.h"
 #include "engine/pipeline/mine_pipeline.h"
@@ -15,6 +19,36 @@ namespace motif::cli {
 namespace po = boost::program_options;
 
 namespace {
+
+// Standard output and error sent to /dev/null while it lives (the other ranks of a distributed
+// run: their usage errors are rank 0's, printed once).
+class SilencedOutput {
+ public:
+  SilencedOutput() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    saved_out_ = dup(STDOUT_FILENO);
+    saved_err_ = dup(STDERR_FILENO);
+    const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null >= 0) {
+      dup2(null, STDOUT_FILENO);
+      dup2(null, STDERR_FILENO);
+      close(null);
+    }
+  }
+  ~SilencedOutput() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    if (saved_out_ >= 0) dup2(saved_out_, STDOUT_FILENO), close(saved_out_);
+    if (saved_err_ >= 0) dup2(saved_err_, STDERR_FILENO), close(saved_err_);
+  }
+  SilencedOutput(const SilencedOutput&) = delete;
+  SilencedOutput& operator=(const SilencedOutput&) = delete;
+
+ private:
+  int saved_out_ = -1;
+  int saved_err_ = -1;
+};
 
 // The stages' progress on one display: a stage begins when the pipeline first reports it.
 class StageProgress {
@@ -38,6 +72,19 @@ class StageProgress {
   ProgressReporter* reporter_;
   std::string stage_;
 };
+
+// A distributed run's ranks: the bytes each sent building the trellis (features, index shares,
+// blocks), and how long rank 0 waited for the others' blocks.
+void PrintRanks(const TrellisReport& trellis) {
+  if (trellis.rank_bytes_sent.empty()) return;
+  std::string sent;
+  for (size_t rank = 0; rank < trellis.rank_bytes_sent.size(); ++rank) {
+    sent += (rank ? ", " : "") + std::to_string(rank) + ": " +
+            FormatBytes(trellis.rank_bytes_sent[rank]);
+  }
+  std::printf("  ranks        %zu; sent by rank %s; rank 0 waited %.1fs for blocks\n",
+              trellis.rank_bytes_sent.size(), sent.c_str(), trellis.receive_wait_seconds);
+}
 
 void PrintSummary(const MinePipelineResult& result) {
   const MotifsDocument& document = result.document;
@@ -85,6 +132,7 @@ void PrintSummary(const MinePipelineResult& result) {
   }
   std::printf("  time         %s; total %.1fs\n", timing.c_str(), result.total_seconds);
   std::printf("  memory       peak resident %s\n", FormatBytes(PeakResidentBytes()).c_str());
+  PrintRanks(trellis);
   if (result.score) {
     const PlantedMotifScore& score = *result.score;
     std::printf("  planted      %u motifs as %s instances (%s)\n", score.planted_motifs,
@@ -106,7 +154,13 @@ void PrintSummary(const MinePipelineResult& result) {
 
 }  // namespace
 
-int RunMine(const std::vector<std::string>& args) {
+int RunMine(const std::vector<std::string>& args) { return RunMineAcrossRanks(args, {}); }
+
+int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRanks& across) {
+  // Another rank of a distributed run prints nothing but an error of its own: rank 0 reports.
+  const bool other_rank = across.ranks != nullptr && across.ranks->rank() != 0;
+  std::optional<SilencedOutput> silenced;
+  if (other_rank) silenced.emplace();
   CommandSpec spec;
   spec.name = "mine";
   spec.usage = "motifmine mine [INPUT...] --out DIR [options]";
@@ -169,6 +223,13 @@ int RunMine(const std::vector<std::string>& args) {
   if (vm.count("input")) options.inputs = vm["input"].as<std::vector<std::string>>();
   options.seed = vm["seed"].as<uint64_t>();
   options.threads = vm["threads"].as<int>();
+  if (options.threads == 0) options.threads = across.default_threads;
+  options.ranks = across.ranks;
+  options.on_shared_failure = [&](const Status& status) {
+    silenced.reset();
+    const int code = ReportError("mine", status);
+    if (across.abort_all) across.abort_all(code);
+  };
   options.skip_bad = vm.count("skip-bad") > 0;
   options.descriptions_path = vm["descriptions"].as<std::string>();
   options.write_report = vm.count("no-report") == 0;
@@ -208,13 +269,17 @@ int RunMine(const std::vector<std::string>& args) {
   if (Status status = PauseOptionsFrom(vm, &cluster.pauses); !status.ok()) return fail(status);
   cluster.max_length_ratio = vm["max-length-ratio"].as<double>();
 
-  ProgressReporter progress(ProgressModeFrom(vm));
+  ProgressReporter progress(other_rank ? ProgressMode::kQuiet : ProgressModeFrom(vm));
   StageProgress stages(&progress);
   options.progress = [&](const std::string& stage, uint64_t done, uint64_t total,
                          const std::string& unit) { stages.Update(stage, done, total, unit); };
-  options.note = [&](const std::string& message) { progress.Note(message); };
+  options.note = [&](const std::string& message) {
+    if (!other_rank) progress.Note(message);
+  };
   Result<MinePipelineResult> result = MinePipeline(std::move(options)).Run();
   stages.End();
+  // Another rank's error here is rank 0's, which rank 0 prints.
+  if (other_rank) return result.ok() ? kExitOk : ExitCodeFor(result.status());
   if (!result.ok()) return fail(result.status());
   PrintSummary(*result);
   if (result->skipped_takes.empty()) return kExitOk;

@@ -19,7 +19,7 @@ int16_t Quantise(float value) {
 
 Result<PoseFeatures> PoseFeatures::FromArchive(
     const FrameFileReader& reader, const std::vector<float>& joint_weights,
-    const std::function<void(uint64_t, uint64_t)>& progress) {
+    const std::function<void(uint64_t, uint64_t)>& progress, RankGroup* ranks) {
   const FrameLayout layout = reader.layout();
   if (joint_weights.size() != layout.joint_count) {
     return Status::InvalidArgument(
@@ -42,15 +42,26 @@ Result<PoseFeatures> PoseFeatures::FromArchive(
   const uint64_t frame_count = reader.frame_count();
   features.frame_count_ = frame_count;
   features.values_.resize(frame_count * 4 * features.joints_.size());
-  MOTIF_RETURN_IF_ERROR(features.DecodeFrames(reader, 0, progress));
+  if (ranks == nullptr || ranks->size() == 1) {
+    MOTIF_RETURN_IF_ERROR(features.DecodeFrames(reader, 0, frame_count, progress));
+    return features;
+  }
+  // Shares on block boundaries of the archive, so that no block is decoded twice.
+  const std::vector<uint64_t> starts =
+      PartStarts(frame_count, ranks->size(), std::max<uint32_t>(1, reader.summary().block_frames));
+  const size_t own = static_cast<size_t>(ranks->rank());
+  MOTIF_RETURN_IF_ERROR(features.DecodeFrames(reader, starts[own], starts[own + 1], progress));
+  MOTIF_RETURN_IF_ERROR(ranks->ShareParts(features.values_.data(),
+                                          4 * features.joints_.size() * sizeof(int16_t), starts));
   return features;
 }
 
 Status PoseFeatures::DecodeFrames(const FrameFileReader& reader, uint64_t first_frame,
+                                  uint64_t end_frame,
                                   const std::function<void(uint64_t, uint64_t)>& progress) {
   const FrameLayout layout = reader.layout();
   const size_t per_frame = 4 * joints_.size();
-  std::unique_ptr<FrameStream> stream = reader.Stream(first_frame);
+  std::unique_ptr<FrameStream> stream = reader.Stream(first_frame, end_frame);
   const size_t stride = layout.stride();
   while (true) {
     MOTIF_ASSIGN_OR_RETURN(bool more, stream->Next());
@@ -94,7 +105,7 @@ Result<PoseFeatures> PoseFeatures::ExtendFromArchive(
   prefix.clip_first_frames_.clear();
   for (const ClipInfo& clip : reader.clips()) prefix.clip_first_frames_.push_back(clip.first_frame);
   if (prefix.clip_first_frames_.empty()) prefix.clip_first_frames_.push_back(0);
-  MOTIF_RETURN_IF_ERROR(prefix.DecodeFrames(reader, first_new, progress));
+  MOTIF_RETURN_IF_ERROR(prefix.DecodeFrames(reader, first_new, prefix.frame_count_, progress));
   return prefix;
 }
 

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/huge_page_allocator.h"
+#include "common/rank_group.h"
 #include "common/status.h"
 #include "engine/distance/joint_term.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -31,10 +32,13 @@ class PoseFeatures {
 
   // Streams the archive once and keeps the joints with weight > 0. `joint_weights` has one
   // weight per archive joint (see DistanceWeights below). `progress(done, total)` in frames.
+  // With `ranks` (a distributed run), each rank decodes its share of the frames and the shares
+  // are exchanged (RankGroup::ShareParts): the same features on every rank.
   // InvalidArgument if no joint has a positive weight; errors of the reader pass through.
   static Result<PoseFeatures> FromArchive(
       const FrameFileReader& reader, const std::vector<float>& joint_weights,
-      const std::function<void(uint64_t, uint64_t)>& progress = nullptr);
+      const std::function<void(uint64_t, uint64_t)>& progress = nullptr,
+      RankGroup* ranks = nullptr);
 
   // `prefix` (the features of the archive's first prefix.frame_count() frames, with these
   // weights) extended by the archive's later frames, streamed from the reader: an archive that
@@ -76,8 +80,8 @@ class PoseFeatures {
   const int16_t* values() const { return values_.data(); }
 
  private:
-  // Quantises frames [first_frame, reader's end) of the archive into values_ (sized already).
-  Status DecodeFrames(const FrameFileReader& reader, uint64_t first_frame,
+  // Quantises frames [first_frame, end_frame) of the archive into values_ (sized already).
+  Status DecodeFrames(const FrameFileReader& reader, uint64_t first_frame, uint64_t end_frame,
                       const std::function<void(uint64_t, uint64_t)>& progress);
 
   uint64_t frame_count_ = 0;

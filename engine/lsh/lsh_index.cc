@@ -19,7 +19,8 @@ int ArenaThreads(int threads) { return threads > 0 ? threads : tbb::task_arena::
 }  // namespace
 
 Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily& family,
-                                 uint32_t shard_frames, int threads, bool position_codes) {
+                                 uint32_t shard_frames, int threads, bool position_codes,
+                                 RankGroup* ranks) {
   const uint64_t frame_count = features.frame_count();
   if (frame_count >= (uint64_t{1} << 32)) {
     return Status::InvalidArgument("lsh index: " + std::to_string(frame_count) +
@@ -45,10 +46,16 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
   for (uint64_t shard_idx = 0; shard_idx <= shard_count; ++shard_idx) {
     run_starts[shard_idx] = std::min<uint64_t>(shard_idx * shard_frames, frame_count);
   }
+  // This rank's shards: all of them, or its share in a distributed run.
+  const bool shared = ranks != nullptr && ranks->size() > 1;
+  const std::vector<uint64_t> shard_starts =
+      shared ? PartStarts(shard_count, ranks->size(), 1) : std::vector<uint64_t>{0, shard_count};
+  const size_t own = shared ? static_cast<size_t>(ranks->rank()) : 0;
   const LshShardBuilder builder(features, family);
   tbb::task_arena arena(ArenaThreads(threads));
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, shard_count, /*grainsize=*/1),
+    tbb::parallel_for(tbb::blocked_range<size_t>(shard_starts[own], shard_starts[own + 1],
+                                                 /*grainsize=*/1),
                       [&](const tbb::blocked_range<size_t>& range) {
                         for (size_t shard_idx = range.begin(); shard_idx != range.end();
                              ++shard_idx) {
@@ -65,6 +72,7 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                         }
                       });
   });
+  if (shared) MOTIF_RETURN_IF_ERROR(index.ShareSlices(ranks, run_starts, shard_starts));
   index.SetDirectoryShift();
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, table_count, /*grainsize=*/1),
@@ -77,6 +85,22 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                       });
   });
   return index;
+}
+
+Status LshIndex::ShareSlices(RankGroup* ranks, const std::vector<uint64_t>& run_starts,
+                             const std::vector<uint64_t>& shard_starts) {
+  std::vector<uint64_t> frame_starts;
+  for (uint64_t shard : shard_starts) frame_starts.push_back(run_starts[shard]);
+  for (LshTableEntries& table : tables_) {
+    MOTIF_RETURN_IF_ERROR(ranks->ShareParts(table.keys.data(), sizeof(uint32_t), frame_starts));
+    MOTIF_RETURN_IF_ERROR(
+        ranks->ShareParts(table.sort_values.data(), sizeof(int16_t), frame_starts));
+    MOTIF_RETURN_IF_ERROR(ranks->ShareParts(table.frames.data(), sizeof(uint32_t), frame_starts));
+    if (position_codes_) {
+      MOTIF_RETURN_IF_ERROR(ranks->ShareParts(table.codes.data(), sizeof(uint32_t), frame_starts));
+    }
+  }
+  return Status::Ok();
 }
 
 Result<LshIndex> LshIndex::FromTables(uint64_t frame_count, std::vector<LshTableEntries> tables,

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/rank_group.h"
 #include "common/status.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/hash_family.h"
@@ -39,8 +40,11 @@ class LshIndex {
   // frames or more.
   // Without `position_codes` the tables hold no codes (LshRanking::kSortValue does not read
   // them), 4 bytes per frame per table less.
+  // With `ranks` (a distributed run) each rank hashes a share of the shards and the ranks
+  // exchange their slices before the merge: the same index on every rank.
   static Result<LshIndex> Build(const PoseFeatures& features, const HashFamily& family,
-                                uint32_t shard_frames, int threads, bool position_codes = true);
+                                uint32_t shard_frames, int threads, bool position_codes = true,
+                                RankGroup* ranks = nullptr);
 
   // The index of tables saved earlier (each sorted by (key, sort value, frame), all of
   // frame_count entries, with codes when position_codes): an incremental update keeps the
@@ -87,6 +91,9 @@ class LshIndex {
   // Merges the sorted runs of table `table_idx` (run r is [run_starts[r], run_starts[r + 1]))
   // into one sorted table.
   void MergeRuns(uint32_t table_idx, const std::vector<uint64_t>& run_starts);
+  // Every rank's hashed shards to every rank: `shard_starts` the shards of each rank.
+  Status ShareSlices(RankGroup* ranks, const std::vector<uint64_t>& run_starts,
+                     const std::vector<uint64_t>& shard_starts);
 
   uint64_t frame_count_ = 0;
   bool position_codes_ = false;

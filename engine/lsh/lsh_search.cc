@@ -1012,8 +1012,8 @@ LshSearch::LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOpti
 
 Result<std::unique_ptr<LshSearch>> LshSearch::Create(const PoseFeatures& features,
                                                      NeighbourRules rules,
-                                                     const LshOptions& options) {
-  return Make(features, std::move(rules), options, nullptr);
+                                                     const LshOptions& options, RankGroup* ranks) {
+  return Make(features, std::move(rules), options, nullptr, ranks);
 }
 
 Result<std::unique_ptr<LshSearch>> LshSearch::CreateWithIndex(const PoseFeatures& features,
@@ -1029,12 +1029,12 @@ Result<std::unique_ptr<LshSearch>> LshSearch::CreateWithIndex(const PoseFeatures
         std::to_string(index.table_count()) + " tables, not " +
         std::to_string(features.frame_count()) + " in " + std::to_string(options.tables));
   }
-  return Make(features, std::move(rules), options, &index);
+  return Make(features, std::move(rules), options, &index, nullptr);
 }
 
 Result<std::unique_ptr<LshSearch>> LshSearch::Make(const PoseFeatures& features,
                                                    NeighbourRules rules, const LshOptions& options,
-                                                   LshIndex* given) {
+                                                   LshIndex* given, RankGroup* ranks) {
   auto invalid = [](const std::string& what) {
     return Status::InvalidArgument("lsh search: " + what);
   };
@@ -1084,8 +1084,9 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Make(const PoseFeatures& features,
   if (given != nullptr) {
     index = std::move(*given);
   } else {
-    MOTIF_ASSIGN_OR_RETURN(index, LshIndex::Build(features, family, used.shard_frames, used.threads,
-                                                  used.ranking == LshRanking::kPositionCode));
+    MOTIF_ASSIGN_OR_RETURN(index,
+                           LshIndex::Build(features, family, used.shard_frames, used.threads,
+                                           used.ranking == LshRanking::kPositionCode, ranks));
   }
   const float extension_radius = options.sparse_radius_factor * scale.radius;
   return std::unique_ptr<LshSearch>(new LshSearch(features, std::move(rules), std::move(used),

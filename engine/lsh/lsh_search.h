@@ -78,9 +78,12 @@ class LshSearch final : public NeighbourSearch {
   // features.clip_first_frames(). InvalidArgument: eps <= 0, k_max == 0, another clip layout,
   // tables or hashes_per_table out of range (1..64; 0 for automatic or 1..32 and below the
   // embedding's dimension), a zero probe count, budget, scan depth or shard size, a negative
-  // width, 2^32 frames or more. Errors of the index build pass through.
+  // width, 2^32 frames or more. Errors of the index build pass through. With `ranks` (a
+  // distributed run) the ranks hash a share of the frames each and exchange them
+  // (LshIndex::Build): every rank gets the same index.
   static Result<std::unique_ptr<LshSearch>> Create(const PoseFeatures& features,
-                                                   NeighbourRules rules, const LshOptions& options);
+                                                   NeighbourRules rules, const LshOptions& options,
+                                                   RankGroup* ranks = nullptr);
   // The same with the index given: built earlier over all of `features` with the family these
   // options draw (HashFamily::Draw(features.weights(), tables, hashes_per_table, bucket_width,
   // seed), both sizes given, not 0), e.g. a saved index extended with new frames
@@ -129,9 +132,10 @@ class LshSearch final : public NeighbourSearch {
  private:
   LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
             HashFamily family, LshIndex index, float extension_radius);
-  // Create's work; with `index` null the index is built.
+  // Create's work; with `index` null the index is built (shared among `ranks` when given).
   static Result<std::unique_ptr<LshSearch>> Make(const PoseFeatures& features, NeighbourRules rules,
-                                                 const LshOptions& options, LshIndex* index);
+                                                 const LshOptions& options, LshIndex* index,
+                                                 RankGroup* ranks);
   class Query;
   // Every search; `reverse_query` and `reverse` null for the columns alone.
   Status Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,

@@ -92,7 +92,26 @@ Status MinePipeline::CheckOptions() const {
 }
 
 Result<MinePipelineResult> MinePipeline::Run() {
+  if (options_.ranks != nullptr && options_.ranks->rank() != 0) return RunOtherRank();
   const Clock::time_point job_start = Clock::now();
+  ExclusiveFileLock run_lock;
+  const Status prepared = Prepare(&run_lock);
+  MOTIF_RETURN_IF_ERROR(ShareArchive(prepared));
+  MOTIF_RETURN_IF_ERROR(prepared);
+  if (Status built = BuildTrellisStage(); !built.ok()) return SharedFailure(built);
+  MOTIF_RETURN_IF_ERROR(MotifStages());
+  MOTIF_RETURN_IF_ERROR(ScoreStage());
+  result_.total_seconds = SecondsSince(job_start);
+  // The peak of the mining, before the report: the one figure the report, run.json and the
+  // summary show, so that `report` run again writes the page `mine` wrote.
+  result_.peak_memory_bytes = PeakResidentBytes();
+  MOTIF_RETURN_IF_ERROR(ReportStage());
+  result_.total_seconds = SecondsSince(job_start);
+  MOTIF_RETURN_IF_ERROR(WriteRunStage());
+  return std::move(result_);
+}
+
+Status MinePipeline::Prepare(ExclusiveFileLock* run_lock) {
   MOTIF_RETURN_IF_ERROR(CheckOptions());
   if (!options_.descriptions_path.empty()) {
     MOTIF_ASSIGN_OR_RETURN(descriptions_, ReadTakeDescriptions(options_.descriptions_path));
@@ -104,26 +123,60 @@ Result<MinePipelineResult> MinePipeline::Run() {
   }
   // One run per folder: a second run (an overlapping cron job) leaves at once, before touching
   // anything. The lock goes with the process, even on kill -9.
-  ExclusiveFileLock run_lock;
-  MOTIF_RETURN_IF_ERROR(run_lock.Acquire(
+  MOTIF_RETURN_IF_ERROR(run_lock->Acquire(
       Join(options_.out_dir, kRunLockName),
       "another motifmine run is working in this folder; nothing was changed (exit 17: try "
       "again when it has finished)",
       /*create=*/true));
   RemoveStaleTemporaries(options_.out_dir, kOwnedFiles);
+  return MakeArchive();
+}
 
-  MOTIF_RETURN_IF_ERROR(MakeArchive());
-  MOTIF_RETURN_IF_ERROR(BuildTrellisStage());
-  MOTIF_RETURN_IF_ERROR(MotifStages());
-  MOTIF_RETURN_IF_ERROR(ScoreStage());
-  result_.total_seconds = SecondsSince(job_start);
-  // The peak of the mining, before the report: the one figure the report, run.json and the
-  // summary show, so that `report` run again writes the page `mine` wrote.
-  result_.peak_memory_bytes = PeakResidentBytes();
-  MOTIF_RETURN_IF_ERROR(ReportStage());
-  result_.total_seconds = SecondsSince(job_start);
-  MOTIF_RETURN_IF_ERROR(WriteRunStage());
+Status MinePipeline::ShareArchive(const Status& prepared) {
+  if (options_.ranks == nullptr) return Status::Ok();
+  std::string message;
+  if (prepared.ok()) {
+    message = "0\n" + std::to_string(options_.trellis.archive_version.generation) + "\n" +
+              std::to_string(options_.trellis.archive_version.committed_bytes) + "\n" +
+              result_.archive_path;
+  } else {
+    message = std::to_string(static_cast<int>(prepared.code())) + "\n" + prepared.message();
+  }
+  return options_.ranks->Broadcast(&message);
+}
+
+Result<MinePipelineResult> MinePipeline::RunOtherRank() {
+  std::string message;
+  MOTIF_RETURN_IF_ERROR(options_.ranks->Broadcast(&message));
+  std::istringstream in(message);
+  int code = 0;
+  in >> code;
+  in.get();
+  if (code != 0) {  // rank 0 failed before the trellis, and said why
+    std::string why;
+    std::getline(in, why, '\0');
+    return Status::FromCode(static_cast<Status::Code>(code), why);
+  }
+  FrameFileVersion version;
+  in >> version.generation >> version.committed_bytes;
+  in.get();
+  std::getline(in, result_.archive_path, '\0');
+  // The archive at the same path on this rank's node: shared, or a copy.
+  Result<std::unique_ptr<FrameFileReader>> archive =
+      FrameFileReader::OpenVersion(result_.archive_path, version);
+  if (!archive.ok()) return SharedFailure(archive.status());
+  archive_ = std::move(*archive);
+  options_.trellis.archive_version = version;
+  options_.paths.archive_version = version;
+  if (Status built = BuildTrellisStage(); !built.ok()) return SharedFailure(built);
   return std::move(result_);
+}
+
+Status MinePipeline::SharedFailure(const Status& failed) const {
+  if (options_.ranks == nullptr) return failed;
+  const Status named = failed.WithContext("rank " + std::to_string(options_.ranks->rank()));
+  if (options_.on_shared_failure) options_.on_shared_failure(named);
+  return named;
 }
 
 // Stage 1: the archive, then opened once; every later stage reads that version.
@@ -196,6 +249,7 @@ Status MinePipeline::BuildTrellisStage() {
                             : "frames");
   };
   trellis.note = options_.note;
+  trellis.ranks = options_.ranks;
   const Clock::time_point start = Clock::now();
   MOTIF_ASSIGN_OR_RETURN(
       result_.trellis,

@@ -21,6 +21,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "common/file_lock.h"
+#include "common/rank_group.h"
 #include "common/status.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
@@ -55,6 +57,15 @@ struct MinePipelineOptions {
                      const std::string& unit)>
       progress;
   std::function<void(const std::string& message)> note;  // remarks that are not errors
+  // A distributed run (motifmine-mpi; docs/design/distributed.md): every rank runs the pipeline
+  // with the group. Rank 0 does all that one process does; it makes the archive (import,
+  // synth) and tells the others which to read; all share the trellis's work; only rank 0 writes
+  // in out_dir, grows the paths, clusters and reports. Another rank's Run returns after the
+  // trellis with its result's archive and trellis only. null: one process.
+  RankGroup* ranks = nullptr;
+  // A distributed run: called when this rank fails while the others may be waiting for it (in
+  // the trellis); it should end every rank (motifmine-mpi: MPI_Abort) and not return.
+  std::function<void(const Status&)> on_shared_failure;
 };
 
 MinePipelineOptions DefaultMinePipelineOptions();
@@ -92,6 +103,15 @@ class MinePipeline {
 
  private:
   Status CheckOptions() const;
+  // Rank 0 (or one process): the options, the folder and its lock, the archive.
+  Status Prepare(ExclusiveFileLock* run_lock);
+  // A distributed run: rank 0 tells the others the outcome of Prepare, and which archive (and
+  // version) to read.
+  Status ShareArchive(const Status& prepared);
+  // The ranks other than 0: the archive rank 0 names, then their share of the trellis.
+  Result<MinePipelineResult> RunOtherRank();
+  // `failed`, after on_shared_failure in a distributed run.
+  Status SharedFailure(const Status& failed) const;
   Status MakeArchive();
   Status BuildTrellisStage();
   Status MotifStages();

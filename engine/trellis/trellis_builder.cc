@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <future>
 #include <memory>
+#include <sstream>
 
 #include "common/byte_coding.h"
 #include "common/seconds_since.h"
@@ -13,11 +14,156 @@
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_search.h"
 #include "engine/lsh/lsh_tuning.h"
+#include "engine/trellis/distributed_columns.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {
-namespace {}  // namespace
+namespace {
+
+// Whether a finished trellis at `path` has these parameters; if so, its size into *report.
+bool ReadReusable(const std::string& path, const TrellisParams& params, TrellisReport* report) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return false;
+  Result<std::unique_ptr<TrellisFileReader>> existing = TrellisFileReader::Open(path);
+  if (!existing.ok() || !((*existing)->params() == params)) return false;
+  report->columns = (*existing)->column_count();
+  report->neighbours = (*existing)->neighbour_count();
+  report->mean_k = report->columns ? static_cast<double>(report->neighbours) / report->columns : 0;
+  return true;
+}
+
+// The parameters as one line, for the ranks of a distributed run to check that they agree.
+std::string ParamsDigest(const TrellisParams& params) {
+  std::ostringstream out;
+  out << params.frame_count << ' ' << params.archive_identity << ' ' << std::hexfloat << params.eps
+      << ' ' << params.k_max << ' ' << params.exclusion_frames << ' ' << params.search_mode << ' '
+      << params.seed << ' ' << params.weights_hash << ' ' << params.search_params;
+  return out.str();
+}
+
+// What rank 0 tells the others before the search: whether the finished trellis is reused and
+// where the build starts.
+struct BuildPlan {
+  bool reused = false;
+  uint64_t first_column = 0;
+};
+
+// Collective: rank 0's plan to every rank, with its parameters, which must be every rank's (an
+// archive that differs between nodes, or other options, would give other columns).
+Status AgreeOnPlan(RankGroup* ranks, const TrellisParams& params, BuildPlan* plan) {
+  std::string message;
+  if (ranks->rank() == 0) {
+    message = std::to_string(plan->reused ? 1 : 0) + ' ' + std::to_string(plan->first_column) +
+              ' ' + ParamsDigest(params);
+  }
+  MOTIF_RETURN_IF_ERROR(ranks->Broadcast(&message));
+  std::istringstream in(message);
+  int reused = 0;
+  in >> reused >> plan->first_column;
+  in.get();
+  std::string digest;
+  std::getline(in, digest, '\0');
+  if (digest != ParamsDigest(params)) {
+    return Status::InvalidArgument(
+        "rank " + std::to_string(ranks->rank()) +
+        ": its trellis parameters differ from rank 0's (another archive on this node, or other "
+        "options?): " +
+        ParamsDigest(params) + " against " + digest);
+  }
+  plan->reused = reused != 0;
+  return Status::Ok();
+}
+
+// A distributed run's columns (distributed_columns.h); rank 0 gets the counters and the bytes.
+Status WriteColumnsAcrossRanks(const NeighbourSearch& search, const TrellisOptions& options,
+                               const TrellisParams& params, TrellisFileWriter* writer,
+                               TrellisReport* report, SearchStats* stats) {
+  DistributedColumnsPlan plan;
+  plan.first_column = report->resumed_from_column;
+  plan.frame_count = params.frame_count;
+  plan.block_columns = options.block_columns;
+  plan.eps = params.eps;
+  plan.zstd_level = TrellisFileWriterOptions().zstd_level;
+  MOTIF_ASSIGN_OR_RETURN(DistributedColumnsReport columns,
+                         SearchColumnsAcrossRanks(search, options.ranks, plan, writer,
+                                                  [&](uint64_t done, uint64_t total) {
+                                                    if (options.progress)
+                                                      options.progress("trellis", done, total);
+                                                  }));
+  *stats = columns.stats;
+  report->receive_wait_seconds = columns.receive_wait_seconds;
+  report->write_wait_seconds = columns.write_wait_seconds;
+  MOTIF_ASSIGN_OR_RETURN(report->rank_bytes_sent,
+                         options.ranks->GatherToRoot(options.ranks->bytes_sent()));
+  return Status::Ok();
+}
+
+// One process's columns: while block b is compressed and written (fsynced) on a writer thread,
+// block b + 1 is searched by all the search threads. Blocks are written in order, so the file
+// is the same as with a serial loop.
+Status WriteColumnsHere(const NeighbourSearch& search, const TrellisOptions& options,
+                        const std::string& trellis_path, TrellisFileWriter* writer,
+                        TrellisReport* report, SearchStats* stats) {
+  auto progress = [&](uint64_t done, uint64_t total) {
+    if (options.progress) options.progress("trellis", done, total);
+  };
+  const uint64_t frame_count = report->params.frame_count;
+  progress(writer->next_column(), frame_count);
+  std::vector<std::vector<Neighbour>> buffers[2];
+  std::future<Status> pending_write;  // the write of the previous block, if any
+  uint64_t pending_end = 0;           // its last column + 1
+  const uint64_t block_columns = writer->block_columns();
+  // Waits for the pending write; then reports progress and applies stop_after_blocks.
+  auto finish_pending_write = [&]() -> Status {
+    if (!pending_write.valid()) return Status::Ok();
+    const auto wait_start = std::chrono::steady_clock::now();
+    MOTIF_RETURN_IF_ERROR(pending_write.get());
+    report->write_wait_seconds += SecondsSince(wait_start);
+    progress(pending_end, frame_count);
+    if (options.stop_after_blocks > 0 &&
+        pending_end - report->resumed_from_column >= options.stop_after_blocks * block_columns) {
+      return Status::IOError(trellis_path + ": build stopped after " +
+                             std::to_string(options.stop_after_blocks) + " blocks (as asked)");
+    }
+    return Status::Ok();
+  };
+  // Never leave with a write in flight (it uses the writer and a buffer).
+  struct WaitOnExit {
+    std::future<Status>* write;
+    ~WaitOnExit() {
+      if (write->valid()) write->wait();
+    }
+  } wait_on_exit{&pending_write};
+  size_t buffer_idx = 0;
+  for (uint64_t first = writer->next_column(); first < frame_count; first += block_columns) {
+    const uint64_t count = std::min<uint64_t>(block_columns, frame_count - first);
+    std::vector<std::vector<Neighbour>>& columns = buffers[buffer_idx];
+    buffer_idx ^= 1;
+    columns.assign(count, {});  // the previous use's memory is freed
+    MOTIF_RETURN_IF_ERROR(search.SearchColumns(first, count, &columns, stats));
+    // A search may leave a column's capacity at everything it found within eps (the exact
+    // search: thousands of entries at large N) although it keeps at most k_max: give it back
+    // before the block waits for the writer, so two blocks in flight cost no more than one.
+    for (std::vector<Neighbour>& column : columns) column.shrink_to_fit();
+    MOTIF_RETURN_IF_ERROR(finish_pending_write());
+    pending_end = first + count;
+    pending_write = std::async(std::launch::async, [writer, &columns, report] {
+      const auto write_start = std::chrono::steady_clock::now();
+      Status status;
+      try {
+        status = writer->AppendBlock(columns);
+      } catch (const std::bad_alloc&) {
+        status = Status::ResourceExhausted("trellis writer: out of memory");
+      }
+      report->write_seconds += SecondsSince(write_start);  // read only after get()
+      return status;
+    });
+  }
+  return finish_pending_write();
+}
+
+}  // namespace
 
 const char* TrellisSearchModeName(TrellisSearchMode mode) {
   switch (mode) {
@@ -90,11 +236,12 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::s
   report.search = search_mode;
   auto start = std::chrono::steady_clock::now();
   progress("features", 0, reader->frame_count());
-  MOTIF_ASSIGN_OR_RETURN(
-      PoseFeatures features,
-      PoseFeatures::FromArchive(*reader, weights, [&](uint64_t done, uint64_t total) {
-        progress("features", done, total);
-      }));
+  MOTIF_ASSIGN_OR_RETURN(PoseFeatures features, PoseFeatures::FromArchive(
+                                                    *reader, weights,
+                                                    [&](uint64_t done, uint64_t total) {
+                                                      progress("features", done, total);
+                                                    },
+                                                    options.ranks));
   report.features_seconds = SecondsSince(start);
   report.feature_bytes = features.memory_bytes();
 
@@ -143,18 +290,28 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::s
   params.search_params = exact ? "exact" : DescribeLshOptions(lsh);
   report.params = params;
 
-  // A finished trellis with the same parameters over the same archive is the answer already.
-  std::error_code error;
-  if (std::filesystem::exists(trellis_path, error)) {
-    Result<std::unique_ptr<TrellisFileReader>> existing = TrellisFileReader::Open(trellis_path);
-    if (existing.ok() && (*existing)->params() == params) {
-      report.reused = true;
-      if (!exact) report.lsh_resolved = ResolveLshOptions(features, rules, lsh);
-      report.columns = (*existing)->column_count();
-      report.neighbours = (*existing)->neighbour_count();
-      report.mean_k = report.columns ? static_cast<double>(report.neighbours) / report.columns : 0;
-      return report;
+  // A finished trellis with the same parameters over the same archive is the answer already
+  // (rank 0 decides for every rank).
+  const bool root = options.ranks == nullptr || options.ranks->rank() == 0;
+  if (root) report.reused = ReadReusable(trellis_path, params, &report);
+  // A distributed run: rank 0 opens the writer first, to tell the others where to start.
+  std::unique_ptr<TrellisFileWriter> writer;
+  TrellisFileWriterOptions writer_options;
+  writer_options.block_columns = options.block_columns;
+  if (options.ranks != nullptr) {
+    BuildPlan plan{report.reused, 0};
+    if (root && !report.reused) {
+      MOTIF_ASSIGN_OR_RETURN(writer,
+                             TrellisFileWriter::OpenOrResume(trellis_path, params, writer_options));
+      plan.first_column = writer->next_column();
     }
+    MOTIF_RETURN_IF_ERROR(AgreeOnPlan(options.ranks, params, &plan));
+    report.reused = plan.reused;
+    report.resumed_from_column = plan.first_column;
+  }
+  if (report.reused) {
+    if (!exact) report.lsh_resolved = ResolveLshOptions(features, rules, lsh);
+    return report;
   }
 
   start = std::chrono::steady_clock::now();
@@ -165,79 +322,31 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::s
     search = std::make_unique<ExactSearch>(features, rules, exact_options);
   } else {
     MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<LshSearch> lsh_search,
-                           LshSearch::Create(features, rules, lsh));
+                           LshSearch::Create(features, rules, lsh, options.ranks));
     note("LSH index: " + lsh_search->DescribeParams());
     report.lsh_resolved = lsh_search->options();
     search = std::move(lsh_search);
   }
   report.index_seconds = SecondsSince(start);
 
-  TrellisFileWriterOptions writer_options;
-  writer_options.block_columns = options.block_columns;
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileWriter> writer,
-                         TrellisFileWriter::OpenOrResume(trellis_path, params, writer_options));
-  report.resumed_from_column = writer->next_column();
+  if (writer == nullptr && root) {
+    MOTIF_ASSIGN_OR_RETURN(writer,
+                           TrellisFileWriter::OpenOrResume(trellis_path, params, writer_options));
+    report.resumed_from_column = writer->next_column();
+  }
   if (report.resumed_from_column > 0) {
     note("resuming the interrupted build at column " + std::to_string(report.resumed_from_column));
   }
   start = std::chrono::steady_clock::now();
-  progress("trellis", writer->next_column(), params.frame_count);
-  // Two column buffers: while block b is compressed and written (fsynced) on a writer thread,
-  // block b + 1 is searched by all the search threads. Blocks are written in order, so the file
-  // is the same as with a serial loop.
   SearchStats stats;
-  std::vector<std::vector<Neighbour>> buffers[2];
-  std::future<Status> pending_write;  // the write of the previous block, if any
-  uint64_t pending_end = 0;           // its last column + 1
-  const uint64_t frame_count = params.frame_count;
-  const uint64_t block_columns = writer->block_columns();
-  // Waits for the pending write; then reports progress and applies stop_after_blocks.
-  auto finish_pending_write = [&]() -> Status {
-    if (!pending_write.valid()) return Status::Ok();
-    const auto wait_start = std::chrono::steady_clock::now();
-    MOTIF_RETURN_IF_ERROR(pending_write.get());
-    report.write_wait_seconds += SecondsSince(wait_start);
-    progress("trellis", pending_end, frame_count);
-    if (options.stop_after_blocks > 0 &&
-        pending_end - report.resumed_from_column >= options.stop_after_blocks * block_columns) {
-      return Status::IOError(trellis_path + ": build stopped after " +
-                             std::to_string(options.stop_after_blocks) + " blocks (as asked)");
-    }
-    return Status::Ok();
-  };
-  // Never leave with a write in flight (it uses the writer and a buffer).
-  struct WaitOnExit {
-    std::future<Status>* write;
-    ~WaitOnExit() {
-      if (write->valid()) write->wait();
-    }
-  } wait_on_exit{&pending_write};
-  size_t buffer_idx = 0;
-  for (uint64_t first = writer->next_column(); first < frame_count; first += block_columns) {
-    const uint64_t count = std::min<uint64_t>(block_columns, frame_count - first);
-    std::vector<std::vector<Neighbour>>& columns = buffers[buffer_idx];
-    buffer_idx ^= 1;
-    columns.assign(count, {});  // the previous use's memory is freed
-    MOTIF_RETURN_IF_ERROR(search->SearchColumns(first, count, &columns, &stats));
-    // A search may leave a column's capacity at everything it found within eps (the exact
-    // search: thousands of entries at large N) although it keeps at most k_max: give it back
-    // before the block waits for the writer, so two blocks in flight cost no more than one.
-    for (std::vector<Neighbour>& column : columns) column.shrink_to_fit();
-    MOTIF_RETURN_IF_ERROR(finish_pending_write());
-    pending_end = first + count;
-    pending_write = std::async(std::launch::async, [&writer, &columns, &report] {
-      const auto write_start = std::chrono::steady_clock::now();
-      Status status;
-      try {
-        status = writer->AppendBlock(columns);
-      } catch (const std::bad_alloc&) {
-        status = Status::ResourceExhausted("trellis writer: out of memory");
-      }
-      report.write_seconds += SecondsSince(write_start);  // read only after get()
-      return status;
-    });
+  if (options.ranks != nullptr) {
+    MOTIF_RETURN_IF_ERROR(
+        WriteColumnsAcrossRanks(*search, options, params, writer.get(), &report, &stats));
+    if (!root) return report;
+  } else {
+    MOTIF_RETURN_IF_ERROR(
+        WriteColumnsHere(*search, options, trellis_path, writer.get(), &report, &stats));
   }
-  MOTIF_RETURN_IF_ERROR(finish_pending_write());
   MOTIF_RETURN_IF_ERROR(writer->Finish());
   if (options.on_search_done) options.on_search_done(features, *search);
   report.search_seconds = SecondsSince(start);

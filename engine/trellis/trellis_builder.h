@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/rank_group.h"
 #include "common/status.h"
 #include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/neighbour_search.h"
@@ -73,6 +74,11 @@ struct TrellisOptions {
   // (not when a finished trellis is reused): a caller may keep them (motifmine reindex saves
   // them for its next, incremental run).
   std::function<void(const PoseFeatures&, const NeighbourSearch&)> on_search_done;
+  // A distributed run (motifmine-mpi, docs/design/distributed.md): every rank calls BuildTrellis
+  // with the group. The ranks share the work of the features, the LSH index and the columns
+  // (distributed_columns.h); rank 0 alone reads and writes trellis_path, and its report is the
+  // one a single process gives (the others' is partial). null: one process.
+  RankGroup* ranks = nullptr;
 };
 
 struct TrellisReport {
@@ -99,6 +105,10 @@ struct TrellisReport {
   double write_seconds = 0;       // compressing and writing (fsync) blocks, on the writer thread
   double write_wait_seconds = 0;  // time the search waited for the writer
   uint64_t feature_bytes = 0;
+  // A distributed run, on rank 0: its time waiting for the other ranks' blocks, and the bytes
+  // each rank sent during the build (index = rank).
+  double receive_wait_seconds = 0;
+  std::vector<uint64_t> rank_bytes_sent;
 };
 
 // The trellis file's weights_hash of per-joint distance weights (XXH3-64 of the floats).
