@@ -12,7 +12,8 @@
 # harness and the hostile-input corpus, scripts/crash_harness.py and scripts/hostile_inputs.py,
 # both run by ctest; standard library only), pybind11-dev, python3-dev, python3-numpy and
 # python3-pytest (the Python module `motifmine` for Debian's /usr/bin/python3, its numpy arrays,
-# and its tests: python/, docs/python.md).
+# and its tests: python/, docs/python.md), libopenmpi-dev and openmpi-bin (Open MPI, the
+# distributed engine motifmine-mpi runs on, and mpirun for its tests: docs/design/distributed.md).
 set -euo pipefail
 
 packages=(
@@ -23,6 +24,7 @@ packages=(
   libbenchmark-dev libgtest-dev libgmock-dev
   chromium python3
   pybind11-dev python3-dev python3-numpy python3-pytest
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -54,6 +54,8 @@ asan_skip=(
   'PublicApi\.MineFindsTheTools'  # (MotifmineMine.*: the same pipeline through the tool)
   'ReindexFailureTest\.AWriteFailingAtAnyStep'  # (ReindexFailureTest.AFullFileSystem*, crash tests)
   'LshSearchTest\.QuaternionSignFlipGivesTheSameColumns'  # (LshSearchTest.*)
+  'MpiMine\.AKilledRank'  # 80 s under ASan (MpiMine.OneToFour*: the same ranks, and MineInterrupt.*)
+  'MpiMine\.RankZeroMakesTheSyntheticArchive'  # 31 s under ASan (MpiMine.OneToFour*)
 )
 # The tests ThreadSanitizer runs: the parallel parts, by test name, and the test executables
 # that hold them (tests/*/CMakeLists.txt).

@@ -84,6 +84,11 @@ void PrintRanks(const TrellisReport& trellis) {
   }
   std::printf("  ranks        %zu; sent by rank %s; rank 0 waited %.1fs for blocks\n",
               trellis.rank_bytes_sent.size(), sent.c_str(), trellis.receive_wait_seconds);
+  if (!trellis.reused) {
+    std::printf("  trellis      features %.1fs, eps %.1fs, index %.1fs, columns %.1fs\n",
+                trellis.features_seconds, trellis.eps_seconds, trellis.index_seconds,
+                trellis.search_seconds);
+  }
 }
 
 void PrintSummary(const MinePipelineResult& result) {
@@ -154,9 +159,10 @@ void PrintSummary(const MinePipelineResult& result) {
 
 }  // namespace
 
-int RunMine(const std::vector<std::string>& args) { return RunMineAcrossRanks(args, {}); }
+namespace {
 
-int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRanks& across) {
+// `mine`, on one process or on a rank of a distributed run.
+int RunMineCommand(const std::vector<std::string>& args, const MineAcrossRanks& across) {
   // Another rank of a distributed run prints nothing but an error of its own: rank 0 reports.
   const bool other_rank = across.ranks != nullptr && across.ranks->rank() != 0;
   std::optional<SilencedOutput> silenced;
@@ -278,8 +284,6 @@ int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRan
   };
   Result<MinePipelineResult> result = MinePipeline(std::move(options)).Run();
   stages.End();
-  // Another rank's error here is rank 0's, which rank 0 prints.
-  if (other_rank) return result.ok() ? kExitOk : ExitCodeFor(result.status());
   if (!result.ok()) return fail(result.status());
   PrintSummary(*result);
   if (result->skipped_takes.empty()) return kExitOk;
@@ -287,6 +291,19 @@ int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRan
               CountOf(result->skipped_takes.size(), "bad take").c_str());
   ReportSkippedTakes("mine", result->skipped_takes, ProgressModeFrom(vm));
   return kExitWarnings;  // mined the good takes
+}
+
+}  // namespace
+
+int RunMine(const std::vector<std::string>& args) { return RunMineAcrossRanks(args, {}); }
+
+int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRanks& across) {
+  const int code = RunMineCommand(args, across);
+  // Another rank's failures that reach here are rank 0's too (a usage error, or rank 0's own,
+  // which it sent): rank 0's exit code is the job's, and it gets to print before mpirun ends
+  // the job. A rank's own failures end the job on the spot (on_shared_failure).
+  const bool other_rank = across.ranks != nullptr && across.ranks->rank() != 0;
+  return other_rank ? kExitOk : code;
 }
 
 }  // namespace motif::cli

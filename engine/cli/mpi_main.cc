@@ -40,8 +40,9 @@ int Run(int argc, char** argv, motif::MpiRankGroup* ranks) {
       if (!name.empty())
         std::fprintf(stderr, "motifmine-mpi: unknown command '%s'\n", name.c_str());
       PrintUsage(stderr);
+      return kExitUsage;
     }
-    return kExitUsage;
+    return kExitOk;  // rank 0's exit code is the job's
   }
   motif::cli::MineAcrossRanks across;
   across.ranks = ranks;
