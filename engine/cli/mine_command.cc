@@ -78,12 +78,20 @@ class StageProgress {
 void PrintRanks(const TrellisReport& trellis) {
   if (trellis.rank_bytes_sent.empty()) return;
   std::string sent;
+  std::string searched;
   for (size_t rank = 0; rank < trellis.rank_bytes_sent.size(); ++rank) {
     sent += (rank ? ", " : "") + std::to_string(rank) + ": " +
             FormatBytes(trellis.rank_bytes_sent[rank]);
   }
+  for (size_t rank = 0; rank < trellis.rank_search_seconds.size(); ++rank) {
+    char part[32];
+    std::snprintf(part, sizeof part, "%s%zu: %.1fs", rank ? ", " : "", rank,
+                  trellis.rank_search_seconds[rank]);
+    searched += part;
+  }
   std::printf("  ranks        %zu; sent by rank %s; rank 0 waited %.1fs for blocks\n",
               trellis.rank_bytes_sent.size(), sent.c_str(), trellis.receive_wait_seconds);
+  if (!searched.empty()) std::printf("  searching    by rank %s\n", searched.c_str());
   if (!trellis.reused) {
     std::printf("  trellis      features %.1fs, eps %.1fs, index %.1fs, columns %.1fs\n",
                 trellis.features_seconds, trellis.eps_seconds, trellis.index_seconds,

@@ -1075,7 +1075,8 @@ Result<std::unique_ptr<LshSearch>> LshSearch::Make(const PoseFeatures& features,
     return invalid("chained_max_candidates must be > 0");
   }
   if (options.chain_probe_every == 0) return invalid("chain_probe_every must be > 0");
-  const SearchScale scale = EstimateSearchScale(features, rules, options);
+  MOTIF_ASSIGN_OR_RETURN(const SearchScale scale,
+                         EstimateSearchScale(features, rules, options, ranks));
   LshOptions used =
       ResolveLshOptions(options, features.frame_count(), features.weighted_joint_count(), scale);
   HashFamily family = HashFamily::Draw(features.weights(), used.tables, used.hashes_per_table,

@@ -14,6 +14,8 @@
 // Thread-safety: pure functions; they run on options.threads threads; deterministic for a seed.
 #pragma once
 
+#include "common/rank_group.h"
+#include "common/status.h"
 #include "engine/distance/neighbour_search.h"
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_options.h"
@@ -31,6 +33,10 @@ struct SearchScale {
 // eps), both fall back to radius / 2.
 SearchScale EstimateSearchScale(const PoseFeatures& features, const NeighbourRules& rules,
                                 const LshOptions& options);
+// The same, the sampled frames shared out among `ranks` (a distributed run; null: this process
+// alone): the same scale on every rank. Errors: the exchange's.
+Result<SearchScale> EstimateSearchScale(const PoseFeatures& features, const NeighbourRules& rules,
+                                        const LshOptions& options, RankGroup* ranks);
 
 // m for an archive of `frame_count` frames.
 uint32_t DefaultHashesPerTable(uint64_t frame_count);

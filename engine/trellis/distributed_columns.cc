@@ -72,11 +72,15 @@ int OwnerOf(uint64_t block, const RankGroup& ranks) {
 }
 
 Result<Columns> SearchBlock(const NeighbourSearch& search, uint64_t block,
-                            const DistributedColumnsPlan& plan, SearchStats* stats) {
+                            const DistributedColumnsPlan& plan, DistributedColumnsReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  SearchStats* stats = &report->stats;
+  ++report->blocks_searched;
   Columns columns(BlockColumnCount(block, plan));
   MOTIF_RETURN_IF_ERROR(
       search.SearchColumns(BlockFirstColumn(block, plan), columns.size(), &columns, stats));
   for (std::vector<Neighbour>& column : columns) column.shrink_to_fit();
+  report->search_seconds += SecondsSince(start);
   return columns;
 }
 
@@ -92,8 +96,7 @@ Status WriteEveryBlock(const NeighbourSearch& search, RankGroup* ranks,
     Columns columns;
     std::string bytes;
     if (owner == 0) {
-      MOTIF_ASSIGN_OR_RETURN(columns, SearchBlock(search, block, plan, &report->stats));
-      ++report->blocks_searched;
+      MOTIF_ASSIGN_OR_RETURN(columns, SearchBlock(search, block, plan, report));
     } else {
       const auto start = std::chrono::steady_clock::now();
       MOTIF_ASSIGN_OR_RETURN(bytes, ranks->ReceiveFrom(owner, block));
@@ -121,8 +124,7 @@ Status SendOwnBlocks(const NeighbourSearch& search, RankGroup* ranks,
   const uint64_t block_count = (plan.frame_count + plan.block_columns - 1) / plan.block_columns;
   for (uint64_t block = plan.first_column / plan.block_columns; block < block_count; ++block) {
     if (OwnerOf(block, *ranks) != ranks->rank()) continue;
-    MOTIF_ASSIGN_OR_RETURN(Columns columns, SearchBlock(search, block, plan, &report->stats));
-    ++report->blocks_searched;
+    MOTIF_ASSIGN_OR_RETURN(Columns columns, SearchBlock(search, block, plan, report));
     std::string bytes;
     trellis_file::BlockHandle handle;
     MOTIF_RETURN_IF_ERROR(

@@ -96,6 +96,11 @@ Status WriteColumnsAcrossRanks(const NeighbourSearch& search, const TrellisOptio
   report->write_wait_seconds = columns.write_wait_seconds;
   MOTIF_ASSIGN_OR_RETURN(report->rank_bytes_sent,
                          options.ranks->GatherToRoot(options.ranks->bytes_sent()));
+  // In microseconds, as integers.
+  MOTIF_ASSIGN_OR_RETURN(std::vector<uint64_t> micros,
+                         options.ranks->GatherToRoot(
+                             static_cast<uint64_t>(std::llround(columns.search_seconds * 1e6))));
+  for (uint64_t micro : micros) report->rank_search_seconds.push_back(micro / 1e6);
   return Status::Ok();
 }
 

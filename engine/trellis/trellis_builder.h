@@ -105,10 +105,11 @@ struct TrellisReport {
   double write_seconds = 0;       // compressing and writing (fsync) blocks, on the writer thread
   double write_wait_seconds = 0;  // time the search waited for the writer
   uint64_t feature_bytes = 0;
-  // A distributed run, on rank 0: its time waiting for the other ranks' blocks, and the bytes
-  // each rank sent during the build (index = rank).
+  // A distributed run, on rank 0: its time waiting for the other ranks' blocks, the bytes each
+  // rank sent during the build and its time searching (index = rank).
   double receive_wait_seconds = 0;
   std::vector<uint64_t> rank_bytes_sent;
+  std::vector<double> rank_search_seconds;  // each rank's time searching its blocks
 };
 
 // The trellis file's weights_hash of per-joint distance weights (XXH3-64 of the floats).
