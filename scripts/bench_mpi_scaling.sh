@@ -54,5 +54,5 @@ echo "speed-up of 2 ranks over one process: $(awk -v a="$(echo "${times[process]
   -v b="$(echo "${times[ranks2]}" | median)" 'BEGIN {printf "%.2f", a / b}')"
 for name in process ranks1 ranks2; do
   echo "$name, last run:"
-  grep -E '^  (time|trellis|ranks) ' "$dir/$name.log" | grep -v 'mean K' || true
+  grep -E '^  (time|trellis|ranks|searching) ' "$dir/$name.log" | grep -v 'mean K' || true
 done
