@@ -1,4 +1,5 @@
-# `cmake --install BUILD --prefix P`: the tool (P/bin/motifmine), the library (P/lib/libmotifmine.so)
+# `cmake --install BUILD --prefix P`: the tool (P/bin/motifmine, and P/bin/motifmine-mpi where MPI
+# was found), the library (P/lib/libmotifmine.so)
 # with its headers (P/include/motifmine/) and a CMake package, so that a downstream project
 # configured with -DCMAKE_PREFIX_PATH=P does find_package(motifmine CONFIG REQUIRED) and links
 # motifmine::motifmine (examples/mine_archive; docs/library.md).
@@ -7,6 +8,9 @@ include(CMakePackageConfigHelpers)
 
 set(MOTIF_PACKAGE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/motifmine)
 install(TARGETS motifmine RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET motifmine-mpi)  # built where MPI is found (engine/CMakeLists.txt)
+  install(TARGETS motifmine-mpi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
 install(TARGETS motifmine_library EXPORT motifmineTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
