@@ -164,7 +164,11 @@ Result<MinePipelineResult> MinePipeline::RunOtherRank() {
   // The archive at the same path on this rank's node: shared, or a copy.
   Result<std::unique_ptr<FrameFileReader>> archive =
       FrameFileReader::OpenVersion(result_.archive_path, version);
-  if (!archive.ok()) return SharedFailure(archive.status());
+  if (!archive.ok()) {
+    return SharedFailure(archive.status().WithContext(
+        "the archive rank 0 opened (generation " + std::to_string(version.generation) + ", " +
+        std::to_string(version.committed_bytes) + " bytes) does not open here"));
+  }
   archive_ = std::move(*archive);
   options_.trellis.archive_version = version;
   options_.paths.archive_version = version;

@@ -44,10 +44,12 @@ using testing::RunTool;
 // mpirun as CI runs it: as root, and with more ranks than cores. In the AddressSanitizer build
 // the ranks are checked for memory errors but not for leaks: Open MPI's own allocations, held
 // until exit in its libraries and plug-ins, are reported as leaks otherwise.
+const char kMpirun[] =
+    "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+    "ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" mpirun --oversubscribe ";
+
 std::string Mpirun(int ranks) {
-  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-         "ASAN_OPTIONS=\"${ASAN_OPTIONS:-}:detect_leaks=0\" mpirun --oversubscribe -np " +
-         std::to_string(ranks) + " " + MOTIF_MPI_TOOL + " ";
+  return kMpirun + std::string("-np ") + std::to_string(ranks) + " " + MOTIF_MPI_TOOL + " ";
 }
 
 RunResult RunMpi(int ranks, const std::string& arguments) {
@@ -154,6 +156,37 @@ TEST(MpiMine, AUsageErrorIsPrintedOnceWithItsExitCodeAndMakesNoFolder) {
   RunResult unknown = RunMpi(2, "grow");
   EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
   EXPECT_NE(unknown.output.find("unknown command 'grow'"), std::string::npos) << unknown.output;
+}
+
+// Rank 0 in folder A, rank 1 in folder B (mpirun's MPMD form), both reading ARCHIVE by the
+// relative path `archive.mfs`: as two nodes without a shared file system.
+RunResult RunInTwoFolders(const std::string& a, const std::string& b) {
+  const std::string command =
+      std::string(" ") + MOTIF_MPI_TOOL + " mine archive.mfs --out out --threads 1 --quiet";
+  return RunShell(kMpirun + std::string("-np 1 -wdir ") + a + command + " : -np 1 -wdir " + b +
+                  command + " 2>&1");
+}
+
+TEST(MpiMine, ARankWithoutTheArchiveOrWithAnotherNamesItselfAndEndsTheJob) {
+  MOTIF_REQUIRE_MPIRUN();
+  testing::TempDir dir;
+  fs::create_directories(dir.File("a"));
+  fs::create_directories(dir.File("b"));
+  fs::copy_file(SyntheticArchive(30000), dir.File("a/archive.mfs"));
+  RunResult missing = RunInTwoFolders(dir.File("a"), dir.File("b"));
+  EXPECT_EQ(missing.exit_code, 11) << missing.output;  // not found
+  EXPECT_NE(missing.output.find("error: rank 1: the archive rank 0 opened"), std::string::npos)
+      << missing.output;
+  EXPECT_NE(missing.output.find("archive.mfs: no such file"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir.File("a/out/motifs.json")));
+  // Another archive at the same path on rank 1's "node".
+  fs::copy_file(SyntheticArchive(240000), dir.File("b/archive.mfs"));
+  RunResult other = RunInTwoFolders(dir.File("a"), dir.File("b"));
+  EXPECT_NE(other.exit_code, 0) << other.output;
+  EXPECT_NE(other.output.find("error: rank 1: the archive rank 0 opened"), std::string::npos)
+      << other.output;
+  EXPECT_FALSE(fs::exists(dir.File("a/out/motifs.json")));
+  EXPECT_FALSE(fs::exists(dir.File("b/out")));  // only rank 0 writes
 }
 
 // The process of `rank` of the mpirun job writing into `out_dir`; 0 if none.
