@@ -14,4 +14,9 @@ std::vector<uint64_t> PartStarts(uint64_t count, int parts, uint64_t align) {
   return starts;
 }
 
+RankShare ShareOf(uint64_t count, const RankGroup* ranks, uint64_t align) {
+  if (ranks == nullptr || ranks->size() <= 1) return {{0, count}, 0};
+  return {PartStarts(count, ranks->size(), align), static_cast<size_t>(ranks->rank())};
+}
+
 }  // namespace motif

@@ -52,4 +52,16 @@ class RankGroup {
 // of `align` (> 0) except the last, count.
 std::vector<uint64_t> PartStarts(uint64_t count, int parts, uint64_t align);
 
+// This rank's share of `count` items: one part per rank (PartStarts) and its own,
+// [starts[own], starts[own + 1]). Without ranks, or with one: all of them, {0, count}.
+struct RankShare {
+  std::vector<uint64_t> starts;
+  size_t own = 0;
+
+  bool shared() const { return starts.size() > 2; }  // among several ranks
+  uint64_t first() const { return starts[own]; }
+  uint64_t end() const { return starts[own + 1]; }
+};
+RankShare ShareOf(uint64_t count, const RankGroup* ranks, uint64_t align = 1);
+
 }  // namespace motif

@@ -169,10 +169,15 @@ void PrintSummary(const MinePipelineResult& result) {
 
 namespace {
 
+// A rank of a distributed run other than rank 0, which reports for all.
+bool IsOtherRank(const MineAcrossRanks& across) {
+  return across.ranks != nullptr && across.ranks->rank() != 0;
+}
+
 // `mine`, on one process or on a rank of a distributed run.
 int RunMineCommand(const std::vector<std::string>& args, const MineAcrossRanks& across) {
   // Another rank of a distributed run prints nothing but an error of its own: rank 0 reports.
-  const bool other_rank = across.ranks != nullptr && across.ranks->rank() != 0;
+  const bool other_rank = IsOtherRank(across);
   std::optional<SilencedOutput> silenced;
   if (other_rank) silenced.emplace();
   CommandSpec spec;
@@ -310,8 +315,7 @@ int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRan
   // Another rank's failures that reach here are rank 0's too (a usage error, or rank 0's own,
   // which it sent): rank 0's exit code is the job's, and it gets to print before mpirun ends
   // the job. A rank's own failures end the job on the spot (on_shared_failure).
-  const bool other_rank = across.ranks != nullptr && across.ranks->rank() != 0;
-  return other_rank ? kExitOk : code;
+  return IsOtherRank(across) ? kExitOk : code;
 }
 
 }  // namespace motif::cli

@@ -42,17 +42,14 @@ Result<PoseFeatures> PoseFeatures::FromArchive(
   const uint64_t frame_count = reader.frame_count();
   features.frame_count_ = frame_count;
   features.values_.resize(frame_count * 4 * features.joints_.size());
-  if (ranks == nullptr || ranks->size() == 1) {
-    MOTIF_RETURN_IF_ERROR(features.DecodeFrames(reader, 0, frame_count, progress));
-    return features;
-  }
   // Shares on block boundaries of the archive, so that no block is decoded twice.
-  const std::vector<uint64_t> starts =
-      PartStarts(frame_count, ranks->size(), std::max<uint32_t>(1, reader.summary().block_frames));
-  const size_t own = static_cast<size_t>(ranks->rank());
-  MOTIF_RETURN_IF_ERROR(features.DecodeFrames(reader, starts[own], starts[own + 1], progress));
-  MOTIF_RETURN_IF_ERROR(ranks->ShareParts(features.values_.data(),
-                                          4 * features.joints_.size() * sizeof(int16_t), starts));
+  const RankShare share =
+      ShareOf(frame_count, ranks, std::max<uint32_t>(1, reader.summary().block_frames));
+  MOTIF_RETURN_IF_ERROR(features.DecodeFrames(reader, share.first(), share.end(), progress));
+  if (share.shared()) {
+    MOTIF_RETURN_IF_ERROR(ranks->ShareParts(
+        features.values_.data(), 4 * features.joints_.size() * sizeof(int16_t), share.starts));
+  }
   return features;
 }
 

@@ -47,15 +47,11 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
     run_starts[shard_idx] = std::min<uint64_t>(shard_idx * shard_frames, frame_count);
   }
   // This rank's shards: all of them, or its share in a distributed run.
-  const bool shared = ranks != nullptr && ranks->size() > 1;
-  const std::vector<uint64_t> shard_starts =
-      shared ? PartStarts(shard_count, ranks->size(), 1) : std::vector<uint64_t>{0, shard_count};
-  const size_t own = shared ? static_cast<size_t>(ranks->rank()) : 0;
+  const RankShare share = ShareOf(shard_count, ranks);
   const LshShardBuilder builder(features, family);
   tbb::task_arena arena(ArenaThreads(threads));
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(shard_starts[own], shard_starts[own + 1],
-                                                 /*grainsize=*/1),
+    tbb::parallel_for(tbb::blocked_range<size_t>(share.first(), share.end(), /*grainsize=*/1),
                       [&](const tbb::blocked_range<size_t>& range) {
                         for (size_t shard_idx = range.begin(); shard_idx != range.end();
                              ++shard_idx) {
@@ -72,7 +68,7 @@ Result<LshIndex> LshIndex::Build(const PoseFeatures& features, const HashFamily&
                         }
                       });
   });
-  if (shared) MOTIF_RETURN_IF_ERROR(index.ShareSlices(ranks, run_starts, shard_starts));
+  if (share.shared()) MOTIF_RETURN_IF_ERROR(index.ShareSlices(ranks, run_starts, share.starts));
   index.SetDirectoryShift();
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, table_count, /*grainsize=*/1),

@@ -152,13 +152,10 @@ Result<SearchScale> EstimateSearchScale(const PoseFeatures& features, const Neig
   samples.counts.assign(queries.size(), 0);
   samples.pair_l2.assign(queries.size() * samples.slots, 0.0f);
   // A distributed run: each rank samples a share of the queries, then all exchange them.
-  const bool shared = ranks != nullptr && ranks->size() > 1;
-  const std::vector<uint64_t> starts = shared ? PartStarts(queries.size(), ranks->size(), 1)
-                                              : std::vector<uint64_t>{0, queries.size()};
-  const size_t own = shared ? static_cast<size_t>(ranks->rank()) : 0;
-  SampleQueries(features, rules, options, queries, subsample, starts[own], starts[own + 1],
-                &samples);
-  if (shared) {
+  const RankShare share = ShareOf(queries.size(), ranks);
+  const std::vector<uint64_t>& starts = share.starts;
+  SampleQueries(features, rules, options, queries, subsample, share.first(), share.end(), &samples);
+  if (share.shared()) {
     MOTIF_RETURN_IF_ERROR(ranks->ShareParts(samples.radii.data(), sizeof(float), starts));
     MOTIF_RETURN_IF_ERROR(ranks->ShareParts(samples.counts.data(), sizeof(uint32_t), starts));
     MOTIF_RETURN_IF_ERROR(

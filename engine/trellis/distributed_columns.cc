@@ -1,63 +1,18 @@
 #include "engine/trellis/distributed_columns.h"
 
 #include <chrono>
-#include <future>
-#include <new>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "common/seconds_since.h"
+#include "engine/trellis/block_write_queue.h"
 #include "formats/trellis_file/trellis_block_codec.h"
 
 namespace motif {
 namespace {
 
 using Columns = std::vector<std::vector<Neighbour>>;
-
-// Rank 0's writes, one at a time on a writer thread, so the search goes on meanwhile.
-class BlockWriteQueue {
- public:
-  explicit BlockWriteQueue(TrellisFileWriter* writer) : writer_(writer) {}
-  ~BlockWriteQueue() {
-    if (pending_.valid()) pending_.wait();  // never leave with a write in flight
-  }
-
-  // Waits for the write in flight, if any; its status.
-  Status Wait(double* wait_seconds) {
-    if (!pending_.valid()) return Status::Ok();
-    const auto start = std::chrono::steady_clock::now();
-    Status status = pending_.get();
-    *wait_seconds += SecondsSince(start);
-    return status;
-  }
-  void StartColumns(Columns columns) {
-    pending_ = std::async(std::launch::async, [this, columns = std::move(columns)] {
-      return Guarded([&] { return writer_->AppendBlock(columns); });
-    });
-  }
-  void StartEncoded(std::string bytes) {
-    pending_ = std::async(std::launch::async, [this, bytes = std::move(bytes)] {
-      return Guarded([&] {
-        return writer_->AppendEncodedBlock(reinterpret_cast<const uint8_t*>(bytes.data()),
-                                           bytes.size());
-      });
-    });
-  }
-
- private:
-  template <typename Write>
-  static Status Guarded(Write write) {
-    try {
-      return write();
-    } catch (const std::bad_alloc&) {
-      return Status::ResourceExhausted("trellis writer: out of memory");
-    }
-  }
-
-  TrellisFileWriter* writer_;
-  std::future<Status> pending_;
-};
 
 uint64_t BlockFirstColumn(uint64_t block, const DistributedColumnsPlan& plan) {
   return block * plan.block_columns;
@@ -113,6 +68,7 @@ Status WriteEveryBlock(const NeighbourSearch& search, RankGroup* ranks,
     }
   }
   MOTIF_RETURN_IF_ERROR(queue.Wait(&report->write_wait_seconds));
+  report->write_seconds = queue.write_seconds();
   if (progress) progress(plan.frame_count, plan.frame_count);
   return Status::Ok();
 }

@@ -29,9 +29,11 @@ struct DistributedColumnsPlan {
 struct DistributedColumnsReport {
   SearchStats stats;                // summed over the ranks (rank 0's report)
   double receive_wait_seconds = 0;  // rank 0: waiting for other ranks' blocks
-  double write_wait_seconds = 0;    // rank 0: waiting for its writer thread
-  uint64_t blocks_searched = 0;     // by this rank
-  double search_seconds = 0;        // this rank's time in the search of its blocks
+  double write_wait_seconds = 0;
+  double write_seconds =
+      0;  // rank 0: its writer thread's time writing    // rank 0: waiting for its writer thread
+  uint64_t blocks_searched = 0;  // by this rank
+  double search_seconds = 0;     // this rank's time in the search of its blocks
 };
 
 // Collective. Rank 0 passes the writer (it writes every block, then the caller calls Finish);

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <future>
 #include <memory>
 #include <sstream>
 
@@ -14,6 +13,7 @@
 #include "engine/distance/pose_features.h"
 #include "engine/lsh/lsh_search.h"
 #include "engine/lsh/lsh_tuning.h"
+#include "engine/trellis/block_write_queue.h"
 #include "engine/trellis/distributed_columns.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
@@ -94,6 +94,7 @@ Status WriteColumnsAcrossRanks(const NeighbourSearch& search, const TrellisOptio
   *stats = columns.stats;
   report->receive_wait_seconds = columns.receive_wait_seconds;
   report->write_wait_seconds = columns.write_wait_seconds;
+  report->write_seconds = columns.write_seconds;
   MOTIF_ASSIGN_OR_RETURN(report->rank_bytes_sent,
                          options.ranks->GatherToRoot(options.ranks->bytes_sent()));
   // In microseconds, as integers.
@@ -114,17 +115,15 @@ Status WriteColumnsHere(const NeighbourSearch& search, const TrellisOptions& opt
     if (options.progress) options.progress("trellis", done, total);
   };
   const uint64_t frame_count = report->params.frame_count;
-  progress(writer->next_column(), frame_count);
-  std::vector<std::vector<Neighbour>> buffers[2];
-  std::future<Status> pending_write;  // the write of the previous block, if any
-  uint64_t pending_end = 0;           // its last column + 1
   const uint64_t block_columns = writer->block_columns();
-  // Waits for the pending write; then reports progress and applies stop_after_blocks.
+  progress(writer->next_column(), frame_count);
+  BlockWriteQueue queue(writer);
+  uint64_t pending_end = 0;  // the last column + 1 of the write in flight
+  // Waits for the write in flight; then reports progress and applies stop_after_blocks.
   auto finish_pending_write = [&]() -> Status {
-    if (!pending_write.valid()) return Status::Ok();
-    const auto wait_start = std::chrono::steady_clock::now();
-    MOTIF_RETURN_IF_ERROR(pending_write.get());
-    report->write_wait_seconds += SecondsSince(wait_start);
+    if (pending_end == 0) return Status::Ok();
+    MOTIF_RETURN_IF_ERROR(queue.Wait(&report->write_wait_seconds));
+    report->write_seconds = queue.write_seconds();
     progress(pending_end, frame_count);
     if (options.stop_after_blocks > 0 &&
         pending_end - report->resumed_from_column >= options.stop_after_blocks * block_columns) {
@@ -133,19 +132,9 @@ Status WriteColumnsHere(const NeighbourSearch& search, const TrellisOptions& opt
     }
     return Status::Ok();
   };
-  // Never leave with a write in flight (it uses the writer and a buffer).
-  struct WaitOnExit {
-    std::future<Status>* write;
-    ~WaitOnExit() {
-      if (write->valid()) write->wait();
-    }
-  } wait_on_exit{&pending_write};
-  size_t buffer_idx = 0;
   for (uint64_t first = writer->next_column(); first < frame_count; first += block_columns) {
     const uint64_t count = std::min<uint64_t>(block_columns, frame_count - first);
-    std::vector<std::vector<Neighbour>>& columns = buffers[buffer_idx];
-    buffer_idx ^= 1;
-    columns.assign(count, {});  // the previous use's memory is freed
+    std::vector<std::vector<Neighbour>> columns(count);
     MOTIF_RETURN_IF_ERROR(search.SearchColumns(first, count, &columns, stats));
     // A search may leave a column's capacity at everything it found within eps (the exact
     // search: thousands of entries at large N) although it keeps at most k_max: give it back
@@ -153,17 +142,7 @@ Status WriteColumnsHere(const NeighbourSearch& search, const TrellisOptions& opt
     for (std::vector<Neighbour>& column : columns) column.shrink_to_fit();
     MOTIF_RETURN_IF_ERROR(finish_pending_write());
     pending_end = first + count;
-    pending_write = std::async(std::launch::async, [writer, &columns, report] {
-      const auto write_start = std::chrono::steady_clock::now();
-      Status status;
-      try {
-        status = writer->AppendBlock(columns);
-      } catch (const std::bad_alloc&) {
-        status = Status::ResourceExhausted("trellis writer: out of memory");
-      }
-      report->write_seconds += SecondsSince(write_start);  // read only after get()
-      return status;
-    });
+    queue.StartColumns(std::move(columns));
   }
   return finish_pending_write();
 }
