@@ -132,6 +132,7 @@ struct MineAcrossRanks {
 int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRanks& across);
 int RunWords(const std::vector<std::string>& args);
 int RunClassify(const std::vector<std::string>& args);
+int RunSegment(const std::vector<std::string>& args);
 int RunSearch(const std::vector<std::string>& args);
 int RunReindex(const std::vector<std::string>& args);
 int RunScore(const std::vector<std::string>& args);

@@ -45,6 +45,8 @@ const Command kCommands[] = {
      "find the motions most like a clip range or a BVH file (signatures, EMD)"},
     {"classify", motif::cli::RunClassify,
      "classify the takes by their signatures: MDS + k-means, kNN with labels"},
+    {"segment", motif::cli::RunSegment,
+     "cut takes into segments of one activity by their signatures (kNN with labels, or not)"},
 };
 
 void PrintUsage(FILE* out) {

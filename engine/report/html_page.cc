@@ -82,6 +82,10 @@ std::string HtmlPageStart(const std::string& title, const std::string& extra_css
 
 std::string HtmlPageEnd() { return "</body></html>\n"; }
 
+std::string HtmlRow(const std::string& key, const std::string& value_html) {
+  return "<tr><td>" + key + "</td><td>" + value_html + "</td></tr>\n";
+}
+
 std::string HtmlNumber(const char* format, double value) {
   char text[64];
   std::snprintf(text, sizeof text, format, value);

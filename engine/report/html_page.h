@@ -18,6 +18,9 @@ std::string HtmlPageStart(const std::string& title, const std::string& extra_css
 // "</body></html>\n"
 std::string HtmlPageEnd();
 
+// "<tr><td>KEY</td><td>VALUE</td></tr>\n": a row of a key-value table (neither is escaped).
+std::string HtmlRow(const std::string& key, const std::string& value_html);
+
 // printf of one double ("%.2f").
 std::string HtmlNumber(const char* format, double value);
 // 40346 -> "40,346".

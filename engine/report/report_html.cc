@@ -194,7 +194,7 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
   std::string& out = *html;
   out += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">\n";
   auto row = [&](const std::string& key, const std::string& value_html) {
-    out += "<tr><td>" + key + "</td><td>" + value_html + "</td></tr>\n";
+    out += HtmlRow(key, value_html);
   };
   row("archive", "<code>" + HtmlEscape(archive) + "</code>");
   row("frames", HtmlCommas(reader.frame_count()) + " (" +

@@ -33,10 +33,6 @@ std::string Shade(double value, double lo, double hi) {
          std::to_string(std::min(255, level + 20)) + ")";
 }
 
-std::string Row(const std::string& key, const std::string& value_html) {
-  return "<tr><td>" + key + "</td><td>" + value_html + "</td></tr>\n";
-}
-
 }  // namespace
 
 Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileReader& reader,
@@ -45,18 +41,18 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
   KeyframeFigures figures(reader, FigureView::kSide, 5);
   std::string html = HtmlPageStart("motifmine search: " + info.archive, kWordsCss);
   html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
-  html += Row("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
-                             HtmlCommas(reader.clips().size()) + " clips)");
-  html += Row("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
-                           (info.query_words == 1 ? " word" : " words"));
-  html +=
-      Row("search", result.whole_take ? "whole takes: the EMD between take signatures over " +
-                                            std::to_string(info.motifs) + " motifs"
-                                      : "a window of " + HtmlCommas(info.query_words) +
-                                            " words slid along every take, one word at a time (" +
-                                            HtmlCommas(result.windows) + " windows); EMD over " +
-                                            std::to_string(info.motifs) + " motifs");
-  html += Row("time", HtmlNumber("%.2f s", info.seconds));
+  html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
+                                 HtmlCommas(reader.clips().size()) + " clips)");
+  html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
+                               (info.query_words == 1 ? " word" : " words"));
+  html += HtmlRow("search", result.whole_take
+                                ? "whole takes: the EMD between take signatures over " +
+                                      std::to_string(info.motifs) + " motifs"
+                                : "a window of " + HtmlCommas(info.query_words) +
+                                      " words slid along every take, one word at a time (" +
+                                      HtmlCommas(result.windows) + " windows); EMD over " +
+                                      std::to_string(info.motifs) + " motifs");
+  html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
   html += "</table>\n";
   if (info.query_in_archive) {
     const ClipInfo& clip = reader.clips()[info.query_clip];
@@ -135,17 +131,17 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
       std::string(labelled ? "<a href=\"#confusion\">confusion</a>" : "") +
       "<a href=\"#matrix\">distances</a><a href=\"#takes\">takes</a></nav>\n";
   html += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">";
-  html += Row("archive", "<code>" + HtmlEscape(archive) + "</code>");
+  html += HtmlRow("archive", "<code>" + HtmlEscape(archive) + "</code>");
   const std::string distance_text =
       r.distance == "emd"      ? "Earth Mover's Distance between TF-IDF motion signatures"
       : r.distance == "emd-tf" ? "Earth Mover's Distance between signatures without TF-IDF"
                                : "dynamic time warping over the takes' frames";
-  html += Row("distance", HtmlEscape(r.distance) + ": " + distance_text + " (" +
-                              HtmlNumber("%.2f s", r.seconds_distances) + ")");
-  html += Row("takes",
-              HtmlCommas(n) + (labelled ? ", " + HtmlCommas(r.knn.labelled) + " labelled with " +
-                                              std::to_string(r.label_names.size()) + " labels"
-                                        : std::string()));
+  html += HtmlRow("distance", HtmlEscape(r.distance) + ": " + distance_text + " (" +
+                                  HtmlNumber("%.2f s", r.seconds_distances) + ")");
+  html += HtmlRow(
+      "takes", HtmlCommas(n) + (labelled ? ", " + HtmlCommas(r.knn.labelled) + " labelled with " +
+                                               std::to_string(r.label_names.size()) + " labels"
+                                         : std::string()));
   std::string unsupervised = "classical MDS into " + std::to_string(r.mds.coordinates.cols()) +
                              " dimensions, then k-means into " + std::to_string(r.group_count) +
                              " groups";
@@ -154,16 +150,16 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
                     HtmlNumber("%.3f", r.adjusted_rand_index) + ", purity " +
                     HtmlNumber("%.3f", r.purity);
   }
-  html += Row("unsupervised", unsupervised);
+  html += HtmlRow("unsupervised", unsupervised);
   if (labelled) {
-    html += Row("supervised", std::to_string(r.knn.k) +
-                                  "-nearest-neighbour, leave one out: "
-                                  "accuracy <b>" +
-                                  HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
-                                  HtmlCommas(r.knn.correct) + " of " + HtmlCommas(r.knn.labelled) +
-                                  ")");
-    html += Row("retrieval", "whole-take precision@" + std::to_string(r.top) + " <b>" +
-                                 HtmlNumber("%.3f", r.precision_at_top) + "</b>");
+    html += HtmlRow("supervised", std::to_string(r.knn.k) +
+                                      "-nearest-neighbour, leave one out: "
+                                      "accuracy <b>" +
+                                      HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
+                                      HtmlCommas(r.knn.correct) + " of " +
+                                      HtmlCommas(r.knn.labelled) + ")");
+    html += HtmlRow("retrieval", "whole-take precision@" + std::to_string(r.top) + " <b>" +
+                                     HtmlNumber("%.3f", r.precision_at_top) + "</b>");
   }
   html += "</table></section>\n";
 

@@ -27,6 +27,17 @@ std::vector<uint32_t> NearestItems(const Eigen::MatrixXd& distances,
   return others;
 }
 
+uint32_t MajorityOfNearest(const std::vector<uint32_t>& nearest_labels, uint32_t label_count) {
+  std::vector<uint32_t> votes(label_count, 0);
+  for (uint32_t label : nearest_labels) ++votes[label];
+  uint32_t most = 0;
+  for (uint32_t count : votes) most = std::max(most, count);
+  for (uint32_t label : nearest_labels) {  // the nearest label among those with the most votes
+    if (votes[label] == most) return label;
+  }
+  return kUnlabelled;
+}
+
 KnnEvaluation LeaveOneOutKnn(const Eigen::MatrixXd& distances, const std::vector<uint32_t>& labels,
                              uint32_t label_count, uint32_t k) {
   MOTIF_CHECK(k >= 1);
@@ -40,16 +51,9 @@ KnnEvaluation LeaveOneOutKnn(const Eigen::MatrixXd& distances, const std::vector
     if (labels[item] == kUnlabelled) continue;
     const std::vector<uint32_t> nearest = NearestItems(distances, labels, item, k, true);
     if (nearest.empty()) continue;
-    std::vector<uint32_t> votes(label_count, 0);
-    for (uint32_t other : nearest) ++votes[labels[other]];
-    const uint32_t most = *std::max_element(votes.begin(), votes.end());
-    uint32_t predicted = kUnlabelled;
-    for (uint32_t other : nearest) {  // the nearest label among those with the most votes
-      if (votes[labels[other]] == most) {
-        predicted = labels[other];
-        break;
-      }
-    }
+    std::vector<uint32_t> nearest_labels;
+    for (uint32_t other : nearest) nearest_labels.push_back(labels[other]);
+    const uint32_t predicted = MajorityOfNearest(nearest_labels, label_count);
     result.predicted[item] = predicted;
     ++result.labelled;
     result.correct += predicted == labels[item];

@@ -35,6 +35,11 @@ struct KnnEvaluation {
 KnnEvaluation LeaveOneOutKnn(const Eigen::MatrixXd& distances, const std::vector<uint32_t>& labels,
                              uint32_t label_count, uint32_t k);
 
+// The kNN vote: the majority label among `nearest_labels` (the neighbours' labels, nearest
+// first, each < label_count); a tie between labels goes to the one that comes first. kUnlabelled
+// when `nearest_labels` is empty.
+uint32_t MajorityOfNearest(const std::vector<uint32_t>& nearest_labels, uint32_t label_count);
+
 // As above; 0 when no item has k labelled others.
 double PrecisionAtK(const Eigen::MatrixXd& distances, const std::vector<uint32_t>& labels,
                     uint32_t k);

@@ -1,8 +1,9 @@
-// End-to-end tests of `motifmine words`, `search` and `classify` with the built binary, as a user
-// would run them on a small synthetic archive: the files and documents they write, reuse, a query
-// exported as BVH finding where it came from, and clear errors on bad input.
+// End-to-end tests of `motifmine words`, `search`, `classify` and `segment` with the built binary,
+// as a user would run them on a small synthetic archive: the files and documents they write, reuse,
+// a query exported as BVH finding where it came from, and clear errors on bad input.
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -196,6 +197,108 @@ TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
   expect("search " + archive_ + " --clip synth_000001", 12, "s.mws");
   ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
   EXPECT_EQ(testing::ReadBytes(damaged), signatures);
+}
+
+}  // namespace
+}  // namespace motif
+
+namespace motif {
+namespace {
+
+using testing::RunResult;
+using testing::RunTool;
+
+// Every take's segments cover it whole, in order, each at least one frame.
+void ExpectSegmentsCoverTheTakes(const nlohmann::json& doc) {
+  std::map<std::string, uint64_t> next;
+  for (const nlohmann::json& segment : doc["segments"]) {
+    const std::string clip = segment["clip"];
+    EXPECT_EQ(segment["start"].get<uint64_t>(), next[clip]) << clip;
+    EXPECT_GT(segment["end"].get<uint64_t>(), segment["start"].get<uint64_t>()) << clip;
+    next[clip] = segment["end"];
+  }
+  for (const nlohmann::json& take : doc["takes"]) {
+    EXPECT_EQ(next[take["clip"].get<std::string>()], take["frames"].get<uint64_t>());
+  }
+}
+
+TEST_F(WordsCliTest, SegmentWritesItsDocumentAndPageWithAndWithoutLabels) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  RunResult plain = RunTool("segment " + archive_ + " --out " + dir_->File("seg1"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  const nlohmann::json doc = ReadJson(dir_->File("seg1/segments.json"));
+  EXPECT_EQ(doc["mode"], "unsupervised");
+  EXPECT_GT(doc["takes"].size(), 5u);
+  ExpectSegmentsCoverTheTakes(doc);
+  const std::string page = testing::ReadBytes(dir_->File("seg1/segments.html"));
+  EXPECT_NE(page.find("class=\"timeline\""), std::string::npos);
+  EXPECT_NE(page.find("<svg class=\"fig\""), std::string::npos);
+  {
+    std::ofstream labels(dir_->File("seg-labels.tsv"));
+    labels << "clip\tlabel\n";
+    for (size_t take = 0; take < doc["takes"].size(); ++take) {
+      labels << doc["takes"][take]["clip"].get<std::string>() << "\t" << (take % 2 ? "b" : "a")
+             << "\n";
+    }
+  }
+  for (const char* distance : {"emd", "dtw"}) {
+    RunResult labelled =
+        RunTool("segment " + archive_ + " --labels " + dir_->File("seg-labels.tsv") +
+                " --clip synth_000001 --clip synth_000003 --distance " + distance + " --out " +
+                dir_->File(std::string("seg-") + distance));
+    ASSERT_EQ(labelled.exit_code, 0) << labelled.output;
+    const nlohmann::json one =
+        ReadJson(dir_->File(std::string("seg-") + distance + "/segments.json"));
+    EXPECT_EQ(one["mode"], "supervised");
+    EXPECT_EQ(one["distance"], distance);
+    EXPECT_EQ(one["labels"], nlohmann::json({"a", "b"}));
+    ASSERT_EQ(one["takes"].size(), 2u);
+    EXPECT_EQ(one["takes"][0]["clip"], "synth_000001");
+    EXPECT_EQ(one["takes"][1]["clip"], "synth_000003");
+    for (const nlohmann::json& segment : one["segments"]) {
+      EXPECT_TRUE(segment["label"] == "a" || segment["label"] == "b") << segment.dump();
+    }
+    ExpectSegmentsCoverTheTakes(one);
+  }
+}
+
+TEST_F(WordsCliTest, SegmentRefusesBadOptionsByNameAndWritesNothing) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  auto expect = [&](const std::string& args, int code, const std::string& text) {
+    RunResult result = RunTool("segment " + archive_ + " --out " + dir_->File("seg-bad") + args);
+    EXPECT_EQ(result.exit_code, code) << args << "\n" << result.output;
+    EXPECT_NE(result.output.find(text), std::string::npos) << args << "\n" << result.output;
+    EXPECT_FALSE(testing::FileExists(dir_->File("seg-bad/segments.json"))) << args;
+  };
+  expect(" --clip nope", 11, "no clip named 'nope'");
+  expect(" --distance cosine", 13, "--distance must be emd or dtw");
+  expect(" --distance dtw", 13, "--distance dtw needs --labels");
+  expect(" --window 0", 13, "--window");
+  expect(" --neighbours frames", 13, "--neighbours must be");
+  expect(" --labels " + dir_->File("no-labels.tsv"), 11, "no-labels.tsv");
+  {
+    std::ofstream labels(dir_->File("elsewhere.tsv"));
+    labels << "other_clip\twalk\n";
+  }
+  expect(" --labels " + dir_->File("elsewhere.tsv"), 13, "no labelled take");
+}
+
+TEST(SegmentCli, BuildsTheWordsItNeedsWhenTheyAreMissing) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("small.mfs");
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 12000 --motifs 2 --seed 5 " +
+                    "--clip-seconds-min 10 --clip-seconds-max 15 --quiet")
+                .exit_code,
+            0);
+  RunResult result = RunTool("segment " + archive + " --out " + dir.File("out"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("building them"), std::string::npos) << result.output;
+  EXPECT_TRUE(testing::FileExists(dir.File("small.mws")));
+  ExpectSegmentsCoverTheTakes(ReadJson(dir.File("out/segments.json")));
+  // A second run reads them back instead.
+  RunResult again = RunTool("segment " + archive + " --out " + dir.File("out"));
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(again.output.find("building them"), std::string::npos) << again.output;
 }
 
 }  // namespace

@@ -1,0 +1,267 @@
+// motifmine segment ARCHIVE [--labels LABELS.tsv] [--clip NAME ...] --out DIR: temporal
+// segmentation of takes by their motion signatures (take_segmentation.h), supervised with the
+// labels of other takes or unsupervised, written as DIR/segments.json and DIR/segments.html.
+// The words files are built first (as `motifmine words` with its defaults) when missing.
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include "common/file_util.h"
+#include "engine/cli/cli_common.h"
+#include "engine/cli/take_labels.h"
+#include "engine/report/segments_html.h"
+#include "engine/signature/take_retrieval.h"
+#include "engine/words/take_segmentation.h"
+#include "engine/words/word_model.h"
+#include "engine/words/words_builder.h"
+
+namespace motif::cli {
+namespace {
+
+namespace po = boost::program_options;
+
+// Runs `motifmine words` with its defaults (and `seed`) to make the missing files.
+Status BuildMissingWords(const std::string& archive, const WordsPaths& paths, uint64_t seed,
+                         int threads, ProgressReporter& progress) {
+  progress.Note("no motion words for " + archive + " yet: building them (motifmine words)");
+  WordsOptions options;
+  options.seed = seed;
+  options.threads = threads;
+  std::string stage;
+  options.progress = [&](const std::string& name, uint64_t done, uint64_t total,
+                         const std::string& unit) {
+    if (name != stage) {
+      if (!stage.empty()) progress.EndStage();
+      stage = name;
+      progress.BeginStage(name, total, unit);
+    }
+    progress.Update(done);
+  };
+  options.note = [&](const std::string& message) { progress.Note(message); };
+  Result<WordsReport> report = BuildWords(archive, paths, options);
+  if (!stage.empty()) progress.EndStage();
+  return report.status();
+}
+
+// The clips named by --clip (every clip when none), in the order given.
+Result<std::vector<uint32_t>> ClipsAskedFor(const FrameFileReader& reader,
+                                            const std::vector<std::string>& names) {
+  std::map<std::string, uint32_t> index;
+  for (uint32_t clip = 0; clip < reader.clips().size(); ++clip)
+    index[reader.clips()[clip].name] = clip;
+  std::vector<uint32_t> clips;
+  if (names.empty()) {
+    for (uint32_t clip = 0; clip < reader.clips().size(); ++clip) clips.push_back(clip);
+    return clips;
+  }
+  for (const std::string& name : names) {
+    const auto found = index.find(name);
+    if (found == index.end()) {
+      return Status::NotFound("--clip: no clip named '" + name + "' (motifmine info lists them)");
+    }
+    clips.push_back(found->second);
+  }
+  return clips;
+}
+
+// Per archive clip its label index, and the sorted label names, from the labels file.
+void IndexLabels(const FrameFileReader& reader, const TakeLabels& labels,
+                 std::vector<uint32_t>* clip_labels, std::vector<std::string>* names,
+                 uint64_t* unknown) {
+  std::map<std::string, uint32_t> clip_of;
+  for (uint32_t clip = 0; clip < reader.clips().size(); ++clip)
+    clip_of[reader.clips()[clip].name] = clip;
+  std::set<std::string> distinct;
+  for (const auto& [clip, label] : labels.by_clip) {
+    if (clip_of.count(clip)) distinct.insert(label);
+  }
+  names->assign(distinct.begin(), distinct.end());
+  clip_labels->assign(reader.clips().size(), kUnlabelled);
+  *unknown = 0;
+  for (const auto& [clip, label] : labels.by_clip) {
+    const auto found = clip_of.find(clip);
+    if (found == clip_of.end()) {
+      ++*unknown;
+      continue;
+    }
+    (*clip_labels)[found->second] = static_cast<uint32_t>(
+        std::lower_bound(names->begin(), names->end(), label) - names->begin());
+  }
+}
+
+void PrintSummary(const Segmentation& result, const FrameFileReader& reader,
+                  const std::string& archive, double seconds, const WordsReaderOutput& output) {
+  uint64_t segments = 0;
+  for (const SegmentedTake& take : result.takes) segments += take.segments.size();
+  std::printf(
+      "motifmine segment: %s (%zu takes, %s)\n", archive.c_str(), result.takes.size(),
+      result.supervised ? ("supervised, " + result.distance + " kNN").c_str() : "unsupervised");
+  if (result.supervised) {
+    std::printf("  method       %u-NN over windows of %u words: %s windows of %s labelled takes\n",
+                result.knn, result.window, WithCommas(result.reference_windows).c_str(),
+                WithCommas(result.reference_takes).c_str());
+  } else {
+    std::printf(
+        "  method       change score over %u words either side, threshold %.4f (mean + "
+        "1 sd of the scores)\n",
+        result.window, result.threshold);
+  }
+  std::printf("  segments     %s over %zu labels\n", WithCommas(segments).c_str(),
+              result.label_names.size());
+  for (const SegmentedTake& take : result.takes) {
+    std::printf("    %-20s %8s frames %4zu segments\n", reader.clips()[take.clip].name.c_str(),
+                WithCommas(reader.clips()[take.clip].frame_count).c_str(), take.segments.size());
+  }
+  if (!result.skipped_clips.empty()) {
+    std::printf("  skipped      %zu takes shorter than one motion word\n",
+                result.skipped_clips.size());
+  }
+  std::printf("  time         %.2fs\n", seconds);
+  std::printf("  wrote        %s, %s\n", output.json_path.c_str(), output.html_path.c_str());
+}
+
+}  // namespace
+
+int RunSegment(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  spec.name = "segment";
+  spec.usage =
+      "motifmine segment ARCHIVE [--labels LABELS.tsv] [--clip NAME ...] --out DIR "
+      "[--distance emd|dtw] [--window W] [--knn K]";
+  spec.summary =
+      "Cuts takes into segments of one activity by their motion signatures. With --labels (a\n"
+      "TSV of clip and label, as classify reads), each motion word takes the majority label of\n"
+      "the K nearest windows of W words of the labelled takes (EMD between signatures; a take\n"
+      "never votes for itself), and equal neighbouring labels merge into segments. Without,\n"
+      "boundaries go where the signatures before and after differ most, and segments are\n"
+      "grouped by signature. Segments the takes named by --clip (default: every take).\n"
+      "Builds the words files first (as `motifmine words`) when they are missing.\n"
+      "Writes DIR/segments.json and DIR/segments.html.";
+  SegmentOptions defaults;
+  spec.options.add_options()("labels", po::value<std::string>()->default_value(""),
+                             "labels of takes: a TSV file of clip<TAB>label lines")(
+      "clip", po::value<std::vector<std::string>>()->composing(),
+      "a take to segment (repeatable; default: every take)")(
+      "distance", po::value<std::string>()->default_value("emd"),
+      "emd (signatures) or dtw (the windows' frames, a baseline; needs --labels)")(
+      "window", po::value<uint32_t>()->default_value(defaults.window), "words per window")(
+      "knn", po::value<uint32_t>()->default_value(defaults.knn), "neighbours of the vote")(
+      "neighbours", po::value<std::string>()->default_value("windows"),
+      "what the K neighbours are: windows (the K nearest windows) or takes (the K nearest "
+      "labelled takes, each at its nearest window)")(
+      "dtw-step", po::value<uint32_t>()->default_value(defaults.dtw_step),
+      "dtw: compare every n-th frame")("weights", po::value<std::string>()->default_value(""),
+                                       "dtw: per-joint weights file (default: the skeleton's)")(
+      "seed", po::value<uint64_t>()->default_value(1),
+      "seed of the words build when the words files are missing");
+  AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "segments");
+  AddProgressOptions(spec);
+  spec.positional = {{"archive", 1}};
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const auto fail = [](const Status& status) { return ReportError("segment", status); };
+  const std::string archive = vm["archive"].as<std::string>();
+  const std::string distance = vm["distance"].as<std::string>();
+  const std::string labels_path = vm["labels"].as<std::string>();
+  if (distance != "emd" && distance != "dtw") {
+    return fail(Status::InvalidArgument("--distance must be emd or dtw, not '" + distance + "'"));
+  }
+  if (distance == "dtw" && labels_path.empty()) {
+    return fail(Status::InvalidArgument("--distance dtw needs --labels (it is supervised only)"));
+  }
+  SegmentOptions options;
+  options.window = vm["window"].as<uint32_t>();
+  options.knn = vm["knn"].as<uint32_t>();
+  options.dtw_step = vm["dtw-step"].as<uint32_t>();
+  const std::string neighbours = vm["neighbours"].as<std::string>();
+  if (neighbours != "windows" && neighbours != "takes") {
+    return fail(
+        Status::InvalidArgument("--neighbours must be windows or takes, not '" + neighbours + "'"));
+  }
+  options.one_per_take = neighbours == "takes";
+  options.threads = vm["threads"].as<int>();
+  if (options.window == 0 || options.knn == 0 || options.dtw_step == 0) {
+    return fail(Status::InvalidArgument("--window, --knn and --dtw-step must be at least 1"));
+  }
+  Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, archive, "segments");
+  if (!output.ok()) return fail(output.status());
+  Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(archive);
+  if (!reader.ok()) return fail(reader.status());
+  const std::vector<std::string> names =
+      vm.count("clip") ? vm["clip"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  Result<std::vector<uint32_t>> clips = ClipsAskedFor(**reader, names);
+  if (!clips.ok()) return fail(clips.status());
+  TakeLabels labels;
+  if (!labels_path.empty()) {
+    Result<TakeLabels> read = ReadTakeLabels(labels_path);
+    if (!read.ok()) return fail(read.status());
+    labels = std::move(read.value());
+  }
+
+  ProgressReporter progress(ProgressModeFrom(vm));
+  const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
+  Result<LoadedWords> words = LoadWords(**reader, paths, /*with_embedding=*/false);
+  if (!words.ok() && words.status().IsNotFound()) {
+    if (Status status =
+            BuildMissingWords(archive, paths, vm["seed"].as<uint64_t>(), options.threads, progress);
+        !status.ok()) {
+      return fail(status);
+    }
+    words = LoadWords(**reader, paths, /*with_embedding=*/false);
+  }
+  if (!words.ok()) return fail(words.status());
+
+  std::string stage;
+  options.progress = [&](const std::string& name, uint64_t done, uint64_t total) {
+    if (name != stage) {
+      if (!stage.empty()) progress.EndStage();
+      stage = name;
+      progress.BeginStage(name, total, name == "windows" ? "takes" : "windows");
+    }
+    progress.Update(done);
+  };
+  const auto start = std::chrono::steady_clock::now();
+  Result<Segmentation> result = Status::InvalidArgument("not segmented");
+  if (labels_path.empty()) {
+    result = SegmentUnsupervised(**reader, *words, *clips, options);
+  } else {
+    std::vector<uint32_t> clip_labels;
+    std::vector<std::string> label_names;
+    uint64_t unknown = 0;
+    IndexLabels(**reader, labels, &clip_labels, &label_names, &unknown);
+    if (unknown > 0) {
+      progress.Note(std::to_string(unknown) + " labelled clips of " + labels_path +
+                    " are not clips of the archive: ignored");
+    }
+    std::optional<PoseFeatures> features;
+    if (distance == "dtw") {
+      Result<std::vector<float>> weights =
+          LoadDistanceWeights((*reader)->skeleton(), vm["weights"].as<std::string>());
+      if (!weights.ok()) return fail(weights.status());
+      Result<PoseFeatures> computed = PoseFeatures::FromArchive(**reader, *weights);
+      if (!computed.ok()) return fail(computed.status());
+      features = std::move(computed.value());
+    }
+    result = SegmentSupervised(**reader, *words, *clips, clip_labels, label_names,
+                               features ? &*features : nullptr, options);
+  }
+  if (!stage.empty()) progress.EndStage();
+  if (!result.ok()) return fail(result.status());
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  nlohmann::json json = SegmentsJson(*result, **reader, archive);
+  json["seconds"] = seconds;
+  if (Status status = AtomicWriteFile(output->json_path, json.dump(2) + "\n"); !status.ok()) {
+    return fail(status);
+  }
+  SegmentsPageInfo info{archive, labels_path, words->motifs.motif_count(), seconds};
+  if (Status status = WriteSegmentsHtml(output->html_path, *result, **reader, info); !status.ok()) {
+    return fail(status);
+  }
+  PrintSummary(*result, **reader, archive, seconds, *output);
+  return kExitOk;
+}
+
+}  // namespace motif::cli

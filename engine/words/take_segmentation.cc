@@ -1,0 +1,317 @@
+#include "engine/words/take_segmentation.h"
+
+#include <span>
+
+#include "engine/signature/earth_movers_distance.h"
+#include "engine/signature/take_dtw.h"
+#include "engine/signature/take_retrieval.h"
+#include "engine/signature/word_stream.h"
+#include "engine/words/signature_change.h"
+
+namespace motif {
+namespace {
+
+// A window of words of one clip: [first, end).
+struct Window {
+  uint32_t clip = 0;
+  uint64_t first = 0;
+  uint64_t end = 0;
+};
+
+Status CheckOptions(const FrameFileReader& reader, const std::vector<uint32_t>& clips,
+                    const SegmentOptions& options) {
+  if (options.window == 0 || options.knn == 0 || options.dtw_step == 0) {
+    return Status::InvalidArgument("segment: --window, --knn and --dtw-step must be at least 1");
+  }
+  for (uint32_t clip : clips) {
+    if (clip >= reader.clips().size()) {
+      return Status::InvalidArgument("segment: clip index " + std::to_string(clip) +
+                                     " out of range");
+    }
+  }
+  return Status::Ok();
+}
+
+// Every word's centred window, take by take.
+std::vector<Window> CentredWindows(const LoadedWords& words, const std::vector<uint32_t>& clips,
+                                   uint32_t window) {
+  std::vector<Window> windows;
+  for (uint32_t clip : clips) {
+    const uint64_t count = words.signatures.clip_words[clip];
+    for (uint64_t word = 0; word < count; ++word) {
+      const auto [first, end] = CentredWindow(word, count, window);
+      windows.push_back({clip, first, end});
+    }
+  }
+  return windows;
+}
+
+// The TF-IDF signature of words [first, end) of `clip`.
+Result<std::vector<double>> RangeSignature(const LoadedWords& words, uint32_t clip, uint64_t first,
+                                           uint64_t end) {
+  const uint16_t* motifs = &words.signatures.word_motifs[words.clip_first_words[clip]];
+  std::vector<uint32_t> ids(motifs + first, motifs + end);
+  return words.tf_idf->Signature(ids);
+}
+
+Result<std::vector<std::vector<double>>> WindowSignatures(const LoadedWords& words,
+                                                          const std::vector<Window>& windows) {
+  std::vector<std::vector<double>> signatures;
+  signatures.reserve(windows.size());
+  for (const Window& window : windows) {
+    MOTIF_ASSIGN_OR_RETURN(std::vector<double> signature,
+                           RangeSignature(words, window.clip, window.first, window.end));
+    signatures.push_back(std::move(signature));
+  }
+  return signatures;
+}
+
+// Archive frames [first, end) that the words of `window` read.
+TakeFrames WindowFrames(const FrameFileReader& reader, const LoadedWords& words,
+                        const Window& window) {
+  const WordGrid grid = ClipWordGrid(reader, window.clip, words.signatures.words);
+  const uint64_t base = reader.clips()[window.clip].first_frame;
+  return {base + grid.SourceFrames(window.first).first,
+          base + grid.SourceFrames(window.end - 1).end};
+}
+
+// Splits the labels of all query windows back into takes and merges them into segments.
+void FillTakes(const FrameFileReader& reader, const LoadedWords& words,
+               const std::vector<uint32_t>& clips, const std::vector<uint32_t>& labels,
+               Segmentation* result) {
+  size_t next = 0;
+  for (uint32_t clip : clips) {
+    SegmentedTake take;
+    take.clip = clip;
+    take.words = words.signatures.clip_words[clip];
+    take.word_labels.assign(labels.begin() + static_cast<std::ptrdiff_t>(next),
+                            labels.begin() + static_cast<std::ptrdiff_t>(next + take.words));
+    next += take.words;
+    take.segments = MergeLabels(take.word_labels, WordCentres(reader, words, clip),
+                                reader.clips()[clip].frame_count);
+    result->takes.push_back(std::move(take));
+  }
+}
+
+// The clips asked for that have words; the others go to `skipped`.
+std::vector<uint32_t> TakesWithWords(const LoadedWords& words, const std::vector<uint32_t>& clips,
+                                     std::vector<uint32_t>* skipped) {
+  std::vector<uint32_t> takes;
+  for (uint32_t clip : clips) {
+    (words.signatures.clip_words[clip] > 0 ? takes : *skipped).push_back(clip);
+  }
+  return takes;
+}
+
+WindowDistanceMaker EmdMaker(const std::vector<std::vector<double>>& queries,
+                             const std::vector<std::vector<double>>& references,
+                             const Eigen::MatrixXd& ground) {
+  return [&] {
+    auto emd = std::make_shared<EarthMoversDistance>();
+    return WindowDistance([&, emd](size_t query, size_t reference) {
+      return emd->Distance(queries[query], references[reference], ground);
+    });
+  };
+}
+
+WindowDistanceMaker DtwMaker(const PoseFeatures& features, const std::vector<TakeFrames>& queries,
+                             const std::vector<TakeFrames>& references, uint32_t step) {
+  return [&, step] {
+    return WindowDistance([&, step](size_t query, size_t reference) -> Result<double> {
+      return TakeDtw(features, queries[query], references[reference], step);
+    });
+  };
+}
+
+}  // namespace
+
+std::vector<double> WordCentres(const FrameFileReader& reader, const LoadedWords& words,
+                                uint32_t clip) {
+  const WordGrid grid = ClipWordGrid(reader, clip, words.signatures.words);
+  std::vector<double> centres;
+  for (uint64_t word = 0; word < grid.word_count(); ++word) {
+    const FrameSpan span = grid.SourceFrames(word);
+    centres.push_back(static_cast<double>(span.first + span.end - 1) / 2);
+  }
+  return centres;
+}
+
+Result<Segmentation> SegmentSupervised(const FrameFileReader& reader, const LoadedWords& words,
+                                       const std::vector<uint32_t>& clips,
+                                       const std::vector<uint32_t>& clip_labels,
+                                       const std::vector<std::string>& label_names,
+                                       const PoseFeatures* features,
+                                       const SegmentOptions& options) {
+  MOTIF_RETURN_IF_ERROR(CheckOptions(reader, clips, options));
+  Segmentation result;
+  result.supervised = true;
+  result.distance = features ? "dtw" : "emd";
+  result.label_names = label_names;
+  result.window = options.window;
+  result.knn = options.knn;
+  result.one_per_take = options.one_per_take;
+  std::vector<uint32_t> reference_clips;
+  for (uint32_t clip = 0; clip < clip_labels.size(); ++clip) {
+    if (clip_labels[clip] != kUnlabelled && words.signatures.clip_words[clip] > 0) {
+      reference_clips.push_back(clip);
+    }
+  }
+  if (reference_clips.empty()) {
+    return Status::InvalidArgument("segment: no labelled take has a motion word");
+  }
+  const std::vector<uint32_t> takes = TakesWithWords(words, clips, &result.skipped_clips);
+  const std::vector<Window> queries = CentredWindows(words, takes, options.window);
+  const std::vector<Window> references = CentredWindows(words, reference_clips, options.window);
+  result.reference_windows = references.size();
+  result.reference_takes = reference_clips.size();
+
+  WindowVoteInput input;
+  input.label_count = static_cast<uint32_t>(label_names.size());
+  input.k = options.knn;
+  input.take_count = static_cast<uint32_t>(reader.clips().size());
+  input.one_per_take = options.one_per_take;
+  for (const Window& window : queries) input.query_takes.push_back(window.clip);
+  for (const Window& window : references) {
+    input.reference_takes.push_back(window.clip);
+    input.reference_labels.push_back(clip_labels[window.clip]);
+  }
+  const auto progress = [&](uint64_t done, uint64_t total) {
+    if (options.progress) options.progress("vote", done, total);
+  };
+  Result<std::vector<uint32_t>> labels = Status::InvalidArgument("no vote");
+  if (features) {
+    std::vector<TakeFrames> query_frames;
+    std::vector<TakeFrames> reference_frames;
+    for (const Window& window : queries)
+      query_frames.push_back(WindowFrames(reader, words, window));
+    for (const Window& window : references) {
+      reference_frames.push_back(WindowFrames(reader, words, window));
+    }
+    labels =
+        VoteWindows(input, DtwMaker(*features, query_frames, reference_frames, options.dtw_step),
+                    options.threads, progress);
+  } else {
+    MOTIF_ASSIGN_OR_RETURN(const auto query_signatures, WindowSignatures(words, queries));
+    MOTIF_ASSIGN_OR_RETURN(const auto reference_signatures, WindowSignatures(words, references));
+    labels = VoteWindows(input, EmdMaker(query_signatures, reference_signatures, words.ground),
+                         options.threads, progress);
+  }
+  if (!labels.ok()) return labels.status();
+  FillTakes(reader, words, takes, *labels, &result);
+  return result;
+}
+
+Result<Segmentation> SegmentUnsupervised(const FrameFileReader& reader, const LoadedWords& words,
+                                         const std::vector<uint32_t>& clips,
+                                         const SegmentOptions& options) {
+  MOTIF_RETURN_IF_ERROR(CheckOptions(reader, clips, options));
+  Segmentation result;
+  result.distance = "emd";
+  result.window = options.window;
+  const std::vector<uint32_t> takes = TakesWithWords(words, clips, &result.skipped_clips);
+  EarthMoversDistance emd;
+  Status failure;
+  std::vector<std::vector<double>> scores;
+  for (uint32_t clip : takes) {
+    scores.push_back(ChangeScores(
+        words.signatures.clip_words[clip], options.window,
+        [&](uint64_t a_first, uint64_t a_end, uint64_t b_first, uint64_t b_end) {
+          Result<std::vector<double>> a = RangeSignature(words, clip, a_first, a_end);
+          Result<std::vector<double>> b = RangeSignature(words, clip, b_first, b_end);
+          Result<double> distance = a.ok() && b.ok()
+                                        ? emd.Distance(*a, *b, words.ground)
+                                        : Result<double>(a.ok() ? b.status() : a.status());
+          if (!distance.ok()) failure = distance.status();
+          return distance.ok() ? *distance : 0.0;
+        }));
+    MOTIF_RETURN_IF_ERROR(failure);
+    if (options.progress) options.progress("windows", scores.size(), takes.size());
+  }
+  result.threshold = ChangeThreshold(scores);
+
+  // The segments between boundaries, then their signatures' distances.
+  std::vector<Window> pieces;
+  for (size_t take = 0; take < takes.size(); ++take) {
+    uint64_t first = 0;
+    for (uint64_t boundary : PickBoundaries(scores[take], result.threshold, options.window)) {
+      pieces.push_back({takes[take], first, boundary});
+      first = boundary;
+    }
+    pieces.push_back({takes[take], first, words.signatures.clip_words[takes[take]]});
+  }
+  MOTIF_ASSIGN_OR_RETURN(const auto signatures, WindowSignatures(words, pieces));
+  const auto n = static_cast<Eigen::Index>(pieces.size());
+  Eigen::MatrixXd distances = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index a = 0; a < n; ++a) {
+    for (Eigen::Index b = a + 1; b < n; ++b) {
+      MOTIF_ASSIGN_OR_RETURN(const double distance,
+                             emd.Distance(signatures[static_cast<size_t>(a)],
+                                          signatures[static_cast<size_t>(b)], words.ground));
+      distances(a, b) = distance;
+      distances(b, a) = distance;
+    }
+    if (options.progress) options.progress("groups", static_cast<uint64_t>(a + 1), pieces.size());
+  }
+  const std::vector<uint32_t> groups = CompleteLinkageGroups(distances, result.threshold);
+  uint32_t group_count = 0;
+  std::vector<uint32_t> labels;
+  for (size_t piece = 0; piece < pieces.size(); ++piece) {
+    group_count = std::max(group_count, groups[piece] + 1);
+    labels.insert(labels.end(), pieces[piece].end - pieces[piece].first, groups[piece]);
+  }
+  for (uint32_t group = 0; group < group_count; ++group) {
+    result.label_names.push_back("group " + std::to_string(group + 1));
+  }
+  FillTakes(reader, words, takes, labels, &result);
+  for (size_t take = 0; take < takes.size(); ++take) {
+    result.takes[take].change_scores = std::move(scores[take]);
+  }
+  return result;
+}
+
+nlohmann::json SegmentsJson(const Segmentation& result, const FrameFileReader& reader,
+                            const std::string& archive) {
+  nlohmann::json json;
+  json["version"] = 1;
+  json["archive"] = archive;
+  json["mode"] = result.supervised ? "supervised" : "unsupervised";
+  json["distance"] = result.distance;
+  json["window"] = result.window;
+  if (result.supervised) {
+    json["k"] = result.knn;
+    json["neighbours"] = result.one_per_take ? "takes" : "windows";
+    json["reference_takes"] = result.reference_takes;
+    json["reference_windows"] = result.reference_windows;
+  } else {
+    json["threshold"] = result.threshold;
+  }
+  json["labels"] = result.label_names;
+  const auto label_of = [&](uint32_t label) {
+    return label == kUnlabelled ? nlohmann::json(nullptr)
+                                : nlohmann::json(result.label_names[label]);
+  };
+  nlohmann::json segments = nlohmann::json::array();
+  nlohmann::json takes = nlohmann::json::array();
+  for (const SegmentedTake& take : result.takes) {
+    const ClipInfo& clip = reader.clips()[take.clip];
+    for (const LabelledSegment& segment : take.segments) {
+      segments.push_back({{"clip", clip.name},
+                          {"start", segment.start},
+                          {"end", segment.end},
+                          {"label", label_of(segment.label)},
+                          {"words", segment.end_word - segment.first_word}});
+    }
+    takes.push_back({{"clip", clip.name},
+                     {"frames", clip.frame_count},
+                     {"words", take.words},
+                     {"segments", take.segments.size()}});
+  }
+  json["segments"] = segments;
+  json["takes"] = takes;
+  nlohmann::json skipped = nlohmann::json::array();
+  for (uint32_t clip : result.skipped_clips) skipped.push_back(reader.clips()[clip].name);
+  json["skipped"] = skipped;
+  return json;
+}
+
+}  // namespace motif
