@@ -133,6 +133,7 @@ int RunMineAcrossRanks(const std::vector<std::string>& args, const MineAcrossRan
 int RunWords(const std::vector<std::string>& args);
 int RunClassify(const std::vector<std::string>& args);
 int RunSegment(const std::vector<std::string>& args);
+int RunGraph(const std::vector<std::string>& args);
 int RunSearch(const std::vector<std::string>& args);
 int RunReindex(const std::vector<std::string>& args);
 int RunScore(const std::vector<std::string>& args);

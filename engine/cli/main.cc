@@ -47,6 +47,8 @@ const Command kCommands[] = {
      "classify the takes by their signatures: MDS + k-means, kNN with labels"},
     {"segment", motif::cli::RunSegment,
      "cut takes into segments of one activity by their signatures (kNN with labels, or not)"},
+    {"graph", motif::cli::RunGraph,
+     "a motion graph with signature-constrained transitions, and a random walk through it"},
 };
 
 void PrintUsage(FILE* out) {

@@ -153,4 +153,20 @@ void ProgressReporter::Draw(uint64_t done, bool final_line) {
   std::fflush(stderr);
 }
 
+void ProgressReporter::StageUpdate(const std::string& stage, uint64_t done, uint64_t total,
+                                   const std::string& unit) {
+  if (stage != open_stage_) {
+    if (!open_stage_.empty()) EndStage();
+    open_stage_ = stage;
+    BeginStage(stage, total, unit);
+  }
+  Update(done);
+}
+
+void ProgressReporter::EndStages() {
+  if (open_stage_.empty()) return;
+  EndStage();
+  open_stage_.clear();
+}
+
 }  // namespace motif

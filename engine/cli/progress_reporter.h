@@ -29,9 +29,16 @@ class ProgressReporter {
   // A message line that does not disturb the progress display (suppressed by --quiet).
   void Note(const std::string& message);
 
+  // For engine callbacks that report (stage, done, total): begins a stage whenever the name
+  // changes (ending the one before) and updates it. EndStages() ends the last one.
+  void StageUpdate(const std::string& stage, uint64_t done, uint64_t total,
+                   const std::string& unit);
+  void EndStages();
+
   ProgressMode mode() const { return mode_; }
 
  private:
+  std::string open_stage_;  // StageUpdate's current stage
   void Draw(uint64_t done, bool final_line);
 
   ProgressMode mode_;

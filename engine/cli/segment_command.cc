@@ -10,39 +10,16 @@
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
 #include "engine/cli/take_labels.h"
+#include "engine/cli/words_on_demand.h"
 #include "engine/report/segments_html.h"
 #include "engine/signature/take_retrieval.h"
 #include "engine/words/take_segmentation.h"
 #include "engine/words/word_model.h"
-#include "engine/words/words_builder.h"
 
 namespace motif::cli {
 namespace {
 
 namespace po = boost::program_options;
-
-// Runs `motifmine words` with its defaults (and `seed`) to make the missing files.
-Status BuildMissingWords(const std::string& archive, const WordsPaths& paths, uint64_t seed,
-                         int threads, ProgressReporter& progress) {
-  progress.Note("no motion words for " + archive + " yet: building them (motifmine words)");
-  WordsOptions options;
-  options.seed = seed;
-  options.threads = threads;
-  std::string stage;
-  options.progress = [&](const std::string& name, uint64_t done, uint64_t total,
-                         const std::string& unit) {
-    if (name != stage) {
-      if (!stage.empty()) progress.EndStage();
-      stage = name;
-      progress.BeginStage(name, total, unit);
-    }
-    progress.Update(done);
-  };
-  options.note = [&](const std::string& message) { progress.Note(message); };
-  Result<WordsReport> report = BuildWords(archive, paths, options);
-  if (!stage.empty()) progress.EndStage();
-  return report.status();
-}
 
 // The clips named by --clip (every clip when none), in the order given.
 Result<std::vector<uint32_t>> ClipsAskedFor(const FrameFileReader& reader,
@@ -201,25 +178,12 @@ int RunSegment(const std::vector<std::string>& args) {
 
   ProgressReporter progress(ProgressModeFrom(vm));
   const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
-  Result<LoadedWords> words = LoadWords(**reader, paths, /*with_embedding=*/false);
-  if (!words.ok() && words.status().IsNotFound()) {
-    if (Status status =
-            BuildMissingWords(archive, paths, vm["seed"].as<uint64_t>(), options.threads, progress);
-        !status.ok()) {
-      return fail(status);
-    }
-    words = LoadWords(**reader, paths, /*with_embedding=*/false);
-  }
+  Result<LoadedWords> words = LoadOrBuildWords(archive, **reader, paths, vm["seed"].as<uint64_t>(),
+                                               options.threads, progress);
   if (!words.ok()) return fail(words.status());
 
-  std::string stage;
-  options.progress = [&](const std::string& name, uint64_t done, uint64_t total) {
-    if (name != stage) {
-      if (!stage.empty()) progress.EndStage();
-      stage = name;
-      progress.BeginStage(name, total, name == "windows" ? "takes" : "windows");
-    }
-    progress.Update(done);
+  options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+    progress.StageUpdate(stage, done, total, stage == "windows" ? "takes" : "windows");
   };
   const auto start = std::chrono::steady_clock::now();
   Result<Segmentation> result = Status::InvalidArgument("not segmented");
@@ -246,7 +210,7 @@ int RunSegment(const std::vector<std::string>& args) {
     result = SegmentSupervised(**reader, *words, *clips, clip_labels, label_names,
                                features ? &*features : nullptr, options);
   }
-  if (!stage.empty()) progress.EndStage();
+  progress.EndStages();
   if (!result.ok()) return fail(result.status());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -124,19 +124,13 @@ int RunWords(const std::vector<std::string>& args) {
   const WordsPaths paths = DefaultWordsPaths(prefix.empty() ? archive : prefix + ".mfs");
 
   ProgressReporter progress(ProgressModeFrom(vm));
-  std::string stage;
-  options.progress = [&](const std::string& name, uint64_t done, uint64_t total,
+  options.progress = [&](const std::string& stage, uint64_t done, uint64_t total,
                          const std::string& unit) {
-    if (name != stage) {
-      if (!stage.empty()) progress.EndStage();
-      stage = name;
-      progress.BeginStage(name, total, unit);
-    }
-    progress.Update(done);
+    progress.StageUpdate(stage, done, total, unit);
   };
   options.note = [&](const std::string& message) { progress.Note(message); };
   Result<WordsReport> report = BuildWords(archive, paths, options);
-  if (!stage.empty()) progress.EndStage();
+  progress.EndStages();
   if (!report.ok()) return ReportError("words", report.status());
 
   const WordsReport& r = *report;

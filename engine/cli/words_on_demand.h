@@ -1,0 +1,21 @@
+// The words files a command needs (segment, graph), read back, or built first as
+// `motifmine words` with its defaults would build them when they are missing (with a note on
+// the progress output, and its stages shown as progress).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "common/status.h"
+#include "engine/cli/progress_reporter.h"
+#include "engine/words/word_model.h"
+#include "engine/words/words_builder.h"
+
+namespace motif::cli {
+
+// Errors of LoadWords other than NotFound, and of BuildWords, pass through.
+Result<LoadedWords> LoadOrBuildWords(const std::string& archive, const FrameFileReader& reader,
+                                     const WordsPaths& paths, uint64_t seed, int threads,
+                                     ProgressReporter& progress);
+
+}  // namespace motif::cli
