@@ -9,3 +9,4 @@ build_dir="${MOTIF_BUILD_DIR:-$root/build}"
 # shellcheck disable=SC2046  # the generator's words
 cmake -S "$root" -B "$build_dir" $(generator_args "$build_dir") -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build_dir" -j "${MOTIF_JOBS:-2}"
+"$root/scripts/install_npm_test_deps.sh" "$build_dir"

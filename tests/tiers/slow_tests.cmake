@@ -4,6 +4,9 @@
 # --slow`). Included by ctest after every discovered test is defined (tests/tiers/CMakeLists.txt);
 # a name that no longer exists is ignored, so rename a test here when renaming it there.
 set_tests_properties(
+  GraphCliTest.GraphWritesTheWalkItsPiecesAndTheGraph
+  SegmentCli.BuildsTheWordsItNeedsWhenTheyAreMissing
+  WordsCliTest.SegmentWritesItsDocumentAndPageWithAndWithoutLabels
   AuditTrellis.LshRecallOnAPlantedSyntheticArchive
   BuildTrellis.LshColumnsDoNotDependOnTheBlockSplit
   BuildTrellis.SameBytesForAnyThreadCount
