@@ -34,8 +34,8 @@ struct GraphRun {
   double seconds_trellis = 0, seconds_transitions = 0, seconds_signatures = 0, seconds_graph = 0;
 };
 
-nlohmann::json GraphJson(const MotionGraph& graph, const FrameFileReader& reader,
-                         const ClipBounds& clips, const GraphRun& run) {
+std::string GraphJson(const MotionGraph& graph, const FrameFileReader& reader,
+                      const ClipBounds& clips, const GraphRun& run) {
   nlohmann::json json;
   json["version"] = 1;
   json["archive"] = run.archive;
@@ -60,36 +60,38 @@ nlohmann::json GraphJson(const MotionGraph& graph, const FrameFileReader& reader
                      {"transitions", run.seconds_transitions},
                      {"signatures", run.seconds_signatures},
                      {"graph", run.seconds_graph}};
-  const auto place = [&](uint64_t frame) {
+  // The node and transition lists are written as text: at 10^6 frames they hold about 10^6
+  // objects, which as a JSON document in memory would take gigabytes.
+  std::string text = json.dump(1);
+  text.pop_back();  // the closing brace, to append the lists
+  std::vector<std::string> names;
+  for (const ClipInfo& clip : reader.clips()) names.push_back(nlohmann::json(clip.name).dump());
+  const auto at = [&](const char* clip_key, const char* frame_key, uint64_t frame) {
     const uint32_t clip = clips.ClipOf(frame);
-    return std::make_pair(reader.clips()[clip].name, frame - clips.starts[clip]);
+    return std::string("\"") + clip_key + "\": " + names[clip] + ", \"" + frame_key +
+           "\": " + std::to_string(frame - clips.starts[clip]);
   };
-  nlohmann::json nodes = nlohmann::json::array();
+  text += ",\n \"nodes\": [";
   for (size_t node = 0; node < graph.nodes.size(); ++node) {
-    const auto [clip, frame] = place(graph.nodes[node]);
     const int32_t component = graph.component[node];
-    nodes.push_back(
-        {{"clip", clip},
-         {"frame", frame},
-         {"component", component >= 0 ? nlohmann::json(component) : nlohmann::json(nullptr)}});
+    text += node ? ",\n  {" : "\n  {";
+    text += at("clip", "frame", graph.nodes[node]) +
+            ", \"component\": " + (component >= 0 ? std::to_string(component) : "null") + "}";
   }
-  json["nodes"] = nodes;
-  nlohmann::json transitions = nlohmann::json::array();
-  for (const GraphTransition& edge : graph.transitions) {
-    const auto [from_clip, from_frame] = place(edge.transition.source);
-    const auto [to_clip, to_frame] = place(edge.transition.target);
-    transitions.push_back({{"from_clip", from_clip},
-                           {"from_frame", from_frame},
-                           {"to_clip", to_clip},
-                           {"to_frame", to_frame},
-                           {"cost", edge.transition.cost},
-                           {"signature_distance", std::isfinite(edge.signature_distance)
-                                                      ? nlohmann::json(edge.signature_distance)
-                                                      : nlohmann::json(nullptr)},
-                           {"fate", TransitionFateName(edge.fate)}});
+  text += "\n ],\n \"transitions\": [";
+  for (size_t idx = 0; idx < graph.transitions.size(); ++idx) {
+    const GraphTransition& edge = graph.transitions[idx];
+    text += idx ? ",\n  {" : "\n  {";
+    text += at("from_clip", "from_frame", edge.transition.source) + ", " +
+            at("to_clip", "to_frame", edge.transition.target) +
+            ", \"cost\": " + nlohmann::json(edge.transition.cost).dump() +
+            ", \"signature_distance\": " +
+            (std::isfinite(edge.signature_distance) ? nlohmann::json(edge.signature_distance).dump()
+                                                    : std::string("null")) +
+            ", \"fate\": \"" + TransitionFateName(edge.fate) + "\"}";
   }
-  json["transitions"] = transitions;
-  return json;
+  text += "\n ]\n}\n";
+  return text;
 }
 
 nlohmann::json WalkJson(const std::vector<WalkPiece>& pieces, const FrameFileReader& reader,
@@ -247,8 +249,8 @@ int RunGraph(const std::vector<std::string>& args) {
 
   // graph.json first: it explains a walk that cannot start.
   const std::filesystem::path dir(out);
-  if (Status status = AtomicWriteFile((dir / "graph.json").string(),
-                                      GraphJson(graph, reader, clips, run).dump(1) + "\n");
+  if (Status status =
+          AtomicWriteFile((dir / "graph.json").string(), GraphJson(graph, reader, clips, run));
       !status.ok()) {
     return fail(status);
   }
