@@ -95,6 +95,11 @@ void SearchChunk(const TrellisFileReader& trellis, const ClipBounds& clips, uint
       if (BestNear(t, column_candidates, radius)) out->minima.push_back(t);
     }
   }
+  // Give this chunk's pages of the mapped trellis back, as the path grower does, so that a
+  // trellis larger than memory does not stay resident (a neighbour still reading them faults
+  // them back in).
+  const uint64_t block_columns = trellis.block_columns();
+  out->status = trellis.ReleaseBlocks(first / block_columns, (end - 1) / block_columns + 1);
 }
 
 }  // namespace
@@ -143,6 +148,7 @@ Result<TransitionSearch> FindTransitions(const TrellisFileReader& trellis, const
     MOTIF_RETURN_IF_ERROR(result.status);
     search.candidates += result.candidates;
     minima.insert(minima.end(), result.minima.begin(), result.minima.end());
+    std::vector<Transition>().swap(result.minima);
   }
   // Local minima in (s, g): also against the neighbouring columns' minima along g.
   const uint64_t radius = options.window_frames / 2;

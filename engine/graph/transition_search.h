@@ -12,7 +12,8 @@
 //    transition, not the dozens of shifted pairs around it.
 // Columns are read a chunk at a time (kColumnsPerTask plus L), searched in parallel and put
 // back in order: the result does not depend on the thread count. Memory: the chunks in flight
-// and the local minima of each column along g (a few per column).
+// and the local minima of each column along g (a few per column); each chunk's pages of the
+// mapped trellis are given back to the kernel when it is done.
 // Thread-safety: a pure function; it runs in its own task_arena.
 #pragma once
 
