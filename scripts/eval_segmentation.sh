@@ -29,14 +29,7 @@ SEEDS=${*:-1 2 3}
 TOOL=build/motifmine
 mkdir -p "$OUT"
 python3 scripts/mocap_labels.py "$MOCAP/INDEX.tsv" > "$OUT/labels.tsv"
-if [ ! -f "$OUT/source.mfs" ]; then
-  amcs=()
-  for amc in "$MOCAP"/asfamc/*/*.amc; do
-    stem=$(basename "$amc" .amc)
-    [ -f "$MOCAP/bvh/${stem%%-*}.bvh" ] || amcs+=("$amc")
-  done
-  "$TOOL" import "$OUT/source.mfs" "$MOCAP/bvh" "${amcs[@]}" --quiet
-fi
+scripts/import_cmu_takes.sh "$OUT/source.mfs" "$MOCAP"
 rm -rf "$OUT/trials" "$OUT/eval.mfs" "$OUT"/eval.mw?
 python3 scripts/segmentation_trials.py "$TOOL" "$OUT/source.mfs" "$OUT/labels.tsv" "$OUT/trials" "$TRIALS"
 # The archive: every source take, then the joined trials (frames kept as written).

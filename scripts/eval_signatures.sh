@@ -20,14 +20,7 @@ SEEDS=${*:-1 2 3 4 5}
 TOOL=build/motifmine
 mkdir -p "$OUT"
 python3 scripts/mocap_labels.py "$MOCAP/INDEX.tsv" > "$OUT/labels.tsv"
-if [ ! -f "$OUT/real.mfs" ]; then
-  amcs=()
-  for amc in "$MOCAP"/asfamc/*/*.amc; do
-    stem=$(basename "$amc" .amc)
-    [ -f "$MOCAP/bvh/${stem%%-*}.bvh" ] || amcs+=("$amc")
-  done
-  "$TOOL" import "$OUT/real.mfs" "$MOCAP/bvh" "${amcs[@]}" --quiet
-fi
+scripts/import_cmu_takes.sh "$OUT/real.mfs" "$MOCAP"
 "$TOOL" info "$OUT/real.mfs" | head -3
 if [ ! -f "$OUT/dtw/classify.json" ]; then
   "$TOOL" classify "$OUT/real.mfs" --labels "$OUT/labels.tsv" --distance dtw --quiet --out "$OUT/dtw"

@@ -6,6 +6,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/words_on_demand.h"
 #include "engine/words/words_builder.h"
 
 namespace motif::cli {
@@ -124,11 +125,7 @@ int RunWords(const std::vector<std::string>& args) {
   const WordsPaths paths = DefaultWordsPaths(prefix.empty() ? archive : prefix + ".mfs");
 
   ProgressReporter progress(ProgressModeFrom(vm));
-  options.progress = [&](const std::string& stage, uint64_t done, uint64_t total,
-                         const std::string& unit) {
-    progress.StageUpdate(stage, done, total, unit);
-  };
-  options.note = [&](const std::string& message) { progress.Note(message); };
+  ReportWordsProgress(progress, &options);
   Result<WordsReport> report = BuildWords(archive, paths, options);
   progress.EndStages();
   if (!report.ok()) return ReportError("words", report.status());

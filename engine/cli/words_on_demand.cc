@@ -9,17 +9,21 @@ Status BuildMissingWords(const std::string& archive, const WordsPaths& paths, ui
   WordsOptions options;
   options.seed = seed;
   options.threads = threads;
-  options.progress = [&](const std::string& stage, uint64_t done, uint64_t total,
-                         const std::string& unit) {
-    progress.StageUpdate(stage, done, total, unit);
-  };
-  options.note = [&](const std::string& message) { progress.Note(message); };
+  ReportWordsProgress(progress, &options);
   Result<WordsReport> report = BuildWords(archive, paths, options);
   progress.EndStages();
   return report.status();
 }
 
 }  // namespace
+
+void ReportWordsProgress(ProgressReporter& progress, WordsOptions* options) {
+  options->progress = [&progress](const std::string& stage, uint64_t done, uint64_t total,
+                                  const std::string& unit) {
+    progress.StageUpdate(stage, done, total, unit);
+  };
+  options->note = [&progress](const std::string& message) { progress.Note(message); };
+}
 
 Result<LoadedWords> LoadOrBuildWords(const std::string& archive, const FrameFileReader& reader,
                                      const WordsPaths& paths, uint64_t seed, int threads,

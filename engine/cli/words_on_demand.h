@@ -13,6 +13,9 @@
 
 namespace motif::cli {
 
+// Shows BuildWords's stages and notes on `progress` (options->progress and options->note).
+void ReportWordsProgress(ProgressReporter& progress, WordsOptions* options);
+
 // Errors of LoadWords other than NotFound, and of BuildWords, pass through.
 Result<LoadedWords> LoadOrBuildWords(const std::string& archive, const FrameFileReader& reader,
                                      const WordsPaths& paths, uint64_t seed, int threads,

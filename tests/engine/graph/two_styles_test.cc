@@ -31,15 +31,8 @@ constexpr uint64_t kHoldFrames = 60;    // 0.5 s
 ClipFrames StyleClip(int style, int index, double phase) {
   const FrameLayout layout{kJoints};
   const uint64_t frames = 3 * kSwingFrames + 2 * kHoldFrames;
-  ClipFrames clip;
-  clip.info.name = "style" + std::to_string(style) + "_" + std::to_string(index);
-  clip.info.source_path = clip.info.name + ".bvh";
-  clip.info.frame_count = frames;
-  clip.info.fps = kFps;
-  clip.info.source_fps = kFps;
-  clip.info.joint_offsets.assign(kJoints, {0.0f, 10.0f, 0.0f});
-  clip.info.end_sites.assign(kJoints, {0.0f, 0.0f, 0.0f});
-  clip.rows.assign(frames * layout.stride(), 0.0f);
+  ClipFrames clip = ChainClip("style" + std::to_string(style) + "_" + std::to_string(index), frames,
+                              kJoints, kFps);
   for (uint64_t frame = 0; frame < frames; ++frame) {
     const uint64_t in_cycle = frame % (kSwingFrames + kHoldFrames);
     const bool hold = in_cycle >= kSwingFrames;
@@ -54,13 +47,9 @@ ClipFrames StyleClip(int style, int index, double phase) {
       // The hold sways a little about Y, the same in both styles, so that the nearest held poses
       // of a held pose are spread over every clip rather than tied at distance 0.
       const double sway = 0.05 * std::sin(2 * M_PI * 0.5 * t + phase + 0.5 * joint);
-      const Eigen::Quaterniond q(Eigen::AngleAxisd(angle, axis) *
-                                 Eigen::AngleAxisd(sway, Eigen::Vector3d::UnitY()));
-      float* out = row + layout.quaternion_offset(joint);
-      out[0] = static_cast<float>(q.w());
-      out[1] = static_cast<float>(q.x());
-      out[2] = static_cast<float>(q.y());
-      out[3] = static_cast<float>(q.z());
+      StoreQuaternion(Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis) *
+                                         Eigen::AngleAxisd(sway, Eigen::Vector3d::UnitY())),
+                      layout, joint, row);
     }
     row[layout.height_offset()] = 1.0f;
   }

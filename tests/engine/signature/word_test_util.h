@@ -46,6 +46,31 @@ inline Skeleton ChainSkeleton(uint32_t joint_count) {
   return Skeleton("custom", std::move(joints));
 }
 
+// A clip of `frames` frames of ChainSkeleton(joints) at `fps`, named `name` (from
+// "<name>.bvh"), its rows all zero for the caller to fill.
+inline ClipFrames ChainClip(const std::string& name, uint64_t frames, uint32_t joints, double fps) {
+  ClipFrames clip;
+  clip.info.name = name;
+  clip.info.source_path = name + ".bvh";
+  clip.info.frame_count = frames;
+  clip.info.fps = fps;
+  clip.info.source_fps = fps;
+  clip.info.joint_offsets.assign(joints, {0.0f, 10.0f, 0.0f});
+  clip.info.end_sites.assign(joints, {0.0f, 0.0f, 0.0f});
+  clip.rows.assign(frames * FrameLayout{joints}.stride(), 0.0f);
+  return clip;
+}
+
+// Writes `q` as joint `joint`'s quaternion (w x y z) into frame row `row`.
+inline void StoreQuaternion(const Eigen::Quaterniond& q, const FrameLayout& layout, uint32_t joint,
+                            float* row) {
+  float* out = row + layout.quaternion_offset(joint);
+  out[0] = static_cast<float>(q.w());
+  out[1] = static_cast<float>(q.x());
+  out[2] = static_cast<float>(q.y());
+  out[3] = static_cast<float>(q.z());
+}
+
 inline std::vector<float> JointWeightsOf(const Skeleton& skeleton) {
   std::vector<float> weights;
   for (const Joint& joint : skeleton.joints()) weights.push_back(joint.weight);
@@ -78,26 +103,14 @@ struct AxisMotion {
   // flip_every-th frame is stored negated (the same rotation).
   ClipFrames Clip(const std::string& name, uint64_t frame_count, uint32_t flip_every = 0) const {
     const FrameLayout layout{joint_count};
-    ClipFrames clip;
-    clip.info.name = name;
-    clip.info.source_path = name + ".bvh";
-    clip.info.frame_count = frame_count;
-    clip.info.fps = fps;
-    clip.info.source_fps = fps;
-    clip.info.joint_offsets.assign(joint_count, {0.0f, 10.0f, 0.0f});
-    clip.info.end_sites.assign(joint_count, {0.0f, 0.0f, 0.0f});
-    clip.rows.assign(frame_count * layout.stride(), 0.0f);
+    ClipFrames clip = ChainClip(name, frame_count, joint_count, fps);
     for (uint64_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
       const double seconds = static_cast<double>(frame_idx) / fps;
       float* row = &clip.rows[frame_idx * layout.stride()];
       const double sign = flip_every > 0 && frame_idx % flip_every == 0 ? -1.0 : 1.0;
       for (uint32_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
         const Eigen::Quaterniond q = Rotation(joint_idx, seconds);
-        float* out = row + layout.quaternion_offset(joint_idx);
-        out[0] = static_cast<float>(sign * q.w());
-        out[1] = static_cast<float>(sign * q.x());
-        out[2] = static_cast<float>(sign * q.y());
-        out[3] = static_cast<float>(sign * q.z());
+        StoreQuaternion(Eigen::Quaterniond(q.coeffs() * sign), layout, joint_idx, row);
       }
       row[layout.height_offset()] = static_cast<float>(Height(seconds));
       row[layout.velocity_offset()] = static_cast<float>(VelocityX(seconds));

@@ -47,15 +47,9 @@ inline ClassClips MakeClassClips(int classes, int per_class, double seconds, uin
   for (int clip_idx = 0; clip_idx < classes * per_class; ++clip_idx) {
     const int c = clip_idx % classes;
     const uint64_t frames = static_cast<uint64_t>(seconds * fps);
-    ClipFrames clip;
-    clip.info.name = "class" + std::to_string(c) + "_" + std::to_string(clip_idx / classes);
-    clip.info.source_path = clip.info.name + ".bvh";
-    clip.info.frame_count = frames;
-    clip.info.fps = fps;
-    clip.info.source_fps = fps;
-    clip.info.joint_offsets.assign(joints, {0.0f, 10.0f, 0.0f});
-    clip.info.end_sites.assign(joints, {0.0f, 0.0f, 0.0f});
-    clip.rows.assign(frames * layout.stride(), 0.0f);
+    ClipFrames clip =
+        ChainClip("class" + std::to_string(c) + "_" + std::to_string(clip_idx / classes), frames,
+                  joints, fps);
     // One phase for the whole clip: the clips of a class are one motion started at different
     // moments.
     const double phase = 2 * M_PI * random.Uniform();
@@ -72,12 +66,7 @@ inline ClassClips MakeClassClips(int classes, int per_class, double seconds, uin
         const double amplitude = 0.5;
         const double rate = 2 * M_PI * (0.8 + 0.4 * c);
         const double angle = amplitude * std::sin(rate * t + phase + 0.7 * joint);
-        const Eigen::Quaterniond q(Eigen::AngleAxisd(angle, axis));
-        float* out = row + layout.quaternion_offset(joint);
-        out[0] = static_cast<float>(q.w());
-        out[1] = static_cast<float>(q.x());
-        out[2] = static_cast<float>(q.y());
-        out[3] = static_cast<float>(q.z());
+        StoreQuaternion(Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis)), layout, joint, row);
       }
       row[layout.height_offset()] = 1.0f;
     }
