@@ -115,6 +115,13 @@ nlohmann::json WalkJson(const std::vector<WalkPiece>& pieces, const FrameFileRea
   return json;
 }
 
+// Whether `path` holds a finished trellis of `reader`'s archive version.
+bool TrellisOfArchive(const std::string& path, const FrameFileReader& reader) {
+  Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(path);
+  return trellis.ok() && (*trellis)->params().archive_identity == reader.summary().identity &&
+         (*trellis)->column_count() == reader.frame_count();
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -198,15 +205,19 @@ int RunGraph(const std::vector<std::string>& args) {
   auto clock = std::chrono::steady_clock::now();
   run.trellis = vm["trellis"].as<std::string>();
   if (run.trellis.empty()) run.trellis = DefaultTrellisPath(run.archive);
-  TrellisOptions trellis_options;
-  trellis_options.threads = threads;
-  trellis_options.progress = [&](const std::string& name, uint64_t done, uint64_t total) {
-    progress.StageUpdate(name, done, total, name == "eps" ? "pairs" : "frames");
-  };
-  trellis_options.note = [&](const std::string& message) { progress.Note(message); };
-  Result<TrellisReport> built = BuildTrellis(run.archive, run.trellis, trellis_options);
-  progress.EndStages();
-  if (!built.ok()) return fail(built.status());
+  // A finished trellis of this archive is used as it is, whatever options built it (its eps is
+  // the user's choice); one of another archive version, or none, is built with the defaults.
+  if (!TrellisOfArchive(run.trellis, reader)) {
+    TrellisOptions trellis_options;
+    trellis_options.threads = threads;
+    trellis_options.progress = [&](const std::string& name, uint64_t done, uint64_t total) {
+      progress.StageUpdate(name, done, total, name == "eps" ? "pairs" : "frames");
+    };
+    trellis_options.note = [&](const std::string& message) { progress.Note(message); };
+    Result<TrellisReport> built = BuildTrellis(run.archive, run.trellis, trellis_options);
+    progress.EndStages();
+    if (!built.ok()) return fail(built.status());
+  }
   Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(run.trellis);
   if (!trellis.ok()) return fail(trellis.status());
   run.seconds_trellis = SecondsSince(clock);

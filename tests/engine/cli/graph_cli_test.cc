@@ -65,6 +65,15 @@ TEST_F(GraphCliTest, GraphWritesTheWalkItsPiecesAndTheGraph) {
     EXPECT_EQ(graph["constrained"], *mode == 0);
     EXPECT_GT(kept, 0u);
   }
+  // A trellis the user built with other options is used as it is, not replaced.
+  ASSERT_EQ(RunTool("trellis " + archive_ + " --eps 0.9 --quiet").exit_code, 0);
+  const std::string trellis = archive_.substr(0, archive_.size() - 4) + ".mtr";
+  const std::string before = ReadBytes(trellis);
+  RunResult own =
+      RunTool("graph " + archive_ + " --start class0_0 --seconds 5 --unconstrained --out " +
+              dir_->File("graph-own"));
+  ASSERT_EQ(own.exit_code, 0) << own.output;
+  EXPECT_EQ(ReadBytes(trellis), before);
   auto expect = [&](const std::string& args, int code, const std::string& text) {
     RunResult result = RunTool("graph " + archive_ + " --out " + dir_->File("graph-bad") + args);
     EXPECT_EQ(result.exit_code, code) << args << "\n" << result.output;
