@@ -56,6 +56,9 @@ asan_skip=(
   'LshSearchTest\.QuaternionSignFlipGivesTheSameColumns'  # (LshSearchTest.*)
   'MpiMine\.AKilledRank'  # 80 s under ASan (MpiMine.OneToFour*: the same ranks, and MineInterrupt.*)
   'MpiMine\.RankZeroMakesTheSyntheticArchive'  # 31 s under ASan (MpiMine.OneToFour*)
+  # 45 s under ASan, most of it DTW over every window (TakeSegmentationTest.*, DTW included)
+  'WordsCliTest\.SegmentWritesItsDocumentAndPageWithAndWithoutLabels'
+  'SegmentCli\.BuildsTheWordsItNeedsWhenTheyAreMissing'  # 38 s: 30 epochs (WordsCliTest.Words*)
 )
 # The tests ThreadSanitizer runs: the parallel parts, by test name, and the test executables
 # that hold them (tests/*/CMakeLists.txt).
