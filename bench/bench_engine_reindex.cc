@@ -90,7 +90,7 @@ void WriteTakes(const std::string& dir, uint64_t frames, uint64_t seed) {
   auto reader = Check(FrameFileReader::Open(archive));
   fs::create_directories(dir);
   for (const ClipInfo& clip : reader->clips()) {
-    const Take take = Check(cli::ReadClipRangeAsTake(*reader, clip, 0, clip.frame_count));
+    const Take take = Check(ReadClipRangeAsTake(*reader, clip, 0, clip.frame_count));
     Check(WriteBvh(take, dir + "/" + std::to_string(seed) + "_" + clip.name + ".bvh"));
   }
 }

@@ -28,14 +28,12 @@ struct GraphRun {
   bool constrained = true;
   SignatureConstraint constraint;
   uint64_t candidates = 0;
-  uint64_t transitions = 0;
-  uint64_t pruned_signature = 0;
-  uint64_t pruned_component = 0;
   double seconds_trellis = 0, seconds_transitions = 0, seconds_signatures = 0, seconds_graph = 0;
 };
 
 std::string GraphJson(const MotionGraph& graph, const FrameFileReader& reader,
                       const ClipBounds& clips, const GraphRun& run) {
+  const FateCounts fates = CountFates(graph.transitions);
   nlohmann::json json;
   json["version"] = 1;
   json["archive"] = run.archive;
@@ -48,10 +46,10 @@ std::string GraphJson(const MotionGraph& graph, const FrameFileReader& reader,
   }
   json["counts"] = {
       {"candidates", run.candidates},
-      {"transitions", run.transitions},
-      {"pruned_signature", run.pruned_signature},
-      {"pruned_component", run.pruned_component},
-      {"kept", run.transitions - run.pruned_signature - run.pruned_component},
+      {"transitions", graph.transitions.size()},
+      {"pruned_signature", fates.signature},
+      {"pruned_component", fates.component},
+      {"kept", fates.kept},
       {"nodes", graph.nodes.size()},
       {"components", graph.component_sizes.size()},
       {"largest_component_nodes", graph.component_sizes.empty() ? 0 : graph.component_sizes[0]}};
@@ -232,7 +230,6 @@ int RunGraph(const std::vector<std::string>& args) {
   progress.EndStages();
   if (!found.ok()) return fail(found.status());
   run.candidates = found->candidates;
-  run.transitions = found->transitions.size();
   std::vector<GraphTransition> transitions;
   for (const Transition& t : found->transitions) transitions.push_back({t});
   run.seconds_transitions = SecondsSince(clock);
@@ -248,14 +245,11 @@ int RunGraph(const std::vector<std::string>& args) {
         MeasureTransitionSignatures(reader, *words, clips, &transitions, threads);
     if (!constraint.ok()) return fail(constraint.status());
     run.constraint = *constraint;
-    run.pruned_signature = PruneBySignature(constraint->threshold, &transitions);
+    PruneBySignature(constraint->threshold, &transitions);
     run.seconds_signatures = SecondsSince(clock);
   }
   clock = std::chrono::steady_clock::now();
   const MotionGraph graph = BuildMotionGraph(clips, std::move(transitions), window);
-  for (const GraphTransition& edge : graph.transitions) {
-    run.pruned_component += edge.fate == TransitionFate::kComponent;
-  }
   run.seconds_graph = SecondsSince(clock);
 
   // graph.json first: it explains a walk that cannot start.
@@ -285,16 +279,17 @@ int RunGraph(const std::vector<std::string>& args) {
     return fail(status);
   }
 
-  const uint64_t kept = run.transitions - run.pruned_signature - run.pruned_component;
+  const FateCounts fates = CountFates(graph.transitions);
   std::printf("motifmine graph: %s (%s frames in %zu clips)\n", run.archive.c_str(),
               WithCommas(reader.frame_count()).c_str(), reader.clips().size());
   std::printf("  transitions  %s window pairs within eps, %s local minima (window %u frames)\n",
-              WithCommas(run.candidates).c_str(), WithCommas(run.transitions).c_str(), window);
+              WithCommas(run.candidates).c_str(), WithCommas(graph.transitions.size()).c_str(),
+              window);
   if (run.constrained) {
     std::printf(
         "  constraint   %s pruned: signature distance of %u words above %.4f (the median "
         "change within a take)\n",
-        WithCommas(run.pruned_signature).c_str(), kConstraintWindowWords, run.constraint.threshold);
+        WithCommas(fates.signature).c_str(), kConstraintWindowWords, run.constraint.threshold);
   } else {
     std::printf("  constraint   none (--unconstrained)\n");
   }
@@ -303,8 +298,8 @@ int RunGraph(const std::vector<std::string>& args) {
       "them; %s kept\n",
       graph.component_sizes.size(),
       WithCommas(graph.component_sizes.empty() ? 0 : graph.component_sizes[0]).c_str(),
-      WithCommas(graph.nodes.size()).c_str(), WithCommas(run.pruned_component).c_str(),
-      WithCommas(kept).c_str());
+      WithCommas(graph.nodes.size()).c_str(), WithCommas(fates.component).c_str(),
+      WithCommas(fates.kept).c_str());
   std::printf("  walk         %.1f s from %s in %zu pieces (seed %llu)\n", seconds, start.c_str(),
               pieces->size(), static_cast<unsigned long long>(seed));
   std::printf("  time         trellis %.1fs, transitions %.1fs, signatures %.1fs, graph %.1fs\n",

@@ -21,12 +21,19 @@ namespace {
 
 namespace po = boost::program_options;
 
-// The clips named by --clip (every clip when none), in the order given.
-Result<std::vector<uint32_t>> ClipsAskedFor(const FrameFileReader& reader,
-                                            const std::vector<std::string>& names) {
-  std::map<std::string, uint32_t> index;
-  for (uint32_t clip = 0; clip < reader.clips().size(); ++clip)
+using ClipIndex = std::map<std::string, uint32_t>;  // archive clip by name
+
+ClipIndex IndexClips(const FrameFileReader& reader) {
+  ClipIndex index;
+  for (uint32_t clip = 0; clip < reader.clips().size(); ++clip) {
     index[reader.clips()[clip].name] = clip;
+  }
+  return index;
+}
+
+// The clips named by --clip (every clip when none), in the order given.
+Result<std::vector<uint32_t>> ClipsAskedFor(const FrameFileReader& reader, const ClipIndex& index,
+                                            const std::vector<std::string>& names) {
   std::vector<uint32_t> clips;
   if (names.empty()) {
     for (uint32_t clip = 0; clip < reader.clips().size(); ++clip) clips.push_back(clip);
@@ -43,12 +50,9 @@ Result<std::vector<uint32_t>> ClipsAskedFor(const FrameFileReader& reader,
 }
 
 // Per archive clip its label index, and the sorted label names, from the labels file.
-void IndexLabels(const FrameFileReader& reader, const TakeLabels& labels,
+void IndexLabels(const FrameFileReader& reader, const ClipIndex& clip_of, const TakeLabels& labels,
                  std::vector<uint32_t>* clip_labels, std::vector<std::string>* names,
                  uint64_t* unknown) {
-  std::map<std::string, uint32_t> clip_of;
-  for (uint32_t clip = 0; clip < reader.clips().size(); ++clip)
-    clip_of[reader.clips()[clip].name] = clip;
   std::set<std::string> distinct;
   for (const auto& [clip, label] : labels.by_clip) {
     if (clip_of.count(clip)) distinct.insert(label);
@@ -167,7 +171,8 @@ int RunSegment(const std::vector<std::string>& args) {
   if (!reader.ok()) return fail(reader.status());
   const std::vector<std::string> names =
       vm.count("clip") ? vm["clip"].as<std::vector<std::string>>() : std::vector<std::string>{};
-  Result<std::vector<uint32_t>> clips = ClipsAskedFor(**reader, names);
+  const ClipIndex clip_index = IndexClips(**reader);
+  Result<std::vector<uint32_t>> clips = ClipsAskedFor(**reader, clip_index, names);
   if (!clips.ok()) return fail(clips.status());
   TakeLabels labels;
   if (!labels_path.empty()) {
@@ -193,7 +198,7 @@ int RunSegment(const std::vector<std::string>& args) {
     std::vector<uint32_t> clip_labels;
     std::vector<std::string> label_names;
     uint64_t unknown = 0;
-    IndexLabels(**reader, labels, &clip_labels, &label_names, &unknown);
+    IndexLabels(**reader, clip_index, labels, &clip_labels, &label_names, &unknown);
     if (unknown > 0) {
       progress.Note(std::to_string(unknown) + " labelled clips of " + labels_path +
                     " are not clips of the archive: ignored");

@@ -84,6 +84,16 @@ const char* TransitionFateName(TransitionFate fate) {
   return "?";
 }
 
+FateCounts CountFates(const std::vector<GraphTransition>& transitions) {
+  FateCounts counts;
+  for (const GraphTransition& edge : transitions) {
+    counts.kept += edge.fate == TransitionFate::kKept;
+    counts.signature += edge.fate == TransitionFate::kSignature;
+    counts.component += edge.fate == TransitionFate::kComponent;
+  }
+  return counts;
+}
+
 uint32_t MotionGraph::NodeAt(uint64_t frame) const {
   const auto found = std::lower_bound(nodes.begin(), nodes.end(), frame);
   return found != nodes.end() && *found == frame ? static_cast<uint32_t>(found - nodes.begin())

@@ -57,6 +57,14 @@ struct MotionGraph {
   uint32_t NodeAt(uint64_t frame) const;
 };
 
+// How many transitions met each fate.
+struct FateCounts {
+  uint64_t kept = 0;
+  uint64_t signature = 0;
+  uint64_t component = 0;
+};
+FateCounts CountFates(const std::vector<GraphTransition>& transitions);
+
 // Builds the graph from `transitions` (those already pruned keep their fate and add no edge)
 // and prunes it to its closed components.
 MotionGraph BuildMotionGraph(const ClipBounds& clips, std::vector<GraphTransition> transitions,

@@ -8,19 +8,11 @@
 #include <tbb/task_arena.h>
 
 #include "engine/signature/earth_movers_distance.h"
-#include "engine/words/signature_change.h"
 #include "engine/words/take_segmentation.h"
+#include "engine/words/window_vote.h"
 
 namespace motif {
 namespace {
-
-// [first, end): `window` words from `first`, shifted back to fit a take of `count` words.
-std::pair<uint64_t, uint64_t> WindowFrom(int64_t first, uint64_t count, uint32_t window) {
-  if (count <= window) return {0, count};
-  const auto start =
-      static_cast<uint64_t>(std::clamp<int64_t>(first, 0, static_cast<int64_t>(count - window)));
-  return {start, start + window};
-}
 
 // The word of `clip` whose centre is nearest clip frame `frame` (ties: the earlier).
 uint64_t NearestWord(const std::vector<double>& centres, uint64_t frame) {
@@ -32,31 +24,13 @@ uint64_t NearestWord(const std::vector<double>& centres, uint64_t frame) {
   return static_cast<uint64_t>((at - *before <= *after - at ? before : after) - centres.begin());
 }
 
-Result<std::vector<double>> Signature(const LoadedWords& words, uint32_t clip,
-                                      std::pair<uint64_t, uint64_t> range) {
-  const uint16_t* motifs = &words.signatures.word_motifs[words.clip_first_words[clip]];
-  const std::vector<uint32_t> ids(motifs + range.first, motifs + range.second);
-  return words.tf_idf->Signature(ids);
-}
-
 // The median change score over every take (signature_change.h, 12 words either side).
 Result<SignatureConstraint> Threshold(const LoadedWords& words) {
   EarthMoversDistance emd;
   std::vector<double> all;
-  Status failure;
   for (uint32_t clip = 0; clip < words.signatures.clip_words.size(); ++clip) {
-    const std::vector<double> scores =
-        ChangeScores(words.signatures.clip_words[clip], kConstraintWindowWords,
-                     [&](uint64_t a0, uint64_t a1, uint64_t b0, uint64_t b1) {
-                       Result<std::vector<double>> a = Signature(words, clip, {a0, a1});
-                       Result<std::vector<double>> b = Signature(words, clip, {b0, b1});
-                       if (!a.ok() || !b.ok()) failure = a.ok() ? b.status() : a.status();
-                       if (!failure.ok()) return 0.0;
-                       Result<double> d = emd.Distance(*a, *b, words.ground);
-                       if (!d.ok()) failure = d.status();
-                       return d.ok() ? *d : 0.0;
-                     });
-    MOTIF_RETURN_IF_ERROR(failure);
+    MOTIF_ASSIGN_OR_RETURN(const std::vector<double> scores,
+                           TakeChangeScores(words, clip, kConstraintWindowWords, emd));
     for (double score : scores) {
       if (std::isfinite(score)) all.push_back(score);
     }
@@ -102,11 +76,11 @@ Result<SignatureConstraint> MeasureTransitionSignatures(const FrameFileReader& r
                 NearestWord(centres[from], edge.transition.source - clips.starts[from]);
             const uint64_t g = NearestWord(centres[to], edge.transition.target - clips.starts[to]);
             const int64_t window = kConstraintWindowWords;
-            Result<std::vector<double>> a = Signature(
-                words, from,
-                WindowFrom(static_cast<int64_t>(s) - window + 1, centres[from].size(), window));
-            Result<std::vector<double>> b = Signature(
-                words, to, WindowFrom(static_cast<int64_t>(g), centres[to].size(), window));
+            const auto before =
+                WindowFrom(static_cast<int64_t>(s) - window + 1, centres[from].size(), window);
+            const auto after = WindowFrom(static_cast<int64_t>(g), centres[to].size(), window);
+            Result<std::vector<double>> a = words.RangeSignature(from, before.first, before.second);
+            Result<std::vector<double>> b = words.RangeSignature(to, after.first, after.second);
             Result<double> d = a.ok() && b.ok() ? emd.Distance(*a, *b, words.ground)
                                                 : Result<double>(a.ok() ? b.status() : a.status());
             if (!d.ok()) {
@@ -121,15 +95,12 @@ Result<SignatureConstraint> MeasureTransitionSignatures(const FrameFileReader& r
   return constraint;
 }
 
-uint64_t PruneBySignature(double threshold, std::vector<GraphTransition>* transitions) {
-  uint64_t pruned = 0;
+void PruneBySignature(double threshold, std::vector<GraphTransition>* transitions) {
   for (GraphTransition& edge : *transitions) {
     if (edge.fate != TransitionFate::kKept) continue;
     if (std::isfinite(edge.signature_distance) && edge.signature_distance <= threshold) continue;
     edge.fate = TransitionFate::kSignature;
-    ++pruned;
   }
-  return pruned;
 }
 
 }  // namespace motif

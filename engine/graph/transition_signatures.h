@@ -42,6 +42,6 @@ Result<SignatureConstraint> MeasureTransitionSignatures(const FrameFileReader& r
                                                         int threads);
 
 // Marks the transitions above the threshold (or not measured) TransitionFate::kSignature.
-uint64_t PruneBySignature(double threshold, std::vector<GraphTransition>* transitions);
+void PruneBySignature(double threshold, std::vector<GraphTransition>* transitions);
 
 }  // namespace motif

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "formats/motion/pose_frames.h"
+#include "formats/frame_file/clip_range_take.h"
 
 namespace motif {
 namespace {
@@ -11,23 +11,7 @@ Result<Take> ReadPiece(const FrameFileReader& reader, const WalkPiece& piece) {
   if (piece.clip >= reader.clips().size()) {
     return Status::InvalidArgument("walk: clip index " + std::to_string(piece.clip));
   }
-  const ClipInfo& clip = reader.clips()[piece.clip];
-  if (piece.start >= piece.end || piece.end > clip.frame_count) {
-    return Status::InvalidArgument("walk: frames [" + std::to_string(piece.start) + ", " +
-                                   std::to_string(piece.end) + ") are not inside clip " +
-                                   clip.name);
-  }
-  std::vector<float> rows;
-  MOTIF_RETURN_IF_ERROR(reader.ReadFrames(clip.first_frame, piece.end, &rows));
-  Take whole = ClipFramesToTake(reader.skeleton(), clip, rows.data(), piece.end);
-  const size_t joints = whole.joint_count();
-  Take take = whole;
-  take.root_positions.assign(
-      whole.root_positions.begin() + static_cast<std::ptrdiff_t>(piece.start),
-      whole.root_positions.end());
-  take.rotations.assign(whole.rotations.begin() + static_cast<std::ptrdiff_t>(piece.start * joints),
-                        whole.rotations.end());
-  return take;
+  return ReadClipRangeAsTake(reader, reader.clips()[piece.clip], piece.start, piece.end);
 }
 
 // Turns and moves `take` so that its frame 0 root stands at `position` (on the floor) facing

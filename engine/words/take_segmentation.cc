@@ -46,21 +46,13 @@ std::vector<Window> CentredWindows(const LoadedWords& words, const std::vector<u
   return windows;
 }
 
-// The TF-IDF signature of words [first, end) of `clip`.
-Result<std::vector<double>> RangeSignature(const LoadedWords& words, uint32_t clip, uint64_t first,
-                                           uint64_t end) {
-  const uint16_t* motifs = &words.signatures.word_motifs[words.clip_first_words[clip]];
-  std::vector<uint32_t> ids(motifs + first, motifs + end);
-  return words.tf_idf->Signature(ids);
-}
-
 Result<std::vector<std::vector<double>>> WindowSignatures(const LoadedWords& words,
                                                           const std::vector<Window>& windows) {
   std::vector<std::vector<double>> signatures;
   signatures.reserve(windows.size());
   for (const Window& window : windows) {
     MOTIF_ASSIGN_OR_RETURN(std::vector<double> signature,
-                           RangeSignature(words, window.clip, window.first, window.end));
+                           words.RangeSignature(window.clip, window.first, window.end));
     signatures.push_back(std::move(signature));
   }
   return signatures;
@@ -124,6 +116,24 @@ WindowDistanceMaker DtwMaker(const PoseFeatures& features, const std::vector<Tak
 }
 
 }  // namespace
+
+Result<std::vector<double>> TakeChangeScores(const LoadedWords& words, uint32_t clip,
+                                             uint32_t window, EarthMoversDistance& emd) {
+  Status failure;
+  std::vector<double> scores =
+      ChangeScores(words.signatures.clip_words[clip], window,
+                   [&](uint64_t a_first, uint64_t a_end, uint64_t b_first, uint64_t b_end) {
+                     Result<std::vector<double>> a = words.RangeSignature(clip, a_first, a_end);
+                     Result<std::vector<double>> b = words.RangeSignature(clip, b_first, b_end);
+                     Result<double> distance =
+                         a.ok() && b.ok() ? emd.Distance(*a, *b, words.ground)
+                                          : Result<double>(a.ok() ? b.status() : a.status());
+                     if (!distance.ok() && failure.ok()) failure = distance.status();
+                     return distance.ok() ? *distance : 0.0;
+                   });
+  MOTIF_RETURN_IF_ERROR(failure);
+  return scores;
+}
 
 std::vector<double> WordCentres(const FrameFileReader& reader, const LoadedWords& words,
                                 uint32_t clip) {
@@ -210,21 +220,11 @@ Result<Segmentation> SegmentUnsupervised(const FrameFileReader& reader, const Lo
   result.window = options.window;
   const std::vector<uint32_t> takes = TakesWithWords(words, clips, &result.skipped_clips);
   EarthMoversDistance emd;
-  Status failure;
   std::vector<std::vector<double>> scores;
   for (uint32_t clip : takes) {
-    scores.push_back(ChangeScores(
-        words.signatures.clip_words[clip], options.window,
-        [&](uint64_t a_first, uint64_t a_end, uint64_t b_first, uint64_t b_end) {
-          Result<std::vector<double>> a = RangeSignature(words, clip, a_first, a_end);
-          Result<std::vector<double>> b = RangeSignature(words, clip, b_first, b_end);
-          Result<double> distance = a.ok() && b.ok()
-                                        ? emd.Distance(*a, *b, words.ground)
-                                        : Result<double>(a.ok() ? b.status() : a.status());
-          if (!distance.ok()) failure = distance.status();
-          return distance.ok() ? *distance : 0.0;
-        }));
-    MOTIF_RETURN_IF_ERROR(failure);
+    MOTIF_ASSIGN_OR_RETURN(std::vector<double> take_scores,
+                           TakeChangeScores(words, clip, options.window, emd));
+    scores.push_back(std::move(take_scores));
     if (options.progress) options.progress("windows", scores.size(), takes.size());
   }
   result.threshold = ChangeThreshold(scores);

@@ -22,6 +22,7 @@
 
 #include "common/status.h"
 #include "engine/distance/pose_features.h"
+#include "engine/signature/earth_movers_distance.h"
 #include "engine/words/window_vote.h"
 #include "engine/words/word_model.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -73,6 +74,11 @@ Result<Segmentation> SegmentSupervised(const FrameFileReader& reader, const Load
 Result<Segmentation> SegmentUnsupervised(const FrameFileReader& reader, const LoadedWords& words,
                                          const std::vector<uint32_t>& clips,
                                          const SegmentOptions& options);
+
+// The change scores of clip `clip` (signature_change.h: the EMD between the TF-IDF signatures of
+// the `window` words before and after each word boundary). Errors of the EMD pass through.
+Result<std::vector<double>> TakeChangeScores(const LoadedWords& words, uint32_t clip,
+                                             uint32_t window, EarthMoversDistance& emd);
 
 // The clip frame at the centre of each word of `clip`.
 std::vector<double> WordCentres(const FrameFileReader& reader, const LoadedWords& words,

@@ -63,12 +63,17 @@ Result<uint32_t> VoteOne(const WindowVoteInput& input, size_t query, WindowDista
 
 }  // namespace
 
+std::pair<uint64_t, uint64_t> WindowFrom(int64_t first, uint64_t words, uint32_t window) {
+  MOTIF_CHECK(window >= 1);
+  if (words <= window) return {0, words};
+  const auto start =
+      static_cast<uint64_t>(std::clamp<int64_t>(first, 0, static_cast<int64_t>(words - window)));
+  return {start, start + window};
+}
+
 std::pair<uint64_t, uint64_t> CentredWindow(uint64_t word, uint64_t words, uint32_t window) {
   MOTIF_CHECK(word < words && window >= 1);
-  if (words <= window) return {0, words};
-  const uint64_t half = window / 2;
-  const uint64_t first = std::min<uint64_t>(word > half ? word - half : 0, words - window);
-  return {first, first + window};
+  return WindowFrom(static_cast<int64_t>(word) - static_cast<int64_t>(window / 2), words, window);
 }
 
 Result<std::vector<uint32_t>> VoteWindows(const WindowVoteInput& input,

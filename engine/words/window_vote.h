@@ -21,6 +21,11 @@
 
 namespace motif {
 
+// [start, start + window): `window` words from word `first` (which may lie before 0), shifted
+// inward to fit a take of `words` words; the whole take when it has fewer. Precondition:
+// window >= 1.
+std::pair<uint64_t, uint64_t> WindowFrom(int64_t first, uint64_t words, uint32_t window);
+
 // [first, end): the `window` words centred on word `word` of a take of `words` words, i.e.
 // [word - window / 2, word - window / 2 + window), shifted inward at the take's ends so that it
 // keeps `window` words; the whole take when it has fewer. Precondition: word < words, window >= 1.

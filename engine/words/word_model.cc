@@ -25,6 +25,12 @@ std::vector<uint32_t> LoadedWords::ClipMotifs(size_t clip) const {
           static_cast<std::ptrdiff_t>(first + signatures.clip_words[clip]));
 }
 
+Result<std::vector<double>> LoadedWords::RangeSignature(size_t clip, uint64_t first,
+                                                        uint64_t end) const {
+  const uint16_t* motifs = &signatures.word_motifs[clip_first_words[clip]];
+  return tf_idf->Signature(std::vector<uint32_t>(motifs + first, motifs + end));
+}
+
 std::vector<double> LoadedWords::ClipSignature(size_t clip, bool plain) const {
   if (plain) {
     Result<std::vector<double>> tf = TfIdf::TermFrequencies(ClipMotifs(clip), motifs.motif_count());

@@ -29,6 +29,8 @@ struct LoadedWords {
 
   // The motifs of clip `clip`'s words.
   std::vector<uint32_t> ClipMotifs(size_t clip) const;
+  // The TF-IDF signature of words [first, end) of clip `clip` (first < end <= its words).
+  Result<std::vector<double>> RangeSignature(size_t clip, uint64_t first, uint64_t end) const;
   // The signature of clip `clip` (its row), TF-IDF or, with `plain`, term frequencies only.
   std::vector<double> ClipSignature(size_t clip, bool plain) const;
 };

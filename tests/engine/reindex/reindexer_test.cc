@@ -55,7 +55,7 @@ void MakeTakes(const std::string& dir) {
   fs::create_directories(dir + "/batch1");
   fs::create_directories(dir + "/batch2");
   for (size_t idx = 0; idx < clips.size(); ++idx) {
-    auto take = cli::ReadClipRangeAsTake(**reader, clips[idx], 0, clips[idx].frame_count);
+    auto take = ReadClipRangeAsTake(**reader, clips[idx], 0, clips[idx].frame_count);
     ASSERT_TRUE(take.ok());
     const std::string batch = idx < clips.size() * 2 / 3 ? "/batch1/" : "/batch2/";
     ASSERT_TRUE(WriteBvh(*take, dir + batch + clips[idx].name + ".bvh").ok());
