@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Temporal segmentation of joined takes (docs/benchmarks.md, "Segmentation of joined takes"):
-# `motifmine segment` with signatures (EMD, the defaults) against the DTW kNN baseline over the
-# windows' frames, on TRIALS takes each joined from pieces of five activities
+# `motifmine segment` with its defaults (the EMD between the windows' bags of words) and with the
+# paper's motif signatures (`--signature motifs`), against the DTW kNN baseline over the windows'
+# frames, on TRIALS takes each joined from pieces of five activities
 # (scripts/segmentation_trials.py), the other labelled takes as the training set.
 #
 # usage: scripts/eval_segmentation.sh [MOCAP_DIR] [OUT_DIR] [TRIALS] [SEED...]
@@ -9,15 +10,16 @@
 #   OUT_DIR    default out/eval-segmentation
 #   TRIALS     default 10
 #   SEED...    default 1 2 3: one embedding, motifs and signatures (`motifmine words --seed S`)
-#              per seed; the signatures' scores are given per seed and as their mean; DTW does
-#              not depend on the seed and runs once
+#              per seed; the motif signatures' scores are given per seed and as their mean; the
+#              word bags and DTW do not depend on the seed and run once
 #   SEGMENT_ARGS (environment) extra options for the supervised `motifmine segment` runs
 #   WORDS_ARGS (environment) extra options for `motifmine words` (e.g. "--motifs 50")
 #   SKIP_DTW=1 (environment) leaves the baseline out
 # Score per trial: per-frame balanced accuracy (the mean over the trial's activities of the
 # fraction of that activity's frames given its label), ignoring the frames within GUARD (30
 # frames, 0.25 s) of each junction; and, unsupervised, the share of junctions with a boundary
-# within 1 s. Ends with the line `mean balanced accuracy: signatures S, dtw D`.
+# within 1 s. Ends with the line
+# `mean balanced accuracy: signatures W, motif signatures S ± SD, dtw D`.
 # Needs build/motifmine (scripts/build.sh) and python3.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,10 +44,14 @@ for seed in $SEEDS; do
 done
 for trial in "$OUT"/trials/trial_*.bvh; do
   name=$(basename "$trial" .bvh)
+  # shellcheck disable=SC2086 # SEGMENT_ARGS is a list of options
+  "$TOOL" segment "$OUT/eval.mfs" --prefix "$OUT/seed${SEEDS%% *}" --clip "$name" --quiet \
+    --labels "$OUT/trials/$name.labels.tsv" --out "$OUT/words/$name" ${SEGMENT_ARGS:-} > /dev/null
   for seed in $SEEDS; do
-    # shellcheck disable=SC2086 # SEGMENT_ARGS is a list of options
+    # shellcheck disable=SC2086
     "$TOOL" segment "$OUT/eval.mfs" --prefix "$OUT/seed$seed" --clip "$name" --quiet \
-      --labels "$OUT/trials/$name.labels.tsv" --out "$OUT/emd$seed/$name" ${SEGMENT_ARGS:-} > /dev/null
+      --labels "$OUT/trials/$name.labels.tsv" --signature motifs --out "$OUT/emd$seed/$name" \
+      ${SEGMENT_ARGS:-} > /dev/null
     "$TOOL" segment "$OUT/eval.mfs" --prefix "$OUT/seed$seed" --clip "$name" --quiet \
       --out "$OUT/unsupervised$seed/$name" > /dev/null
   done
@@ -85,6 +91,22 @@ def balanced(trial, method):
         right[label] = right.get(label, 0) + (found[frame] == label)
     return statistics.mean(right[label] / total[label] for label in total)
 
+def pooled(method):
+    """Per activity, the share of its frames over all trials given its label."""
+    right, total = {}, {}
+    for trial in plan["trials"]:
+        path = f"{out}/{method}/{trial['trial']}/segments.json"
+        if not os.path.exists(path):
+            return None
+        found = frame_labels(json.load(open(path))["segments"], trial["frames"])
+        junctions = [piece["start"] for piece in trial["pieces"][1:]]
+        for frame, label in enumerate(frame_labels(trial["pieces"], trial["frames"])):
+            if any(abs(frame - junction) < GUARD for junction in junctions):
+                continue
+            total[label] = total.get(label, 0) + 1
+            right[label] = right.get(label, 0) + (found[frame] == label)
+    return ", ".join(f"{label} {right[label] / total[label]:.2f}" for label in sorted(total))
+
 def junctions_found(trial, seed):
     doc = json.load(open(f"{out}/unsupervised{seed}/{trial['trial']}/segments.json"))
     boundaries = [segment["start"] for segment in doc["segments"][1:]]
@@ -93,12 +115,15 @@ def junctions_found(trial, seed):
     return hits / len(junctions), len(boundaries)
 
 seed_cells = " | ".join(f"seed {seed}" for seed in seeds)
-print(f"| trial | frames | pieces (activity: source take) | signatures (EMD): {seed_cells} | DTW | "
+print(f"| trial | frames | pieces (activity: source take) | word signatures (the default) | "
+      f"motif signatures: {seed_cells} | DTW | "
       "unsupervised, seed " + seeds[0] + ": junctions within 1 s / boundaries |")
-print("|---|---|---|" + "---|" * len(seeds) + "---|---|")
+print("|---|---|---|---|" + "---|" * len(seeds) + "---|---|")
+words = []
 emd = {seed: [] for seed in seeds}
 dtw = []
 for trial in plan["trials"]:
+    words.append(balanced(trial, "words"))
     cells = []
     for seed in seeds:
         emd[seed].append(balanced(trial, f"emd{seed}"))
@@ -108,11 +133,18 @@ for trial in plan["trials"]:
         dtw.append(d)
     share, count = junctions_found(trial, seeds[0])
     pieces = ", ".join(f"{p['label']}: {p['clip']}" for p in trial["pieces"])
-    print(f"| {trial['trial']} | {trial['frames']} | {pieces} | {' | '.join(cells)} | "
-          f"{'-' if d is None else f'{d:.3f}'} | {share:.2f} / {count} |")
+    print(f"| {trial['trial']} | {trial['frames']} | {pieces} | {words[-1]:.3f} | "
+          f"{' | '.join(cells)} | {'-' if d is None else f'{d:.3f}'} | {share:.2f} / {count} |")
 means = [statistics.mean(emd[seed]) for seed in seeds]
-print("per seed: " + ", ".join(f"seed {seed} {mean:.3f}" for seed, mean in zip(seeds, means)))
+print("motif signatures per seed: " +
+      ", ".join(f"seed {seed} {mean:.3f}" for seed, mean in zip(seeds, means)))
 spread = f" ± {statistics.stdev(means):.3f}" if len(means) > 1 else ""
 dtw_text = f"{statistics.mean(dtw):.3f}" if dtw else "not run"
-print(f"mean balanced accuracy: signatures {statistics.mean(means):.3f}{spread}, dtw {dtw_text}")
+for method in ["words"] + [f"emd{seed}" for seed in seeds] + ["dtw"]:
+    activities = pooled(method)
+    if activities:
+        name = {"words": "word signatures", "dtw": "dtw"}.get(method, f"motif signatures, seed {method[3:]}")
+        print(f"per activity, {name}: {activities}")
+print(f"mean balanced accuracy: signatures {statistics.mean(words):.3f}, "
+      f"motif signatures {statistics.mean(means):.3f}{spread}, dtw {dtw_text}")
 PY

@@ -71,13 +71,18 @@ void IndexLabels(const FrameFileReader& reader, const ClipIndex& clip_of, const 
   }
 }
 
+std::string Method(const Segmentation& result) {
+  if (!result.supervised) return "unsupervised";
+  if (result.distance == "dtw") return "supervised, kNN by DTW over the windows' frames";
+  return "supervised, kNN by the EMD between " + result.signature + " signatures";
+}
+
 void PrintSummary(const Segmentation& result, const FrameFileReader& reader,
                   const std::string& archive, double seconds, const WordsReaderOutput& output) {
   uint64_t segments = 0;
   for (const SegmentedTake& take : result.takes) segments += take.segments.size();
-  std::printf(
-      "motifmine segment: %s (%zu takes, %s)\n", archive.c_str(), result.takes.size(),
-      result.supervised ? ("supervised, " + result.distance + " kNN").c_str() : "unsupervised");
+  std::printf("motifmine segment: %s (%zu takes, %s)\n", archive.c_str(), result.takes.size(),
+              Method(result).c_str());
   if (result.supervised) {
     std::printf("  method       %u-NN over windows of %u words: %s windows of %s labelled takes\n",
                 result.knn, result.window, WithCommas(result.reference_windows).c_str(),
@@ -109,14 +114,15 @@ int RunSegment(const std::vector<std::string>& args) {
   spec.name = "segment";
   spec.usage =
       "motifmine segment ARCHIVE [--labels LABELS.tsv] [--clip NAME ...] --out DIR "
-      "[--distance emd|dtw] [--window W] [--knn K]";
+      "[--distance emd|dtw] [--signature words|motifs] [--window W] [--knn K]";
   spec.summary =
       "Cuts takes into segments of one activity by their motion signatures. With --labels (a\n"
       "TSV of clip and label, as classify reads), each motion word takes the majority label of\n"
-      "the K nearest windows of W words of the labelled takes (EMD between signatures; a take\n"
+      "the K nearest windows of W words of the labelled takes (EMD between the windows'\n"
+      "signatures: by default their bags of words, compared word with word by DTW; a take\n"
       "never votes for itself), and equal neighbouring labels merge into segments. Without,\n"
-      "boundaries go where the signatures before and after differ most, and segments are\n"
-      "grouped by signature. Segments the takes named by --clip (default: every take).\n"
+      "boundaries go where the motif signatures before and after differ most, and segments\n"
+      "are grouped by signature. Segments the takes named by --clip (default: every take).\n"
       "Builds the words files first (as `motifmine words`) when they are missing.\n"
       "Writes DIR/segments.json and DIR/segments.html.";
   SegmentOptions defaults;
@@ -126,6 +132,10 @@ int RunSegment(const std::vector<std::string>& args) {
       "a take to segment (repeatable; default: every take)")(
       "distance", po::value<std::string>()->default_value("emd"),
       "emd (signatures) or dtw (the windows' frames, a baseline; needs --labels)")(
+      "signature", po::value<std::string>()->default_value(""),
+      "with --labels and emd, what a window's signature is: words (the default: every word its "
+      "own bin, DTW between words as ground distance) or motifs (the paper's TF-IDF histogram "
+      "over the motifs); without --labels it is motifs")(
       "window", po::value<uint32_t>()->default_value(defaults.window), "words per window")(
       "knn", po::value<uint32_t>()->default_value(defaults.knn), "neighbours of the vote")(
       "neighbours", po::value<std::string>()->default_value("windows"),
@@ -133,7 +143,8 @@ int RunSegment(const std::vector<std::string>& args) {
       "labelled takes, each at its nearest window)")(
       "dtw-step", po::value<uint32_t>()->default_value(defaults.dtw_step),
       "dtw: compare every n-th frame")("weights", po::value<std::string>()->default_value(""),
-                                       "dtw: per-joint weights file (default: the skeleton's)")(
+                                       "dtw and word signatures: per-joint weights file "
+                                       "(default: the skeleton's)")(
       "seed", po::value<uint64_t>()->default_value(1),
       "seed of the words build when the words files are missing");
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "segments");
@@ -151,7 +162,18 @@ int RunSegment(const std::vector<std::string>& args) {
   if (distance == "dtw" && labels_path.empty()) {
     return fail(Status::InvalidArgument("--distance dtw needs --labels (it is supervised only)"));
   }
+  const std::string signature = vm["signature"].as<std::string>();
+  if (!signature.empty() && signature != "words" && signature != "motifs") {
+    return fail(
+        Status::InvalidArgument("--signature must be words or motifs, not '" + signature + "'"));
+  }
+  if (signature == "words" && (labels_path.empty() || distance == "dtw")) {
+    return fail(Status::InvalidArgument(
+        "--signature words needs --labels and --distance emd (without --labels, segments are "
+        "found and grouped by motif signatures)"));
+  }
   SegmentOptions options;
+  options.signature = signature == "motifs" ? WindowSignature::kMotifs : WindowSignature::kWords;
   options.window = vm["window"].as<uint32_t>();
   options.knn = vm["knn"].as<uint32_t>();
   options.dtw_step = vm["dtw-step"].as<uint32_t>();
@@ -204,10 +226,11 @@ int RunSegment(const std::vector<std::string>& args) {
                     " are not clips of the archive: ignored");
     }
     std::optional<PoseFeatures> features;
+    Result<std::vector<float>> weights =
+        LoadDistanceWeights((*reader)->skeleton(), vm["weights"].as<std::string>());
+    if (!weights.ok()) return fail(weights.status());
+    options.joint_weights = *weights;
     if (distance == "dtw") {
-      Result<std::vector<float>> weights =
-          LoadDistanceWeights((*reader)->skeleton(), vm["weights"].as<std::string>());
-      if (!weights.ok()) return fail(weights.status());
       Result<PoseFeatures> computed = PoseFeatures::FromArchive(**reader, *weights);
       if (!computed.ok()) return fail(computed.status());
       features = std::move(computed.value());

@@ -29,6 +29,17 @@ std::string NameOf(const Segmentation& result, uint32_t label) {
   return label == kUnlabelled ? "(no label)" : result.label_names[label];
 }
 
+// How two windows are compared, for the method row.
+std::string WindowDistanceText(const Segmentation& result, const SegmentsPageInfo& info) {
+  if (result.distance == "dtw") return "DTW over the windows' frames";
+  if (result.signature == "words") {
+    return "the EMD between the windows' bags of words (every word its own bin, the DTW between "
+           "words as ground distance)";
+  }
+  return "the EMD between the windows' TF-IDF signatures over " + std::to_string(info.motifs) +
+         " motifs";
+}
+
 std::string Overview(const Segmentation& result, const FrameFileReader& reader,
                      const SegmentsPageInfo& info) {
   uint64_t segments = 0;
@@ -45,9 +56,7 @@ std::string Overview(const Segmentation& result, const FrameFileReader& reader,
           HtmlCommas(result.reference_windows) + " windows of " +
           HtmlCount(result.reference_takes, "labelled take") + " (labels from <code>" +
           HtmlEscape(info.labels_path) + "</code>; a take never votes " + "for itself), by " +
-          (result.distance == "dtw" ? "DTW over the windows' frames"
-                                    : "the EMD between the windows' signatures over " +
-                                          std::to_string(info.motifs) + " motifs");
+          WindowDistanceText(result, info);
   } else {
     how = "unsupervised: boundaries where the signatures of the " + std::to_string(result.window) +
           " words before and after differ most (EMD above " + HtmlNumber("%.4f", result.threshold) +

@@ -3,10 +3,12 @@
 #include <span>
 
 #include "engine/signature/earth_movers_distance.h"
+#include "engine/signature/frame_resampler.h"
 #include "engine/signature/take_dtw.h"
 #include "engine/signature/take_retrieval.h"
 #include "engine/signature/word_stream.h"
 #include "engine/words/signature_change.h"
+#include "engine/words/word_bags.h"
 
 namespace motif {
 namespace {
@@ -115,7 +117,70 @@ WindowDistanceMaker DtwMaker(const PoseFeatures& features, const std::vector<Tak
   };
 }
 
+// Query windows per block of the word-bag vote: the block's words against every reference word
+// are held as floats, (kBagQueries + window) x reference words.
+constexpr size_t kBagQueries = 256;
+
+// The vote with word bags (word_bags.h): the queries of each take a block at a time, each block
+// with the DTW between the words its windows read and every word of the references.
+Result<std::vector<uint32_t>> VoteWithWordBags(
+    const FrameFileReader& reader, const LoadedWords& words, const std::vector<Window>& queries,
+    const std::vector<Window>& references, const std::vector<uint32_t>& query_clips,
+    const std::vector<uint32_t>& reference_clips, const WindowVoteInput& input,
+    const SegmentOptions& options, const std::function<void(uint64_t, uint64_t)>& progress) {
+  std::vector<float> weights = options.joint_weights;
+  if (weights.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(weights, LoadDistanceWeights(reader.skeleton(), ""));
+  }
+  MOTIF_ASSIGN_OR_RETURN(const FrameResampler resampler,
+                         FrameResampler::Create(reader.layout(), weights));
+  const WordOptions& geometry = words.signatures.words;
+  const WordDistance distance(resampler.weights(), geometry.word_frames);
+  MOTIF_ASSIGN_OR_RETURN(const WordsOfClips query_words,
+                         WordsOfClips::Read(reader, weights, geometry, distance, query_clips));
+  MOTIF_ASSIGN_OR_RETURN(const WordsOfClips reference_words,
+                         WordsOfClips::Read(reader, weights, geometry, distance, reference_clips));
+  std::vector<uint32_t> labels;
+  for (size_t first = 0; first < queries.size();) {
+    size_t end = first;
+    uint64_t word_first = queries[first].first;
+    uint64_t word_end = queries[first].end;
+    while (end < queries.size() && end - first < kBagQueries &&
+           queries[end].clip == queries[first].clip) {
+      word_first = std::min(word_first, queries[end].first);
+      word_end = std::max(word_end, queries[end].end);
+      ++end;
+    }
+    const WordBagGround ground =
+        WordBagGround::Compute(query_words, queries[first].clip, word_first, word_end,
+                               reference_words, distance, options.threads);
+    WindowVoteInput block = input;
+    block.query_takes.assign(input.query_takes.begin() + static_cast<std::ptrdiff_t>(first),
+                             input.query_takes.begin() + static_cast<std::ptrdiff_t>(end));
+    const WindowDistanceMaker make_distance = [&] {
+      auto bag = std::make_shared<WordBagDistance>();
+      return WindowDistance([&, bag](size_t query, size_t reference) {
+        const Window& a = queries[first + query];
+        const Window& b = references[reference];
+        return bag->Distance(ground, a.first, a.end, reference_words, b.clip, b.first, b.end);
+      });
+    };
+    MOTIF_ASSIGN_OR_RETURN(
+        const std::vector<uint32_t> block_labels,
+        VoteWindows(block, make_distance, options.threads, [&](uint64_t done, uint64_t) {
+          if (progress) progress(first + done, queries.size());
+        }));
+    labels.insert(labels.end(), block_labels.begin(), block_labels.end());
+    first = end;
+  }
+  return labels;
+}
+
 }  // namespace
+
+const char* WindowSignatureName(WindowSignature signature) {
+  return signature == WindowSignature::kWords ? "words" : "motifs";
+}
 
 Result<std::vector<double>> TakeChangeScores(const LoadedWords& words, uint32_t clip,
                                              uint32_t window, EarthMoversDistance& emd) {
@@ -156,6 +221,7 @@ Result<Segmentation> SegmentSupervised(const FrameFileReader& reader, const Load
   Segmentation result;
   result.supervised = true;
   result.distance = features ? "dtw" : "emd";
+  if (!features) result.signature = WindowSignatureName(options.signature);
   result.label_names = label_names;
   result.window = options.window;
   result.knn = options.knn;
@@ -200,6 +266,9 @@ Result<Segmentation> SegmentSupervised(const FrameFileReader& reader, const Load
     labels =
         VoteWindows(input, DtwMaker(*features, query_frames, reference_frames, options.dtw_step),
                     options.threads, progress);
+  } else if (options.signature == WindowSignature::kWords) {
+    labels = VoteWithWordBags(reader, words, queries, references, takes, reference_clips, input,
+                              options, progress);
   } else {
     MOTIF_ASSIGN_OR_RETURN(const auto query_signatures, WindowSignatures(words, queries));
     MOTIF_ASSIGN_OR_RETURN(const auto reference_signatures, WindowSignatures(words, references));
@@ -217,6 +286,7 @@ Result<Segmentation> SegmentUnsupervised(const FrameFileReader& reader, const Lo
   MOTIF_RETURN_IF_ERROR(CheckOptions(reader, clips, options));
   Segmentation result;
   result.distance = "emd";
+  result.signature = WindowSignatureName(WindowSignature::kMotifs);
   result.window = options.window;
   const std::vector<uint32_t> takes = TakesWithWords(words, clips, &result.skipped_clips);
   EarthMoversDistance emd;
@@ -276,6 +346,7 @@ nlohmann::json SegmentsJson(const Segmentation& result, const FrameFileReader& r
   json["archive"] = archive;
   json["mode"] = result.supervised ? "supervised" : "unsupervised";
   json["distance"] = result.distance;
+  if (!result.signature.empty()) json["signature"] = result.signature;
   json["window"] = result.window;
   if (result.supervised) {
     json["k"] = result.knn;

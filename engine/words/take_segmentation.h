@@ -3,8 +3,10 @@
 //  * supervised: every word of a take to segment is described by the window of `window` (9)
 //    words centred on it (window_vote.h) and takes the majority label of its k (5) nearest
 //    windows among those of the labelled takes, a take never voting for itself; the distance is
-//    the EMD between the windows' TF-IDF signatures (tf_idf.h, the archive's idf), or, for the
-//    baseline, DTW over the windows' frames (take_dtw.h, every `dtw_step`-th frame);
+//    the EMD between the windows' signatures: by default their bags of words (word_bags.h, every
+//    word its own bin, the DTW between words as ground distance), or the paper's TF-IDF
+//    histograms over the motifs (tf_idf.h, the archive's idf); or, for the baseline, DTW over the
+//    windows' frames (take_dtw.h, every `dtw_step`-th frame);
 //  * unsupervised: boundaries where the signatures before and after differ most, segments
 //    grouped by signature (signature_change.h);
 // then equal neighbouring labels merge into segments covering each take (MergeLabels).
@@ -29,12 +31,25 @@
 
 namespace motif {
 
+// What a window's signature is made of (supervised, with the EMD).
+enum class WindowSignature {
+  kWords,   // every word its own bin, unit mass; ground: the DTW between words (word_bags.h)
+  kMotifs,  // the paper's: TF-IDF over the motifs; ground: the centroids' distance (tf_idf.h)
+};
+
+// "words" or "motifs".
+const char* WindowSignatureName(WindowSignature signature);
+
 struct SegmentOptions {
   uint32_t window = 9;        // words per window
   uint32_t knn = 5;           // supervised: neighbours of the vote
   uint32_t dtw_step = 4;      // the DTW baseline: every n-th frame of a window
   bool one_per_take = false;  // supervised: vote with the k nearest takes (window_vote.h)
-  int threads = 0;            // 0: all cores
+  WindowSignature signature = WindowSignature::kWords;  // supervised, with the EMD
+  // Word bags: the per-joint weights the words are cut with (LoadDistanceWeights, one per archive
+  // joint); empty: the skeleton's defaults.
+  std::vector<float> joint_weights;
+  int threads = 0;  // 0: all cores
   // (stage, done, total): "windows" (signatures, counted in takes), "vote" (queries), "groups".
   std::function<void(const std::string&, uint64_t, uint64_t)> progress;
 };
@@ -50,6 +65,7 @@ struct SegmentedTake {
 struct Segmentation {
   bool supervised = false;
   std::string distance;                  // "emd" or "dtw"
+  std::string signature;                 // with the EMD: "words" or "motifs"
   std::vector<std::string> label_names;  // supervised: the labels, sorted; else "group 1", ...
   std::vector<SegmentedTake> takes;      // in the order asked for
   std::vector<uint32_t> skipped_clips;   // asked for, but shorter than one word

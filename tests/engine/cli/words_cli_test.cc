@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -241,16 +242,23 @@ TEST_F(WordsCliTest, SegmentWritesItsDocumentAndPageWithAndWithoutLabels) {
              << "\n";
     }
   }
-  for (const char* distance : {"emd", "dtw"}) {
-    RunResult labelled =
-        RunTool("segment " + archive_ + " --labels " + dir_->File("seg-labels.tsv") +
-                " --clip synth_000001 --clip synth_000003 --distance " + distance + " --out " +
-                dir_->File(std::string("seg-") + distance));
+  // (--distance, --signature, the signature segments.json names)
+  for (const auto& [distance, signature, named] :
+       {std::tuple{"emd", "", "words"}, {"emd", "motifs", "motifs"}, {"dtw", "", ""}}) {
+    const std::string out = dir_->File(std::string("seg-") + distance + signature);
+    RunResult labelled = RunTool(
+        "segment " + archive_ + " --labels " + dir_->File("seg-labels.tsv") +
+        " --clip synth_000001 --clip synth_000003 --distance " + distance +
+        (*signature ? std::string(" --signature ") + signature : std::string()) + " --out " + out);
     ASSERT_EQ(labelled.exit_code, 0) << labelled.output;
-    const nlohmann::json one =
-        ReadJson(dir_->File(std::string("seg-") + distance + "/segments.json"));
+    const nlohmann::json one = ReadJson(out + "/segments.json");
     EXPECT_EQ(one["mode"], "supervised");
     EXPECT_EQ(one["distance"], distance);
+    if (*named) {
+      EXPECT_EQ(one["signature"], named);
+    } else {
+      EXPECT_FALSE(one.contains("signature"));
+    }
     EXPECT_EQ(one["labels"], nlohmann::json({"a", "b"}));
     ASSERT_EQ(one["takes"].size(), 2u);
     EXPECT_EQ(one["takes"][0]["clip"], "synth_000001");
@@ -275,6 +283,8 @@ TEST_F(WordsCliTest, SegmentRefusesBadOptionsByNameAndWritesNothing) {
   expect(" --distance dtw", 13, "--distance dtw needs --labels");
   expect(" --window 0", 13, "--window");
   expect(" --neighbours frames", 13, "--neighbours must be");
+  expect(" --signature frames", 13, "--signature must be words or motifs");
+  expect(" --signature words", 13, "--signature words needs --labels");
   expect(" --labels " + dir_->File("no-labels.tsv"), 11, "no-labels.tsv");
   {
     std::ofstream labels(dir_->File("elsewhere.tsv"));

@@ -67,7 +67,9 @@ void ExpectThreePiecesNearTheJunctions(const SegmentedTake& take, bool labelled)
   EXPECT_NEAR(static_cast<double>(take.segments[2].start), 1200.0, 60.0);
   EXPECT_EQ(take.segments[2].end, 3 * kPieceFrames);
   for (uint32_t piece = 0; piece < 3; ++piece) {
-    if (labelled) EXPECT_EQ(take.segments[piece].label, piece);
+    if (labelled) {
+      EXPECT_EQ(take.segments[piece].label, piece);
+    }
   }
   EXPECT_NE(take.segments[0].label, take.segments[1].label);
   EXPECT_NE(take.segments[1].label, take.segments[2].label);
@@ -93,8 +95,11 @@ JoinedArchive* TakeSegmentationTest::archive_ = nullptr;
 TEST_F(TakeSegmentationTest, SupervisedLabelsEachPieceOfAJoinedTakeWithItsClass) {
   const JoinedArchive& a = *archive_;
   const std::vector<std::string> names = {"class0", "class1", "class2"};
-  for (const PoseFeatures* features : {static_cast<const PoseFeatures*>(nullptr)}) {
+  for (const WindowSignature signature : {WindowSignature::kWords, WindowSignature::kMotifs}) {
+    SCOPED_TRACE(WindowSignatureName(signature));
+    const PoseFeatures* features = nullptr;
     SegmentOptions options;
+    options.signature = signature;
     options.threads = 1;
     auto one =
         SegmentSupervised(*a.reader, a.words, {a.joined}, a.clip_labels, names, features, options);
@@ -107,6 +112,7 @@ TEST_F(TakeSegmentationTest, SupervisedLabelsEachPieceOfAJoinedTakeWithItsClass)
     EXPECT_EQ(one->takes[0].word_labels, two->takes[0].word_labels);
     EXPECT_EQ(one->reference_takes, 12u);
     EXPECT_EQ(one->takes[0].words, a.words.signatures.clip_words[a.joined]);
+    EXPECT_EQ(one->signature, WindowSignatureName(signature));
   }
 }
 
