@@ -205,8 +205,12 @@ int RunSegment(const std::vector<std::string>& args) {
 
   ProgressReporter progress(ProgressModeFrom(vm));
   const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
-  Result<LoadedWords> words = LoadOrBuildWords(archive, **reader, paths, vm["seed"].as<uint64_t>(),
-                                               options.threads, progress);
+  // Word signatures and the DTW baseline need only where the words lie, not their embedding.
+  const bool needs_motifs = labels_path.empty() || (distance == "emd" && signature == "motifs");
+  Result<LoadedWords> words =
+      needs_motifs ? LoadOrBuildWords(archive, **reader, paths, vm["seed"].as<uint64_t>(),
+                                      options.threads, progress)
+                   : LoadWordsOrGrid(archive, **reader, paths, progress);
   if (!words.ok()) return fail(words.status());
 
   options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {

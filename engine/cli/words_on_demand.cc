@@ -34,4 +34,13 @@ Result<LoadedWords> LoadOrBuildWords(const std::string& archive, const FrameFile
   return LoadWords(reader, paths, /*with_embedding=*/false);
 }
 
+Result<LoadedWords> LoadWordsOrGrid(const std::string& archive, const FrameFileReader& reader,
+                                    const WordsPaths& paths, ProgressReporter& progress) {
+  Result<LoadedWords> words = LoadWords(reader, paths, /*with_embedding=*/false);
+  if (words.ok() || !words.status().IsNotFound()) return words;
+  progress.Note("no motion words for " + archive +
+                ": cutting them with the default geometry (no embedding is needed)");
+  return WordGridOnly(reader, WordOptions{});
+}
+
 }  // namespace motif::cli

@@ -21,4 +21,9 @@ Result<LoadedWords> LoadOrBuildWords(const std::string& archive, const FrameFile
                                      const WordsPaths& paths, uint64_t seed, int threads,
                                      ProgressReporter& progress);
 
+// The words files when they exist (errors of LoadWords other than NotFound pass through), else
+// only the words' places with the default geometry (WordGridOnly), with a note on `progress`.
+Result<LoadedWords> LoadWordsOrGrid(const std::string& archive, const FrameFileReader& reader,
+                                    const WordsPaths& paths, ProgressReporter& progress);
+
 }  // namespace motif::cli

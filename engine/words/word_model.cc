@@ -3,6 +3,7 @@
 #include <string>
 
 #include "engine/signature/ground_distance.h"
+#include "engine/signature/word_stream.h"
 
 namespace motif {
 namespace {
@@ -16,6 +17,16 @@ Result<TensorFile> ReadWordsFile(const std::string& path, const char* kind) {
 }
 
 }  // namespace
+
+LoadedWords WordGridOnly(const FrameFileReader& reader, const WordOptions& options) {
+  LoadedWords words;
+  words.signatures.words = options;
+  for (size_t clip = 0; clip < reader.clips().size(); ++clip) {
+    words.signatures.clip_words.push_back(ClipWordGrid(reader, clip, options).word_count());
+  }
+  words.clip_first_words = words.signatures.ClipFirstWords();
+  return words;
+}
 
 std::vector<uint32_t> LoadedWords::ClipMotifs(size_t clip) const {
   const uint64_t first = clip_first_words[clip];

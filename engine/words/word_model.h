@@ -35,6 +35,12 @@ struct LoadedWords {
   std::vector<double> ClipSignature(size_t clip, bool plain) const;
 };
 
+// Where the words of `reader`'s archive lie when cut with `options`, and nothing else: no
+// embedding, motifs or signatures (signatures.clip_words, signatures.words and clip_first_words
+// are filled; there is no idf). For what needs only the words' places: `segment`'s word
+// signatures and its DTW baseline, when no words files were built.
+LoadedWords WordGridOnly(const FrameFileReader& reader, const WordOptions& options);
+
 // Reads the files of `paths` and checks them against `reader`'s archive. NotFound (with a hint to
 // run `motifmine words`) for a missing file; InvalidArgument when the files were made from
 // another archive or from each other's older versions; Corruption from the files.

@@ -311,5 +311,37 @@ TEST(SegmentCli, BuildsTheWordsItNeedsWhenTheyAreMissing) {
   EXPECT_EQ(again.output.find("building them"), std::string::npos) << again.output;
 }
 
+// Word signatures (the supervised default) and the DTW baseline need only where the words lie:
+// no words files are built for them, and the result is the one made with the files present.
+TEST(SegmentCli, WordSignaturesNeedNoWordsFiles) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("small.mfs");
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 12000 --motifs 2 --seed 5 " +
+                    "--clip-seconds-min 10 --clip-seconds-max 15 --quiet")
+                .exit_code,
+            0);
+  {
+    std::ofstream labels(dir.File("labels.tsv"));
+    labels << "synth_000000\ta\nsynth_000001\tb\nsynth_000002\ta\nsynth_000003\tb\n";
+  }
+  const std::string args = " --labels " + dir.File("labels.tsv") + " --clip synth_000004";
+  RunResult result = RunTool("segment " + archive + args + " --out " + dir.File("grid"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("no embedding is needed"), std::string::npos) << result.output;
+  EXPECT_FALSE(testing::FileExists(dir.File("small.mws")));
+  EXPECT_FALSE(testing::FileExists(dir.File("small.mwe")));
+  RunResult dtw =
+      RunTool("segment " + archive + args + " --distance dtw --out " + dir.File("grid-dtw"));
+  ASSERT_EQ(dtw.exit_code, 0) << dtw.output;
+  EXPECT_FALSE(testing::FileExists(dir.File("small.mws")));
+  ASSERT_EQ(RunTool("words " + archive + " --epochs 1 --channels 16 --dims 8 --motifs 8 --quiet")
+                .exit_code,
+            0);
+  RunResult with_files = RunTool("segment " + archive + args + " --out " + dir.File("files"));
+  ASSERT_EQ(with_files.exit_code, 0) << with_files.output;
+  EXPECT_EQ(ReadJson(dir.File("grid/segments.json"))["segments"],
+            ReadJson(dir.File("files/segments.json"))["segments"]);
+}
+
 }  // namespace
 }  // namespace motif
