@@ -123,7 +123,8 @@ int RunSegment(const std::vector<std::string>& args) {
       "never votes for itself), and equal neighbouring labels merge into segments. Without,\n"
       "boundaries go where the motif signatures before and after differ most, and segments\n"
       "are grouped by signature. Segments the takes named by --clip (default: every take).\n"
-      "Builds the words files first (as `motifmine words`) when they are missing.\n"
+      "Motif signatures need the words files and build them first (as `motifmine words`)\n"
+      "when they are missing; word signatures and dtw only cut the words.\n"
       "Writes DIR/segments.json and DIR/segments.html.";
   SegmentOptions defaults;
   spec.options.add_options()("labels", po::value<std::string>()->default_value(""),
