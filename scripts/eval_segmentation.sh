@@ -15,6 +15,10 @@
 #   SEGMENT_ARGS (environment) extra options for the supervised `motifmine segment` runs
 #   WORDS_ARGS (environment) extra options for `motifmine words` (e.g. "--motifs 50")
 #   SKIP_DTW=1 (environment) leaves the baseline out
+#   LEAVE_ONE_OUT=1 (environment) also segments every labelled source take against the others
+#              (word signatures, motif signatures of the first seed, DTW) and prints, per method,
+#              the share of each label's frames given it and the takes whose majority label is
+#              right (about 2 min, and 3 min more for DTW)
 # Score per trial: per-frame balanced accuracy (the mean over the trial's activities of the
 # fraction of that activity's frames given its label), ignoring the frames within GUARD (30
 # frames, 0.25 s) of each junction; and, unsupervised, the share of junctions with a boundary
@@ -62,6 +66,50 @@ for trial in "$OUT"/trials/trial_*.bvh; do
       ${SEGMENT_ARGS:-} > /dev/null
   fi
 done
+if [ -n "${LEAVE_ONE_OUT:-}" ]; then
+  first_seed=${SEEDS%% *}
+  methods="words motifs"
+  [ -z "${SKIP_DTW:-}" ] && methods="$methods dtw"
+  for method in $methods; do
+    case $method in
+      words) args=() ;;
+      motifs) args=(--signature motifs) ;;
+      dtw) args=(--distance dtw) ;;
+    esac
+    "$TOOL" segment "$OUT/eval.mfs" --prefix "$OUT/seed$first_seed" --labels "$OUT/labels.tsv" \
+      "${args[@]}" --quiet --out "$OUT/leave-one-out/$method" > /dev/null
+  done
+  # shellcheck disable=SC2086 # methods is a list
+  python3 - "$OUT" $methods <<'PY'
+import collections, json, sys
+out, methods = sys.argv[1], sys.argv[2:]
+labels = {}
+for line in open(f"{out}/labels.tsv"):
+    fields = line.rstrip("\n").split("\t")
+    if fields[0] != "clip" and not fields[0].startswith("#"):
+        labels[fields[0]] = fields[1]
+for method in methods:
+    right, total, by_take = collections.Counter(), collections.Counter(), {}
+    for segment in json.load(open(f"{out}/leave-one-out/{method}/segments.json"))["segments"]:
+        label = labels.get(segment["clip"])
+        if label is None:
+            continue
+        frames = segment["end"] - segment["start"]
+        total[label] += frames
+        right[label] += frames * (segment["label"] == label)
+        by_take.setdefault(segment["clip"], collections.Counter())[segment["label"]] += frames
+    takes, takes_right = collections.Counter(), collections.Counter()
+    for clip, votes in by_take.items():
+        takes[labels[clip]] += 1
+        takes_right[labels[clip]] += votes.most_common(1)[0][0] == labels[clip]
+    balanced = sum(right[label] / total[label] for label in total) / len(total)
+    print(f"leave one take out, {method}: balanced frame accuracy {balanced:.3f}, takes by majority "
+          f"{sum(takes_right.values())}/{sum(takes.values())}; " +
+          ", ".join(f"{label} {right[label] / total[label]:.2f} ({takes_right[label]}/{takes[label]})"
+                    for label in sorted(total)))
+PY
+fi
+# shellcheck disable=SC2086 # SEEDS is a list
 python3 - "$OUT" $SEEDS <<'PY'
 import json, os, statistics, sys
 out, seeds = sys.argv[1], sys.argv[2:]
