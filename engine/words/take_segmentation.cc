@@ -136,10 +136,15 @@ Result<std::vector<uint32_t>> VoteWithWordBags(
                          FrameResampler::Create(reader.layout(), weights));
   const WordOptions& geometry = words.signatures.words;
   const WordDistance distance(resampler.weights(), geometry.word_frames);
-  MOTIF_ASSIGN_OR_RETURN(const WordsOfClips query_words,
-                         WordsOfClips::Read(reader, weights, geometry, distance, query_clips));
   MOTIF_ASSIGN_OR_RETURN(const WordsOfClips reference_words,
                          WordsOfClips::Read(reader, weights, geometry, distance, reference_clips));
+  // A labelled take being segmented is read once, as a reference.
+  std::vector<uint32_t> unlabelled_clips;
+  for (uint32_t clip : query_clips) {
+    if (!reference_words.holds(clip)) unlabelled_clips.push_back(clip);
+  }
+  MOTIF_ASSIGN_OR_RETURN(const WordsOfClips unlabelled_words,
+                         WordsOfClips::Read(reader, weights, geometry, distance, unlabelled_clips));
   std::vector<uint32_t> labels;
   for (size_t first = 0; first < queries.size();) {
     size_t end = first;
@@ -151,9 +156,10 @@ Result<std::vector<uint32_t>> VoteWithWordBags(
       word_end = std::max(word_end, queries[end].end);
       ++end;
     }
-    const WordBagGround ground =
-        WordBagGround::Compute(query_words, queries[first].clip, word_first, word_end,
-                               reference_words, distance, options.threads);
+    const uint32_t clip = queries[first].clip;
+    const WordBagGround ground = WordBagGround::Compute(
+        reference_words.holds(clip) ? reference_words : unlabelled_words, clip, word_first,
+        word_end, reference_words, distance, options.threads);
     WindowVoteInput block = input;
     block.query_takes.assign(input.query_takes.begin() + static_cast<std::ptrdiff_t>(first),
                              input.query_takes.begin() + static_cast<std::ptrdiff_t>(end));

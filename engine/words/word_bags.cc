@@ -73,7 +73,7 @@ Result<WordsOfClips> WordsOfClips::Read(const FrameFileReader& reader,
 }
 
 uint64_t WordsOfClips::index(uint32_t clip, uint64_t word) const {
-  MOTIF_CHECK(clip < first_of_clip_.size() && first_of_clip_[clip] != UINT64_MAX);
+  MOTIF_CHECK(holds(clip));
   return first_of_clip_[clip] + word;
 }
 

@@ -44,6 +44,10 @@ class WordsOfClips {
   const PreparedWord& word(uint32_t clip, uint64_t word) const;
   // Index of that word among all words read (clips in the order given, words in order).
   uint64_t index(uint32_t clip, uint64_t word) const;
+  // Whether clip `clip` is one of the clips read.
+  bool holds(uint32_t clip) const {
+    return clip < first_of_clip_.size() && first_of_clip_[clip] != UINT64_MAX;
+  }
   uint64_t size() const { return words_.size(); }
   const PreparedWord& at(uint64_t index) const { return words_[index]; }
 

@@ -293,13 +293,17 @@ TEST_F(WordsCliTest, SegmentRefusesBadOptionsByNameAndWritesNothing) {
   expect(" --labels " + dir_->File("elsewhere.tsv"), 13, "no labelled take");
 }
 
+// A synthetic archive of 12,000 frames in clips of 10-15 s, with no words files.
+bool WriteSmallArchive(const std::string& archive) {
+  return RunTool("synth " + archive + " --frames 12000 --motifs 2 --seed 5 " +
+                 "--clip-seconds-min 10 --clip-seconds-max 15 --quiet")
+             .exit_code == 0;
+}
+
 TEST(SegmentCli, BuildsTheWordsItNeedsWhenTheyAreMissing) {
   testing::TempDir dir;
   const std::string archive = dir.File("small.mfs");
-  ASSERT_EQ(RunTool("synth " + archive + " --frames 12000 --motifs 2 --seed 5 " +
-                    "--clip-seconds-min 10 --clip-seconds-max 15 --quiet")
-                .exit_code,
-            0);
+  ASSERT_TRUE(WriteSmallArchive(archive));
   RunResult result = RunTool("segment " + archive + " --out " + dir.File("out"));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("building them"), std::string::npos) << result.output;
@@ -316,10 +320,7 @@ TEST(SegmentCli, BuildsTheWordsItNeedsWhenTheyAreMissing) {
 TEST(SegmentCli, WordSignaturesNeedNoWordsFiles) {
   testing::TempDir dir;
   const std::string archive = dir.File("small.mfs");
-  ASSERT_EQ(RunTool("synth " + archive + " --frames 12000 --motifs 2 --seed 5 " +
-                    "--clip-seconds-min 10 --clip-seconds-max 15 --quiet")
-                .exit_code,
-            0);
+  ASSERT_TRUE(WriteSmallArchive(archive));
   {
     std::ofstream labels(dir.File("labels.tsv"));
     labels << "synth_000000\ta\nsynth_000001\tb\nsynth_000002\ta\nsynth_000003\tb\n";
