@@ -3,19 +3,21 @@
 // most of the take, and the segments that family induces, its repetitions. A prototype of
 // another way to choose a take's first motif, measured against `motifmine mine` in
 // docs/design/motif_quality.md, section 10. Dense: O(n^2) memory and O(n^3) time in the sampled
-// frames n, so for single takes only.
+// frames n, so for single takes and small folders only.
 //
 //   thumbnail_study ARCHIVE.mfs [step=4] [rho=0.1] [cap_degrees=16] [penalty=-2]
 //                   [exclusion=0.25] [min_seconds=0.6] [smooth=1] [pauses=1] [neighbours=0]
+//                   [per_clip=0]
 // Prints "fitness score coverage start end" of the thumbnail, then "start end" of every
 // segment its family induces (archive frames, end exclusive). The archive's clips are taken as
-// one sequence.
+// one sequence (a path may cross from one clip into the next).
 //
 // The matrix: the pose distance between every pair of sampled frames (every `step`-th), with
 // paths enhanced (the mean along the diagonal over +-0.25 s, the least over tempi 0.66-1.5).
 // Row i's threshold is the rho-quantile of its distances to frames at least `exclusion` seconds
 // away (with neighbours = K > 0: its distance to the K-th nearest such frame, K counted in
-// archive frames, as a trellis with k_max = K keeps them), capped at the joint-angle radius of
+// archive frames, as a trellis with k_max = K keeps them; with per_clip=1 only the row's own
+// clip's frames count), capped at the joint-angle radius of
 // `cap_degrees` (0: no cap); a pair under the smaller threshold of its two rows scores 1 - d / 2t
 // (in [0.5, 1]), any other `penalty`, and a frame in a pause (engine/cluster/pauses.h) only
 // `penalty`. The family of a segment: the non-overlapping paths (steps (1,1), (2,1), (1,2)) through
@@ -85,12 +87,14 @@ SquareMatrix EnhancePaths(const SquareMatrix& dist, int half) {
 
 // Each row's threshold: the rho-quantile of its distances to frames `exclusion` or more away
 // (or, with neighbours > 0, its neighbours-th smallest, as a trellis keeps k_max), at most `cap`.
+// With `clip_of` (each sampled frame's clip), only frames of the row's own clip count.
 std::vector<float> RowThresholds(const SquareMatrix& smooth, double rho, int neighbours,
-                                 int exclusion, float cap) {
+                                 int exclusion, float cap, const std::vector<int>& clip_of) {
   std::vector<float> thresholds(smooth.n);
   for (int i = 0; i < smooth.n; ++i) {
     std::vector<float> row;
     for (int j = 0; j < smooth.n; ++j) {
+      if (!clip_of.empty() && clip_of[i] != clip_of[j]) continue;
       if (std::abs(i - j) >= exclusion) row.push_back(smooth.at(i, j));
     }
     if (row.empty()) row.push_back(cap);
@@ -220,7 +224,7 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: thumbnail_study ARCHIVE.mfs [step=4] [rho=0.1] [cap_degrees=16] "
                  "[penalty=-2] [exclusion=0.25] [min_seconds=0.6] [smooth=1] [pauses=1] "
-                 "[neighbours=0]\n";
+                 "[neighbours=0] [per_clip=0]\n";
     return 2;
   }
   const motif::testing::ExperimentArgs args(argc - 1, argv + 1);
@@ -248,9 +252,14 @@ int main(int argc, char** argv) {
                         ? static_cast<float>(weight_sum * 2 * std::sin(cap_degrees * M_PI / 720))
                         : 1e30f;
   const auto exclusion = static_cast<int>(std::lround(args.number("exclusion", 0.25) * per_second));
+  std::vector<int> clip_of;
+  if (args.number("per_clip", 0) != 0) {
+    for (int i = 0; i < n; ++i)
+      clip_of.push_back(static_cast<int>(features->ClipOf(static_cast<uint64_t>(i) * step)));
+  }
   const std::vector<float> thresholds =
       RowThresholds(smooth, args.number("rho", 0.1),
-                    static_cast<int>(args.number("neighbours", 0)) / step, exclusion, cap);
+                    static_cast<int>(args.number("neighbours", 0)) / step, exclusion, cap, clip_of);
   const std::vector<char> still =
       args.number("pauses", 1) != 0 ? StillFrames(**reader, n, step) : std::vector<char>(n, 0);
   const SquareMatrix sim =
