@@ -14,10 +14,7 @@ evals="${1:?usage: eval_thumbnail_study.sh EVAL_OUT [key=value ...]}"
 shift
 build="${MOTIF_BUILD_DIR:-$root/build}"
 study="$build/bench/studies/thumbnail_study"
-if [ ! -x "$study" ]; then
-  echo "eval_thumbnail_study: $study is missing: build the studies (cd build && ninja thumbnail_study)" >&2
-  exit 1
-fi
+[ -x "$study" ] || "$root/scripts/build.sh" >&2
 labels="$root/tests/data/repetitions"
 for dir in "$evals"/*/; do
   clip="$(basename "$dir")"

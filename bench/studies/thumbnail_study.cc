@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <utility>
 #include <vector>
 
 #include "bench/studies/experiment_args.h"
@@ -49,12 +50,13 @@ struct Family {
   std::vector<std::pair<int, int>> segments;  // sampled frames, end exclusive
 };
 
+// D is symmetric: each pair is measured once.
 SquareMatrix Distances(const motif::PoseFeatures& features, int n, int step) {
   SquareMatrix dist(n);
   for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      dist.at(i, j) = motif::PoseDistance(features, static_cast<uint64_t>(i) * step,
-                                          static_cast<uint64_t>(j) * step);
+    for (int j = i; j < n; ++j) {
+      dist.at(i, j) = dist.at(j, i) = motif::PoseDistance(features, static_cast<uint64_t>(i) * step,
+                                                          static_cast<uint64_t>(j) * step);
     }
   }
   return dist;
@@ -108,11 +110,12 @@ std::vector<float> RowThresholds(const SquareMatrix& smooth, double rho, int nei
 }
 
 // Frames (sampled) inside a pause of the archive.
-std::vector<char> StillFrames(const motif::FrameFileReader& reader, int n, int step) {
+motif::Result<std::vector<char>> StillFrames(const motif::FrameFileReader& reader, int n,
+                                             int step) {
+  MOTIF_ASSIGN_OR_RETURN(const std::vector<motif::MotifInstance> pauses,
+                         motif::FindPauses(reader, motif::PauseOptions{}));
   std::vector<char> still(n, 0);
-  auto pauses = motif::FindPauses(reader, motif::PauseOptions{});
-  if (!pauses.ok()) return still;
-  for (const auto& pause : *pauses) {
+  for (const auto& pause : pauses) {
     for (uint64_t frame = pause.start; frame < pause.end; ++frame) {
       if (frame / step < static_cast<uint64_t>(n)) still[frame / step] = 1;
     }
@@ -235,9 +238,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   auto weights = motif::LoadDistanceWeights((*reader)->skeleton(), "");
-  if (!weights.ok()) return 1;
+  if (!weights.ok()) {
+    std::cerr << weights.status().ToString() << "\n";
+    return 1;
+  }
   auto features = motif::PoseFeatures::FromArchive(**reader, *weights);
-  if (!features.ok()) return 1;
+  if (!features.ok()) {
+    std::cerr << features.status().ToString() << "\n";
+    return 1;
+  }
   const double per_second = (*reader)->fps() / step;
   const int n = static_cast<int>(features->frame_count() / step);
   const SquareMatrix dist = Distances(*features, n, step);
@@ -260,8 +269,15 @@ int main(int argc, char** argv) {
   const std::vector<float> thresholds =
       RowThresholds(smooth, args.number("rho", 0.1),
                     static_cast<int>(args.number("neighbours", 0)) / step, exclusion, cap, clip_of);
-  const std::vector<char> still =
-      args.number("pauses", 1) != 0 ? StillFrames(**reader, n, step) : std::vector<char>(n, 0);
+  std::vector<char> still(n, 0);
+  if (args.number("pauses", 1) != 0) {
+    auto found = StillFrames(**reader, n, step);
+    if (!found.ok()) {
+      std::cerr << found.status().ToString() << "\n";
+      return 1;
+    }
+    still = std::move(*found);
+  }
   const SquareMatrix sim =
       Similarity(smooth, thresholds, still, static_cast<float>(args.number("penalty", -2)));
   const int min_length =
