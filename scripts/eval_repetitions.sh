@@ -6,7 +6,8 @@
 #   scripts/eval_repetitions.sh [MOCAP_DIR]     (default ../shared/data/mocap beside the clone)
 #
 # Prints, per take, the top-ranked motif against the movement it matches best (precision,
-# recall), every movement's best motif, and ends with one line
+# recall), every movement's best motif, the phase-free means (`motifmine score`: back-to-back
+# movements scored at the best common shift), and ends with one line
 #   mean top-1 precision P recall R
 # Environment: MOTIF_MINE_ARGS extra `mine` options; MOTIF_EVAL_OUT the work folder (default a
 # temporary one, removed at the end); MOTIF_EVAL_TAKES a space-separated subset of clips;
@@ -70,6 +71,11 @@ for clip, score, _ in rows:
             clip, match["movement"], match["occurrences"], motif, match["precision"], match["recall"]))
 n = max(len(rows), 1)
 print()
+# Phase free (motifmine score): a back-to-back movement scored at the best common shift of the
+# top motif's instances, where a cycle starts being the annotator's convention.
+print("phase-free mean top-1 precision %.3f recall %.3f" % (
+    sum(r[1]["top1_phase_free"]["precision"] for r in rows) / n,
+    sum(r[1]["top1_phase_free"]["recall"] for r in rows) / n))
 print("mean top-1 precision %.3f recall %.3f" % (sum(r[1]["top1"]["precision"] for r in rows) / n,
                                                   sum(r[1]["top1"]["recall"] for r in rows) / n))
 PY

@@ -6,7 +6,8 @@
 #
 #   scripts/eval_thumbnail_study.sh EVAL_OUT [key=value ...]
 # EVAL_OUT: the MOTIF_EVAL_OUT folder of an earlier scripts/eval_repetitions.sh run (its
-# archives and motifs.json are reused); key=value: options of thumbnail_study. Ends with one line
+# archives and motifs.json are reused); key=value: options of thumbnail_study, @DIR@ standing for
+# the take's folder there (candidates=@DIR@/paths.mpa: the miner's paths). Ends with one line
 #   mean top-1 precision P recall R
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,20 +20,29 @@ labels="$root/tests/data/repetitions"
 for dir in "$evals"/*/; do
   clip="$(basename "$dir")"
   if [ ! -f "$dir/archive.mfs" ] || [ ! -f "$labels/$clip.tsv" ]; then continue; fi
-  "$study" "$dir/archive.mfs" "$@" >"$dir/thumbnail.txt"
+  "$study" "$dir/archive.mfs" "${@//@DIR@/$dir}" >"$dir/thumbnail.txt"
   python3 - "$dir" <<'PY'
 import json, os, sys
 folder = sys.argv[1]
-lines = [line.split() for line in open(os.path.join(folder, "thumbnail.txt")) if line.strip()]
+motifs = []  # a 5-field line starts a family, the 2-field lines after it are its segments
+for fields in (line.split() for line in open(os.path.join(folder, "thumbnail.txt"))):
+    if len(fields) == 5:
+        motifs.append([])
+    elif len(fields) == 2 and motifs:
+        motifs[-1].append((int(fields[0]), int(fields[1])))
 doc = json.load(open(os.path.join(folder, "motifs.json")))
 clip = doc["clips"][0]
-instances = [{"clip": clip["name"], "start": int(a), "end": int(b), "frame": int(a),
-              "length": int(b) - int(a)} for a, b in lines[1:]]
-mean = sum(i["length"] for i in instances) / max(1, len(instances))
-doc["motifs"] = [{"id": 0, "instance_count": len(instances), "mean_length": mean,
-                  "mean_seconds": mean / clip["fps"], "score": mean, "instances": instances}] if instances else []
-doc["summary"] = {"motifs": len(doc["motifs"]), "instances": len(instances),
-                  "covered_frames": sum(i["length"] for i in instances)}
+doc["motifs"] = []
+for segments in motifs:
+    instances = [{"clip": clip["name"], "start": a, "end": b, "frame": a, "length": b - a}
+                 for a, b in segments]
+    mean = sum(i["length"] for i in instances) / max(1, len(instances))
+    doc["motifs"].append({"id": len(doc["motifs"]), "instance_count": len(instances),
+                          "mean_length": mean, "mean_seconds": mean / clip["fps"], "score": mean,
+                          "instances": instances})
+doc["summary"] = {"motifs": len(doc["motifs"]),
+                  "instances": sum(len(m["instances"]) for m in doc["motifs"]),
+                  "covered_frames": sum(i["length"] for m in doc["motifs"] for i in m["instances"])}
 json.dump(doc, open(os.path.join(folder, "thumbnail.json"), "w"))
 PY
   "$build/motifmine" score "$dir/thumbnail.json" "$labels/$clip.tsv" --json >"$dir/thumbnail_score.json"

@@ -36,6 +36,9 @@ nlohmann::json ScoreJson(const TruthScore& score) {
                          {"recall", score.recall},
                          {"precision", score.precision},
                          {"top1", MatchJson(score.top1)}};
+  json["top1_phase_free"] = MatchJson(score.top1_phase_free);
+  json["top1_phase_free"]["back_to_back"] = score.top1_phase_free.back_to_back;
+  json["top1_phase_free"]["shift"] = score.top1_phase_free.shift;
   json["per_motif"] = nlohmann::json::array();
   for (const MotifMovementMatch& match : score.per_motif) {
     json["per_motif"].push_back(MatchJson(match));
@@ -74,7 +77,15 @@ void PrintScore(const TruthScore& score, const std::string& motifs_path,
               MotifName(top).c_str(), WithCommas(top.instances).c_str(),
               top.movement.empty() ? "no movement" : top.movement.c_str(), top.precision,
               top.recall);
-  std::printf("  movements    best motif per movement:\n");
+  const MotifMovementMatch& free = score.top1_phase_free;
+  std::printf("  phase free   %s ~ %s: precision %.3f recall %.3f", MotifName(free).c_str(),
+              free.movement.empty() ? "no movement" : free.movement.c_str(), free.precision,
+              free.recall);
+  if (free.back_to_back) {
+    std::printf(" (back to back; instances shifted %+lld frames)",
+                static_cast<long long>(free.shift));
+  }
+  std::printf("\n  movements    best motif per movement:\n");
   for (const MotifMovementMatch& match : score.per_movement) {
     std::printf("    %-28s %4llu occurrences  %-10s precision %.3f recall %.3f f1 %.3f\n",
                 match.movement.c_str(), static_cast<unsigned long long>(match.occurrences),
@@ -101,8 +112,10 @@ int RunScore(const std::vector<std::string>& args) {
       "Scores mined motifs against ground truth. TRUTH is an annotation TSV (clip, movement,\n"
       "start, end: docs/formats/repetitions_tsv.md) or a synthetic archive's truth.json. A found\n"
       "instance hits an occurrence when both are in the same clip with IoU >= 0.5. Prints recall\n"
-      "and precision over all motifs, the top motif against the movement it matches best, the\n"
-      "best motif of every movement and the first motifs against theirs.";
+      "and precision over all motifs, the top motif against the movement it matches best (and\n"
+      "phase free: a movement done back to back scored at the best common shift of the motif's\n"
+      "instances, up to half its length), the best motif of every movement and the first\n"
+      "motifs against theirs.";
   spec.options.add_options()("json", "print the figures as one JSON object instead")(
       "motifs", po::value<uint32_t>()->default_value(10), "motifs listed in the text output");
   spec.positional = {{"motifs-json", 1}, {"truth", 1}};

@@ -9,10 +9,16 @@ namespace motif {
 
 namespace {
 
-bool Hits(const MotifsJsonInstance& instance, const TruthOccurrence& occurrence) {
+// `shift` frames are added to the instance (clamped at the clip's frame 0).
+bool Hits(const MotifsJsonInstance& instance, const TruthOccurrence& occurrence,
+          int64_t shift = 0) {
+  const auto moved = [shift](uint64_t frame) {
+    const int64_t at = static_cast<int64_t>(frame) + shift;
+    return static_cast<uint64_t>(std::max<int64_t>(0, at));
+  };
   return instance.clip == occurrence.clip &&
-         IntervalIoU(instance.start, instance.end, occurrence.start, occurrence.end) >=
-             kTruthHitIoU;
+         IntervalIoU(moved(instance.start), moved(instance.end), occurrence.start,
+                     occurrence.end) >= kTruthHitIoU;
 }
 
 double Ratio(uint64_t part, uint64_t whole) {
@@ -20,17 +26,19 @@ double Ratio(uint64_t part, uint64_t whole) {
 }
 
 MotifMovementMatch Match(const MotifsJsonMotif& motif, const std::string& movement,
-                         const std::vector<const TruthOccurrence*>& occurrences) {
+                         const std::vector<const TruthOccurrence*>& occurrences,
+                         int64_t shift = 0) {
   MotifMovementMatch match;
   match.motif = motif.id;
   match.movement = movement;
+  match.shift = shift;
   match.instances = motif.instances.size();
   match.occurrences = occurrences.size();
   std::vector<bool> occurrence_hit(occurrences.size(), false);
   for (const MotifsJsonInstance& instance : motif.instances) {
     bool hitting = false;
     for (size_t occurrence_idx = 0; occurrence_idx < occurrences.size(); ++occurrence_idx) {
-      if (!Hits(instance, *occurrences[occurrence_idx])) continue;
+      if (!Hits(instance, *occurrences[occurrence_idx], shift)) continue;
       hitting = true;
       occurrence_hit[occurrence_idx] = true;
     }
@@ -52,7 +60,44 @@ bool Better(const MotifMovementMatch& a, const MotifMovementMatch& b, bool by_mo
   return a.movement < b.movement;
 }
 
+// The phase-free match (truth_score.h): the best common shift for a back-to-back movement.
+MotifMovementMatch PhaseFreeMatch(const MotifsJsonMotif& motif, const std::string& movement,
+                                  const std::vector<const TruthOccurrence*>& occurrences) {
+  MotifMovementMatch best = Match(motif, movement, occurrences);
+  if (!IsBackToBack(occurrences)) return best;
+  best.back_to_back = true;
+  std::vector<uint64_t> lengths;
+  for (const TruthOccurrence* occurrence : occurrences) {
+    lengths.push_back(occurrence->end - occurrence->start);
+  }
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const auto reach = static_cast<int64_t>(lengths[lengths.size() / 2] / 2);
+  for (int64_t size = 1; size <= reach; ++size) {  // by growing |shift|: ties keep the smaller
+    for (int64_t shift : {-size, size}) {
+      MotifMovementMatch match = Match(motif, movement, occurrences, shift);
+      match.back_to_back = true;
+      if (match.f1 > best.f1) best = match;
+    }
+  }
+  return best;
+}
+
 }  // namespace
+
+bool IsBackToBack(const std::vector<const TruthOccurrence*>& occurrences) {
+  size_t followed = 0;
+  for (const TruthOccurrence* a : occurrences) {
+    for (const TruthOccurrence* b : occurrences) {
+      if (a == b || a->clip != b->clip) continue;
+      const uint64_t gap = a->end > b->start ? a->end - b->start : b->start - a->end;
+      if (gap <= kBackToBackGap) {
+        ++followed;
+        break;
+      }
+    }
+  }
+  return followed > 0 && 2 * followed >= occurrences.size();
+}
 
 double IntervalIoU(uint64_t a_start, uint64_t a_end, uint64_t b_start, uint64_t b_end) {
   if (a_end <= a_start || b_end <= b_start) return 0;
@@ -121,7 +166,19 @@ TruthScore ScoreAgainstTruth(const MotifsDocument& document,
       score.per_movement.push_back(none);
     }
   }
-  if (!score.per_motif.empty()) score.top1 = score.per_motif.front();
+  if (!score.per_motif.empty()) {
+    score.top1 = score.per_motif.front();
+    score.top1_phase_free.motif = score.top1.motif;
+    score.top1_phase_free.instances = score.top1.instances;
+    for (const auto& [movement, occurrences] : by_movement) {
+      const MotifMovementMatch match =
+          PhaseFreeMatch(document.motifs.front(), movement, occurrences);
+      if (score.top1_phase_free.movement.empty() ||
+          Better(match, score.top1_phase_free, /*by_motif=*/false)) {
+        score.top1_phase_free = match;
+      }
+    }
+  }
   return score;
 }
 

@@ -11,6 +11,16 @@
 // The top-1 score is the first motif (the most important) against its movement: precision 0 and
 // recall 0 when nothing was found. Occurrences in clips the document does not have are left out
 // (and counted), so one truth file can serve archives that hold some of its clips.
+//
+// Phase-free figures, beside the ones above (never instead of them): a movement done back to back
+// (a walk's gait cycles, a dribble's bounces: at least half its occurrences end where another of
+// it starts, within kBackToBackGap frames) has no start of its own; where a cycle begins is the
+// annotator's convention (a heel strike, the hand's highest point). For such a movement the
+// phase-free match shifts all of the motif's instances by one common number of frames, at most
+// half the movement's median occurrence length, and keeps the shift with the highest F1 (ties:
+// the smallest shift); other movements score as above. A motif that finds every cycle with the
+// right length but another phase scores 1 here and possibly 0 above
+// (docs/design/motif_quality.md, section 11).
 // Thread-safety: pure functions.
 #pragma once
 
@@ -24,6 +34,7 @@
 namespace motif {
 
 inline constexpr double kTruthHitIoU = 0.5;
+inline constexpr uint64_t kBackToBackGap = 2;
 
 // |[a_start, a_end) ∩ [b_start, b_end)| / |union|; 0 for empty intervals.
 double IntervalIoU(uint64_t a_start, uint64_t a_end, uint64_t b_start, uint64_t b_end);
@@ -38,6 +49,8 @@ struct MotifMovementMatch {
   double precision = 0;
   double recall = 0;
   double f1 = 0;
+  bool back_to_back = false;  // the movement is done back to back (phase-free scoring only)
+  int64_t shift = 0;          // frames added to every instance (phase-free scoring only)
 };
 
 struct TruthScore {
@@ -52,9 +65,14 @@ struct TruthScore {
   double recall = 0;
   double precision = 0;
   MotifMovementMatch top1;                       // the first motif against its movement
+  MotifMovementMatch top1_phase_free;            // the same with phase-free matches
   std::vector<MotifMovementMatch> per_motif;     // by rank, each against its movement
   std::vector<MotifMovementMatch> per_movement;  // by name, each with its best motif
 };
+
+// True when at least half of `occurrences` (and at least one) end within kBackToBackGap frames of
+// the start of another of them in the same clip.
+bool IsBackToBack(const std::vector<const TruthOccurrence*>& occurrences);
 
 TruthScore ScoreAgainstTruth(const MotifsDocument& document,
                              const std::vector<TruthOccurrence>& truth);

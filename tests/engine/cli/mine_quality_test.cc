@@ -98,6 +98,10 @@ TEST(MotifmineScore, RefusesMissingArgumentsAndMalformedTruthNamingTheLine) {
   ASSERT_TRUE(planted.is_object());
   EXPECT_EQ(planted["movements"], 3);
   EXPECT_EQ(planted["top1"]["movement"].get<std::string>().rfind("planted-", 0), 0u);
+  // Planted instances lie apart: the phase-free figures are the plain ones.
+  EXPECT_EQ(planted["top1_phase_free"]["back_to_back"], false);
+  EXPECT_EQ(planted["top1_phase_free"]["shift"], 0);
+  EXPECT_EQ(planted["top1_phase_free"]["precision"], planted["top1"]["precision"]);
 }
 
 }  // namespace

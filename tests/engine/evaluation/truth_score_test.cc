@@ -125,5 +125,59 @@ TEST(TruthScore, PlantedMotifsOfATruthJsonBecomeMovements) {
   EXPECT_DOUBLE_EQ(score.top1.recall, 1.0);
 }
 
+TEST(TruthScore, AMovementIsBackToBackWhenHalfItsOccurrencesEndWhereAnotherStarts) {
+  const std::vector<TruthOccurrence> cycles = {
+      {"a", "walk", 0, 100}, {"a", "walk", 100, 200}, {"a", "walk", 202, 300}};
+  const std::vector<TruthOccurrence> apart = {
+      {"a", "jump", 0, 100}, {"a", "jump", 103, 200}, {"b", "jump", 200, 300}};
+  const std::vector<TruthOccurrence> one_pair = {{"a", "kick", 0, 100},
+                                                 {"a", "kick", 100, 200},
+                                                 {"a", "kick", 400, 500},
+                                                 {"a", "kick", 700, 800},
+                                                 {"a", "kick", 900, 1000}};
+  const auto pointers = [](const std::vector<TruthOccurrence>& occurrences) {
+    std::vector<const TruthOccurrence*> result;
+    for (const TruthOccurrence& occurrence : occurrences) result.push_back(&occurrence);
+    return result;
+  };
+  EXPECT_TRUE(IsBackToBack(pointers(cycles)));     // gaps 0 and 2 frames
+  EXPECT_FALSE(IsBackToBack(pointers(apart)));     // a gap of 3; the next in another clip
+  EXPECT_FALSE(IsBackToBack(pointers(one_pair)));  // 2 of 5 follow one another
+  EXPECT_FALSE(IsBackToBack(pointers({cycles[0]})));
+}
+
+TEST(TruthScore, PhaseFreeScoresBackToBackCyclesAtTheBestCommonShift) {
+  // Three 100-frame cycles; the motif finds each 37 frames late: IoU 63/137 < 0.5, so the hit
+  // rule finds nothing. 33 frames late is the most IoU 0.5 allows (67/133): shifted 4 frames
+  // back (the least shift that does it) all three hit.
+  const std::vector<TruthOccurrence> truth = {
+      {"a", "walk", 100, 200}, {"a", "walk", 200, 300}, {"a", "walk", 300, 400}};
+  const MotifsDocument document = Document({{{"a", 137, 237}, {"a", 237, 337}, {"a", 337, 437}}});
+  const TruthScore score = ScoreAgainstTruth(document, truth);
+  EXPECT_DOUBLE_EQ(score.top1.precision, 0.0);
+  EXPECT_EQ(score.top1_phase_free.movement, "walk");
+  EXPECT_TRUE(score.top1_phase_free.back_to_back);
+  EXPECT_DOUBLE_EQ(score.top1_phase_free.precision, 1.0);
+  EXPECT_DOUBLE_EQ(score.top1_phase_free.recall, 1.0);
+  EXPECT_EQ(score.top1_phase_free.shift, -4);
+}
+
+TEST(TruthScore, PhaseFreeShiftsAtMostHalfACycleAndNeverMovesApartMovements) {
+  // Cycles of 100 frames: a motif past them would need a shift of 137 frames or more.
+  const std::vector<TruthOccurrence> cycles = {{"a", "walk", 100, 200}, {"a", "walk", 200, 300}};
+  const TruthScore late = ScoreAgainstTruth(Document({{{"a", 370, 470}, {"a", 470, 570}}}), cycles);
+  EXPECT_TRUE(late.top1_phase_free.back_to_back);
+  EXPECT_DOUBLE_EQ(late.top1_phase_free.precision, 0.0);
+  EXPECT_EQ(late.top1_phase_free.shift, 0);
+  // Jumps apart: no shift is tried, the phase-free match is the plain one.
+  const std::vector<TruthOccurrence> jumps = {{"a", "jump", 100, 200}, {"a", "jump", 400, 500}};
+  const TruthScore shifted =
+      ScoreAgainstTruth(Document({{{"a", 140, 240}, {"a", 440, 540}}}), jumps);
+  EXPECT_FALSE(shifted.top1_phase_free.back_to_back);
+  EXPECT_EQ(shifted.top1_phase_free.shift, 0);
+  EXPECT_DOUBLE_EQ(shifted.top1_phase_free.precision, 0.0);
+  EXPECT_DOUBLE_EQ(shifted.top1.precision, 0.0);
+}
+
 }  // namespace
 }  // namespace motif
