@@ -9,6 +9,7 @@
 //                   [exclusion=0.25] [min_seconds=0.6] [smooth=1] [pauses=1] [neighbours=0]
 //                   [per_clip=0] [candidates=PATHS.mpa] [samples=0] [take_threshold=0]
 //                   [trellis_k=0] [held=0] [motifs=1] [min_score=0] [null=0] [null_quantile=0.95]
+//                   [from_motifs=MOTIFS.json] [all_motifs=0]
 // Prints "fitness score coverage start end" of the thumbnail, then "start end" of every
 // segment its family induces (archive frames, end exclusive); with motifs = K, up to K such
 // blocks: each next one the best family without the frames of those before, while its score
@@ -34,7 +35,8 @@
 // take_threshold=1: every row gets the median of the rows' thresholds (one per take);
 // trellis_k = K > 0: no row's threshold beyond its K-th nearest frame (archive frames), what a
 // trellis with k_max = K holds; held=1: candidate segments whose every frame is within the
-// middle frame's threshold are not tried.
+// middle frame's threshold are not tried; from_motifs=MOTIFS.json: the instances of its top
+// motif (all_motifs=1: of every motif) are tried too.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -45,6 +47,7 @@
 #include <vector>
 
 #include "bench/studies/experiment_args.h"
+#include "engine/cluster/motifs_json.h"
 #include "engine/cluster/pauses.h"
 #include "engine/distance/pose_features.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -363,7 +366,7 @@ int main(int argc, char** argv) {
                  "[penalty=-2] [exclusion=0.25] [min_seconds=0.6] [smooth=1] [pauses=1] "
                  "[neighbours=0] [per_clip=0] [candidates=PATHS.mpa] [samples=0] "
                  "[take_threshold=0] [trellis_k=0] [held=0] [motifs=1] [min_score=0] [null=0] "
-                 "[null_quantile=0.95]\n";
+                 "[null_quantile=0.95] [from_motifs=MOTIFS.json] [all_motifs=0]\n";
     return 2;
   }
   const motif::testing::ExperimentArgs args(argc - 1, argv + 1);
@@ -417,9 +420,27 @@ int main(int argc, char** argv) {
       std::cerr << found.status().ToString() << "\n";
       return 1;
     }
-    if (found->empty()) return 0;
     segments = std::move(*found);
   }
+  if (args.has("from_motifs")) {  // the instances of the miner's top motif (all_motifs=1: all)
+    auto document = motif::ReadMotifsJson(args.text("from_motifs"));
+    if (!document.ok()) {
+      std::cerr << document.status().ToString() << "\n";
+      return 1;
+    }
+    const size_t used = args.number("all_motifs", 0) != 0
+                            ? document->motifs.size()
+                            : std::min<size_t>(1, document->motifs.size());
+    for (size_t motif = 0; motif < used; ++motif) {
+      for (const motif::MotifsJsonInstance& instance : document->motifs[motif].instances) {
+        const int first = static_cast<int>(instance.frame / step);
+        const int length =
+            static_cast<int>((instance.frame + instance.end - instance.start) / step) - first;
+        if (length >= 2 && first + length <= n) segments.push_back({first, length});
+      }
+    }
+  }
+  if ((args.has("candidates") || args.has("from_motifs")) && segments.empty()) return 0;
   PrintFamilies(
       args, Similarity(smooth, thresholds, still, static_cast<float>(args.number("penalty", -2))),
       min_length, std::move(segments), step);
