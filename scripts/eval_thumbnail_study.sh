@@ -7,14 +7,16 @@
 #   scripts/eval_thumbnail_study.sh EVAL_OUT [key=value ...]
 # EVAL_OUT: the MOTIF_EVAL_OUT folder of an earlier scripts/eval_repetitions.sh run (its
 # archives and motifs.json are reused); key=value: options of thumbnail_study, @DIR@ standing for
-# the take's folder there (candidates=@DIR@/paths.mpa: the miner's paths). Ends with one line
+# the take's folder there (candidates=@DIR@/paths.mpa: the miner's paths). MOTIF_STUDY names
+# another study with the same output (family_trellis_study, given `@DIR@/trellis.mtr
+# @DIR@/paths.mpa` first). Ends with one line
 #   mean top-1 precision P recall R
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 evals="${1:?usage: eval_thumbnail_study.sh EVAL_OUT [key=value ...]}"
 shift
 build="${MOTIF_BUILD_DIR:-$root/build}"
-study="$build/bench/studies/thumbnail_study"
+study="$build/bench/studies/${MOTIF_STUDY:-thumbnail_study}"
 [ -x "$study" ] || "$root/scripts/build.sh" >&2
 labels="$root/tests/data/repetitions"
 for dir in "$evals"/*/; do
