@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "bench/studies/experiment_args.h"
+#include "bench/studies/study_archive.h"
 #include "engine/cluster/pauses.h"
 #include "engine/distance/pose_features.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -54,7 +55,7 @@ std::vector<float> FrameThresholds(const motif::PoseFeatures& features,
     const uint64_t stride = std::max<uint64_t>(1, clip.frame_count / samples);
     for (uint64_t f = clip.first_frame; f < clip.first_frame + clip.frame_count; ++f) {
       row.clear();
-      for (uint64_t g = clip.first_frame + (f * 7) % stride;
+      for (uint64_t g = clip.first_frame + (f * 7) % stride;  // rows see staggered columns
            g < clip.first_frame + clip.frame_count; g += stride) {
         if (g + exclusion <= f || f + exclusion <= g)
           row.push_back(motif::PoseDistance(features, f, g));
@@ -193,62 +194,29 @@ std::vector<Segment> CandidateSegments(const motif::PathsFileReader& paths, uint
   return segments;
 }
 
-}  // namespace
+// Frames inside a pause of the archive (engine/cluster/pauses.h).
+motif::Result<std::vector<char>> StillFrames(const motif::FrameFileReader& archive) {
+  MOTIF_ASSIGN_OR_RETURN(const std::vector<motif::MotifInstance> pauses,
+                         motif::FindPauses(archive, motif::PauseOptions{}));
+  std::vector<char> still(archive.frame_count(), 0);
+  for (const auto& pause : pauses) {
+    std::fill(still.begin() + static_cast<long>(pause.start),
+              still.begin() + static_cast<long>(pause.end), 1);
+  }
+  return still;
+}
 
-int main(int argc, char** argv) {
-  if (argc < 4) {
-    std::cerr << "usage: family_trellis_study ARCHIVE.mfs TRELLIS.mtr PATHS.mpa [rho=0.1] "
-                 "[cap_degrees=16] [samples=64] [exclusion=0.25] [min_seconds=0.6] [motifs=20] "
-                 "[overlap=0.25] [pauses=1] [gap_seconds=0.25] [penalty=-2]\n";
-    return 2;
-  }
-  const ExperimentArgs args(argc - 3, argv + 3);
-  auto archive = motif::FrameFileReader::Open(argv[1]);
-  auto trellis = motif::TrellisFileReader::Open(argv[2]);
-  auto paths = motif::PathsFileReader::Open(argv[3]);
-  for (const motif::Status& status : {archive.status(), trellis.status(), paths.status()}) {
-    if (!status.ok()) {
-      std::cerr << status.ToString() << "\n";
-      return 1;
-    }
-  }
-  auto weights = motif::LoadDistanceWeights((*archive)->skeleton(), "");
-  auto features = weights.ok() ? motif::PoseFeatures::FromArchive(**archive, *weights)
-                               : motif::Result<motif::PoseFeatures>(weights.status());
-  if (!features.ok()) {
-    std::cerr << features.status().ToString() << "\n";
-    return 1;
-  }
-  const double fps = (*archive)->fps();
-  const uint64_t frames = features->frame_count();
-  const float weight_sum =
-      std::accumulate(features->weights().begin(), features->weights().end(), 0.0f);
-  const float cap =
-      static_cast<float>(weight_sum * 2 * std::sin(args.number("cap_degrees", 16) * M_PI / 720));
-  const auto exclusion = static_cast<uint64_t>(std::lround(args.number("exclusion", 0.25) * fps));
-  const std::vector<float> thresholds =
-      FrameThresholds(*features, **archive, args.number("rho", 0.1),
-                      static_cast<int>(args.number("samples", 64)), exclusion, cap);
-  std::vector<char> still(frames, 0);
-  if (args.number("pauses", 1) != 0) {
-    auto pauses = motif::FindPauses(**archive, motif::PauseOptions{});
-    if (!pauses.ok()) {
-      std::cerr << pauses.status().ToString() << "\n";
-      return 1;
-    }
-    for (const auto& pause : *pauses)
-      std::fill(still.begin() + pause.start, still.begin() + pause.end, 1);
-  }
-  const auto min_length = static_cast<uint64_t>(std::lround(args.number("min_seconds", 0.6) * fps));
-  const std::vector<Segment> segments = CandidateSegments(**paths, min_length, **archive);
+// The streaming pass: every segment's family search, fed the similar nodes of each trellis
+// column whose frame is one of its rows.
+motif::Result<std::vector<FamilySearch>> SearchFamilies(const motif::TrellisFileReader& trellis,
+                                                        const std::vector<Segment>& segments,
+                                                        const std::vector<float>& thresholds,
+                                                        const std::vector<char>& still, int gap,
+                                                        double penalty) {
   std::vector<FamilySearch> searches;
   searches.reserve(segments.size());
-  const int gap =
-      std::max(1, static_cast<int>(std::lround(args.number("gap_seconds", 0.25) * fps)));
-  const double penalty = args.number("penalty", -2);
   for (const Segment& segment : segments) searches.emplace_back(segment, gap, penalty);
-  // Which searches hold each frame as a row.
-  std::vector<std::vector<uint32_t>> rows_of(frames);
+  std::vector<std::vector<uint32_t>> rows_of(thresholds.size());  // the searches a frame is in
   for (uint32_t idx = 0; idx < segments.size(); ++idx) {
     for (uint64_t f = segments[idx].start; f < segments[idx].start + segments[idx].length; ++f) {
       rows_of[f].push_back(idx);
@@ -256,11 +224,8 @@ int main(int argc, char** argv) {
   }
   motif::TrellisBlock block;
   std::vector<uint32_t> completed;  // searches with a completion in the current column
-  for (uint64_t block_idx = 0; block_idx < (*trellis)->block_count(); ++block_idx) {
-    if (auto status = (*trellis)->ReadBlock(block_idx, &block); !status.ok()) {
-      std::cerr << status.ToString() << "\n";
-      return 1;
-    }
+  for (uint64_t block_idx = 0; block_idx < trellis.block_count(); ++block_idx) {
+    MOTIF_RETURN_IF_ERROR(trellis.ReadBlock(block_idx, &block));
     for (uint32_t c = 0; c < block.column_count; ++c) {
       const uint64_t j = block.first_column + c;
       for (uint32_t at = block.offsets[c]; at < block.offsets[c + 1]; ++at) {
@@ -280,6 +245,11 @@ int main(int argc, char** argv) {
       completed.clear();
     }
   }
+  return searches;
+}
+
+// The searches' families (each with its segment), best fitness first.
+std::vector<Family> RankedFamilies(const std::vector<FamilySearch>& searches, uint64_t frames) {
   std::vector<Family> families;
   for (const FamilySearch& search : searches) {
     Family family;
@@ -297,8 +267,12 @@ int main(int argc, char** argv) {
   }
   std::sort(families.begin(), families.end(),
             [](const Family& x, const Family& y) { return x.fitness > y.fitness; });
-  const double overlap = args.number("overlap", 0.25);
-  const int motifs = static_cast<int>(args.number("motifs", 20));
+  return families;
+}
+
+// Prints up to `motifs` families in order, skipping one with a segment that shares more than
+// `overlap` of the shorter with a segment printed before.
+void PrintFamilies(const std::vector<Family>& families, double overlap, int motifs) {
   std::vector<std::pair<uint64_t, uint64_t>> taken;
   int printed = 0;
   for (const Family& family : families) {
@@ -323,5 +297,53 @@ int main(int argc, char** argv) {
     }
     ++printed;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::cerr << "usage: family_trellis_study ARCHIVE.mfs TRELLIS.mtr PATHS.mpa [rho=0.1] "
+                 "[cap_degrees=16] [samples=64] [exclusion=0.25] [min_seconds=0.6] [motifs=20] "
+                 "[overlap=0.25] [pauses=1] [gap_seconds=0.25] [penalty=-2]\n";
+    return 2;
+  }
+  const ExperimentArgs args(argc - 3, argv + 3);
+  auto archive = motif::testing::OpenStudyArchive(argv[1]);
+  auto trellis = motif::TrellisFileReader::Open(argv[2]);
+  auto paths = motif::PathsFileReader::Open(argv[3]);
+  for (const motif::Status& status : {archive.status(), trellis.status(), paths.status()}) {
+    if (!status.ok()) {
+      std::cerr << status.ToString() << "\n";
+      return 1;
+    }
+  }
+  const motif::FrameFileReader& reader = *archive->reader;
+  const motif::PoseFeatures& features = archive->features;
+  const double fps = reader.fps();
+  const float weight_sum =
+      std::accumulate(features.weights().begin(), features.weights().end(), 0.0f);
+  const float cap =
+      static_cast<float>(weight_sum * 2 * std::sin(args.number("cap_degrees", 16) * M_PI / 720));
+  const auto exclusion = static_cast<uint64_t>(std::lround(args.number("exclusion", 0.25) * fps));
+  const std::vector<float> thresholds =
+      FrameThresholds(features, reader, args.number("rho", 0.1),
+                      static_cast<int>(args.number("samples", 64)), exclusion, cap);
+  auto still = args.number("pauses", 1) != 0
+                   ? StillFrames(reader)
+                   : motif::Result<std::vector<char>>(std::vector<char>(features.frame_count(), 0));
+  const auto min_length = static_cast<uint64_t>(std::lround(args.number("min_seconds", 0.6) * fps));
+  const int gap =
+      std::max(1, static_cast<int>(std::lround(args.number("gap_seconds", 0.25) * fps)));
+  auto searches = still.ok()
+                      ? SearchFamilies(**trellis, CandidateSegments(**paths, min_length, reader),
+                                       thresholds, *still, gap, args.number("penalty", -2))
+                      : motif::Result<std::vector<FamilySearch>>(still.status());
+  if (!searches.ok()) {
+    std::cerr << searches.status().ToString() << "\n";
+    return 1;
+  }
+  PrintFamilies(RankedFamilies(*searches, features.frame_count()), args.number("overlap", 0.25),
+                static_cast<int>(args.number("motifs", 20)));
   return 0;
 }

@@ -13,9 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/studies/study_archive.h"
 #include "engine/cluster/warped_similarity.h"
-#include "engine/distance/pose_features.h"
-#include "formats/frame_file/frame_file_reader.h"
 
 namespace {
 
@@ -32,21 +31,12 @@ int main(int argc, char** argv) {
     std::cerr << "usage: range_dtw_study ARCHIVE.mfs RANGES.tsv\n";
     return 2;
   }
-  auto reader = motif::FrameFileReader::Open(argv[1]);
-  if (!reader.ok()) {
-    std::cerr << reader.status().ToString() << "\n";
+  auto archive = motif::testing::OpenStudyArchive(argv[1]);
+  if (!archive.ok()) {
+    std::cerr << archive.status().ToString() << "\n";
     return 1;
   }
-  auto weights = motif::LoadDistanceWeights((*reader)->skeleton(), "");
-  if (!weights.ok()) {
-    std::cerr << weights.status().ToString() << "\n";
-    return 1;
-  }
-  auto features = motif::PoseFeatures::FromArchive(**reader, *weights);
-  if (!features.ok()) {
-    std::cerr << features.status().ToString() << "\n";
-    return 1;
-  }
+  const motif::PoseFeatures& features = archive->features;
   std::vector<Range> ranges;
   std::ifstream in(argv[2]);
   std::string line;
@@ -56,7 +46,7 @@ int main(int argc, char** argv) {
     Range range;
     std::getline(fields, range.label, '\t');
     fields >> range.start >> range.end;
-    if (!fields || range.end <= range.start || range.end > features->frame_count()) {
+    if (!fields || range.end <= range.start || range.end > features.frame_count()) {
       std::cerr << "skipped: " << line << "\n";
       continue;
     }
@@ -66,7 +56,7 @@ int main(int argc, char** argv) {
     std::printf("%-28s [%5llu,%5llu)", a.label.c_str(), static_cast<unsigned long long>(a.start),
                 static_cast<unsigned long long>(a.end));
     for (const Range& b : ranges)
-      std::printf(" %5.3f", motif::MeanWarpedDistance(*features, a.start, a.end, b.start, b.end));
+      std::printf(" %5.3f", motif::MeanWarpedDistance(features, a.start, a.end, b.start, b.end));
     std::printf("\n");
   }
   return 0;

@@ -47,10 +47,9 @@
 #include <vector>
 
 #include "bench/studies/experiment_args.h"
+#include "bench/studies/study_archive.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/cluster/pauses.h"
-#include "engine/distance/pose_features.h"
-#include "formats/frame_file/frame_file_reader.h"
 #include "formats/paths_file/paths_file_reader.h"
 
 namespace {
@@ -115,7 +114,7 @@ std::vector<float> RowThresholds(const SquareMatrix& smooth, double rho, int nei
   const int stride = samples > 0 ? std::max(1, smooth.n / samples) : 1;
   for (int i = 0; i < smooth.n; ++i) {
     std::vector<float> row;
-    for (int j = (i * 7) % stride; j < smooth.n; j += stride) {
+    for (int j = (i * 7) % stride; j < smooth.n; j += stride) {  // rows see staggered columns
       if (!clip_of.empty() && clip_of[i] != clip_of[j]) continue;
       if (std::abs(i - j) >= exclusion) row.push_back(smooth.at(i, j));
     }
@@ -321,6 +320,24 @@ motif::Result<std::vector<std::pair<int, int>>> CandidateSegments(
   return segments;
 }
 
+// The from_motifs option: the instances of a motifs.json's top motif (with all, of every motif),
+// as (start, length) in sampled frames.
+motif::Result<std::vector<std::pair<int, int>>> MotifSegments(const std::string& motifs_path,
+                                                              bool all, int step, int n) {
+  MOTIF_ASSIGN_OR_RETURN(const motif::MotifsDocument document, motif::ReadMotifsJson(motifs_path));
+  const size_t used = all ? document.motifs.size() : std::min<size_t>(1, document.motifs.size());
+  std::vector<std::pair<int, int>> segments;
+  for (size_t motif = 0; motif < used; ++motif) {
+    for (const motif::MotifsJsonInstance& instance : document.motifs[motif].instances) {
+      const int first = static_cast<int>(instance.frame / step);
+      const int length =
+          static_cast<int>((instance.frame + instance.end - instance.start) / step) - first;
+      if (length >= 2 && first + length <= n) segments.push_back({first, length});
+    }
+  }
+  return segments;
+}
+
 // Prints up to `motifs` families (the header's output), each next one without the frames of
 // those before (their rows and columns score `penalty`) and without the candidates they overlap.
 void PrintFamilies(const motif::testing::ExperimentArgs& args, SquareMatrix open, int min_length,
@@ -371,39 +388,31 @@ int main(int argc, char** argv) {
   }
   const motif::testing::ExperimentArgs args(argc - 1, argv + 1);
   const int step = std::max(1, static_cast<int>(args.number("step", 4)));
-  auto reader = motif::FrameFileReader::Open(argv[1]);
-  if (!reader.ok()) {
-    std::cerr << reader.status().ToString() << "\n";
+  auto archive = motif::testing::OpenStudyArchive(argv[1]);
+  if (!archive.ok()) {
+    std::cerr << archive.status().ToString() << "\n";
     return 1;
   }
-  auto weights = motif::LoadDistanceWeights((*reader)->skeleton(), "");
-  if (!weights.ok()) {
-    std::cerr << weights.status().ToString() << "\n";
-    return 1;
-  }
-  auto features = motif::PoseFeatures::FromArchive(**reader, *weights);
-  if (!features.ok()) {
-    std::cerr << features.status().ToString() << "\n";
-    return 1;
-  }
-  const double per_second = (*reader)->fps() / step;
-  const int n = static_cast<int>(features->frame_count() / step);
-  const SquareMatrix dist = Distances(*features, n, step);
+  const motif::FrameFileReader& reader = *archive->reader;
+  const motif::PoseFeatures& features = archive->features;
+  const double per_second = reader.fps() / step;
+  const int n = static_cast<int>(features.frame_count() / step);
+  const SquareMatrix dist = Distances(features, n, step);
   const SquareMatrix smooth =
       args.number("smooth", 1) != 0
           ? EnhancePaths(dist, std::max(1, static_cast<int>(std::lround(0.25 * per_second))))
           : dist;
   double weight_sum = 0;
-  for (float weight : features->weights()) weight_sum += weight;
+  for (float weight : features.weights()) weight_sum += weight;
   const double cap_degrees = args.number("cap_degrees", 16);
   const float cap = cap_degrees > 0
                         ? static_cast<float>(weight_sum * 2 * std::sin(cap_degrees * M_PI / 720))
                         : 1e30f;
   const auto exclusion = static_cast<int>(std::lround(args.number("exclusion", 0.25) * per_second));
-  const std::vector<float> thresholds = Thresholds(args, smooth, *features, step, cap, exclusion);
+  const std::vector<float> thresholds = Thresholds(args, smooth, features, step, cap, exclusion);
   std::vector<char> still(n, 0);
   if (args.number("pauses", 1) != 0) {
-    auto found = StillFrames(**reader, n, step);
+    auto found = StillFrames(reader, n, step);
     if (!found.ok()) {
       std::cerr << found.status().ToString() << "\n";
       return 1;
@@ -422,23 +431,14 @@ int main(int argc, char** argv) {
     }
     segments = std::move(*found);
   }
-  if (args.has("from_motifs")) {  // the instances of the miner's top motif (all_motifs=1: all)
-    auto document = motif::ReadMotifsJson(args.text("from_motifs"));
-    if (!document.ok()) {
-      std::cerr << document.status().ToString() << "\n";
+  if (args.has("from_motifs")) {
+    auto found =
+        MotifSegments(args.text("from_motifs"), args.number("all_motifs", 0) != 0, step, n);
+    if (!found.ok()) {
+      std::cerr << found.status().ToString() << "\n";
       return 1;
     }
-    const size_t used = args.number("all_motifs", 0) != 0
-                            ? document->motifs.size()
-                            : std::min<size_t>(1, document->motifs.size());
-    for (size_t motif = 0; motif < used; ++motif) {
-      for (const motif::MotifsJsonInstance& instance : document->motifs[motif].instances) {
-        const int first = static_cast<int>(instance.frame / step);
-        const int length =
-            static_cast<int>((instance.frame + instance.end - instance.start) / step) - first;
-        if (length >= 2 && first + length <= n) segments.push_back({first, length});
-      }
-    }
+    segments.insert(segments.end(), found->begin(), found->end());
   }
   if ((args.has("candidates") || args.has("from_motifs")) && segments.empty()) return 0;
   PrintFamilies(
