@@ -20,6 +20,18 @@ namespace po = boost::program_options;
 
 namespace {
 
+// How the recorded eps was chosen, for the summary.
+std::string EpsOrigin(const MiningParams& params) {
+  if (!params.eps_estimated) return "given";
+  if (params.eps_rule == "joint-angle") {
+    char text[96];
+    std::snprintf(text, sizeof text, "joint-angle rule, %g degrees", params.eps_angle_degrees);
+    return text;
+  }
+  if (params.eps_rule == "paper") return "paper rule, mu - 2 sigma";
+  return "estimated at the first build";
+}
+
 // The engine's (stage, done, total, unit) calls as ProgressReporter stages: a new stage name
 // ends the previous stage and begins the next.
 class StageProgress {
@@ -108,8 +120,8 @@ void PrintSummary(const ReindexReport& report, int exit_code, bool json) {
           WithCommas(manifest.build.rewritten_blocks).c_str());
     }
     std::printf("  eps          %.6g (%s), k_max %u, %s search\n", manifest.params.eps,
-                manifest.params.eps_estimated ? "estimated at the first build" : "given",
-                manifest.params.k_max, manifest.params.exact ? "exact" : "lsh");
+                EpsOrigin(manifest.params).c_str(), manifest.params.k_max,
+                manifest.params.exact ? "exact" : "lsh");
     std::printf(
         "  time         import %.1fs, trellis %.1fs, grow %.1fs, cluster %.1fs, report "
         "%.1fs; total %.1fs\n",
@@ -146,9 +158,15 @@ int RunReindex(const std::vector<std::string>& args) {
                              "folder of BVH / ASF+AMC takes (searched recursively)")(
       "out", po::value<std::string>(), "output folder (created if missing)")(
       "eps", po::value<std::string>(),
-      "pose distance threshold, or auto (the joint-angle rule of mine, 12 degrees); "
-      "default: recorded at the first run (auto then)")(
-      "kmax", po::value<uint32_t>(), "neighbours kept per frame (first run: 256)")(
+      "pose distance threshold, or auto (estimated by --eps-rule); default: recorded at the "
+      "first run (auto then)")(
+      "eps-rule", po::value<std::string>(),
+      "how eps is estimated: joint-angle (mine's default) or paper (mu - 2 sigma of sampled "
+      "pairs); default: the recorded rule; another one estimates eps again (a full build)")(
+      "eps-angle", po::value<double>(),
+      "the joint-angle rule's tolerated rotation per weighted joint, in degrees (first run: "
+      "12); another one estimates eps again")("kmax", po::value<uint32_t>(),
+                                              "neighbours kept per frame (first run: 256)")(
       "exclusion", po::value<uint32_t>(),
       "same-clip exclusion radius in frames (0: half the "
       "minimum length)")("search", po::value<std::string>(),
@@ -200,6 +218,19 @@ int RunReindex(const std::vector<std::string>& args) {
       return fail(Status::InvalidArgument("--eps must be a positive number or auto"));
     }
     options.eps = eps;
+  }
+  if (vm.count("eps-rule")) {
+    Result<EpsilonRule> rule = ParseEpsilonRule(vm["eps-rule"].as<std::string>());
+    if (!rule.ok()) return fail(rule.status());
+    options.eps_rule = *rule;
+  }
+  if (vm.count("eps-angle")) {
+    const double angle = vm["eps-angle"].as<double>();
+    if (!(angle > 0 && angle <= 180)) {
+      return fail(Status::InvalidArgument("--eps-angle must be in (0, 180] degrees, not " +
+                                          std::to_string(angle)));
+    }
+    options.eps_angle_degrees = angle;
   }
   if (vm.count("kmax")) {
     options.k_max = vm["kmax"].as<uint32_t>();

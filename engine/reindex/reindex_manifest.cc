@@ -179,7 +179,8 @@ bool SameLshFamily(const LshOptions& a, const LshOptions& b) {
 
 bool MiningParams::operator==(const MiningParams& other) const {
   return eps == other.eps && eps_estimated == other.eps_estimated && mu == other.mu &&
-         sigma == other.sigma && k_max == other.k_max &&
+         sigma == other.sigma && eps_rule == other.eps_rule &&
+         eps_angle_degrees == other.eps_angle_degrees && k_max == other.k_max &&
          exclusion_frames == other.exclusion_frames && exact == other.exact &&
          (exact || SameLshFamily(lsh, other.lsh)) && seed == other.seed &&
          weights_path == other.weights_path && weights_hash == other.weights_hash &&
@@ -217,6 +218,8 @@ std::string ManifestText(const ReindexManifest& manifest) {
                      {"eps_estimated", params.eps_estimated},
                      {"mu", params.mu},
                      {"sigma", params.sigma},
+                     {"eps_rule", params.eps_rule},
+                     {"eps_angle", params.eps_angle_degrees},
                      {"kmax", params.k_max},
                      {"exclusion", params.exclusion_frames},
                      {"search", params.exact ? "exact" : "lsh"},
@@ -286,6 +289,12 @@ Result<ReindexManifest> ParseManifest(const std::string& text, const std::string
     out.eps_estimated = params.Get<bool>("eps_estimated");
     out.mu = params.Get<float>("mu");
     out.sigma = params.Get<float>("sigma");
+    out.eps_rule = params.GetOr<std::string>("eps_rule", "");  // absent before the rule flags
+    out.eps_angle_degrees = params.GetOr<double>("eps_angle", 0);
+    if (problem.empty() && !out.eps_rule.empty() && out.eps_rule != "joint-angle" &&
+        out.eps_rule != "paper") {
+      problem = where + ": \"eps_rule\" is neither joint-angle nor paper";
+    }
     out.k_max = params.Get<uint32_t>("kmax");
     out.exclusion_frames = params.Get<uint32_t>("exclusion");
     const std::string search = params.Get<std::string>("search");

@@ -46,6 +46,10 @@ struct MiningParams {
   bool eps_estimated = false;  // chosen by the first build's rule (not given)
   float mu = 0;                // of that estimate (0 if eps was given)
   float sigma = 0;
+  // The rule that estimated eps ("joint-angle" or "paper", epsilon_estimator.h) and the joint
+  // angle of "joint-angle"; "" and 0 when eps was given or the manifest predates the fields.
+  std::string eps_rule;
+  double eps_angle_degrees = 0;
   uint32_t k_max = 0;
   uint32_t exclusion_frames = 0;
   bool exact = false;  // the search: exact, or LSH with the family below

@@ -135,11 +135,40 @@ bool SameTrellisParams(const MiningParams& a, const MiningParams& b) {
          a.weights_path == b.weights_path && a.min_length == b.min_length;
 }
 
+// The rule eps is estimated by: as given, else the recorded one, else mine's default.
+struct EpsRuleChoice {
+  EpsilonRule rule = EpsilonRule::kJointAngle;
+  double angle_degrees = kDefaultJointAngleDegrees;
+};
+
+EpsRuleChoice ChooseEpsRule(const ReindexOptions& options, const ReindexManifest* current) {
+  EpsRuleChoice choice;
+  if (current && current->params.eps_rule == "paper") choice.rule = EpsilonRule::kPaper;
+  if (current && current->params.eps_angle_degrees > 0) {
+    choice.angle_degrees = current->params.eps_angle_degrees;
+  }
+  if (options.eps_rule) choice.rule = *options.eps_rule;
+  if (options.eps_angle_degrees) choice.angle_degrees = *options.eps_angle_degrees;
+  return choice;
+}
+
+// A rule given on the command line that the recorded eps was not estimated by (an explicit
+// eps overrides the rule, as in mine).
+bool EpsRuleChanged(const ReindexOptions& options, const MiningParams& recorded,
+                    const EpsRuleChoice& choice) {
+  if (!options.eps_rule && !options.eps_angle_degrees) return false;
+  if (options.eps && *options.eps > 0) return false;
+  if (!recorded.eps_estimated || recorded.eps_rule != EpsilonRuleName(choice.rule)) return true;
+  return choice.rule == EpsilonRule::kJointAngle &&
+         recorded.eps_angle_degrees != choice.angle_degrees;
+}
+
 struct Plan {
   std::string kind;     // "full", "incremental", "regrow", or "" (up to date)
   std::string why;      // for a full build after the first
   MiningParams params;  // what the new version uses (eps may still be 0: to estimate)
   bool estimate_eps = false;
+  EpsRuleChoice eps_rule;  // how, when estimate_eps
 };
 
 }  // namespace
@@ -158,6 +187,11 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
   const std::string& out_dir = options.out_dir;
   const std::string& archive_path = options.archive_path;
   FileSystem* file_system = options.file_system;
+  if (options.eps_angle_degrees &&
+      !(*options.eps_angle_degrees > 0 && *options.eps_angle_degrees <= 180)) {
+    return Status::InvalidArgument("--eps-angle must be in (0, 180] degrees, not " +
+                                   std::to_string(*options.eps_angle_degrees));
+  }
 
   // 1. One run at a time per OUTDIR; what killed runs left is removed.
   std::error_code error;
@@ -274,6 +308,10 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     if (options.eps && (*options.eps == 0 || !current || *options.eps != current->params.eps)) {
       trellis_change = true;
     }
+    plan.eps_rule = ChooseEpsRule(options, current ? &*current : nullptr);
+    const bool eps_rule_changed =
+        current && EpsRuleChanged(options, current->params, plan.eps_rule);
+    if (eps_rule_changed) trellis_change = true;
     if (options.exclusion && (!current || *options.exclusion != current->params.exclusion_frames)) {
       trellis_change = true;
     }
@@ -291,7 +329,11 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
     if (current && !SameTrellisParams(wanted, current->params)) trellis_change = true;
     if (trellis_change) {
       plan.kind = "full";
-      if (current) plan.why = "a parameter of the trellis changed";
+      if (current) {
+        plan.why = eps_rule_changed ? std::string("eps is estimated again, by the rule ") +
+                                          EpsilonRuleName(plan.eps_rule.rule)
+                                    : "a parameter of the trellis changed";
+      }
     } else {
       // The archive must extend the version the manifest names: same file, that commit intact.
       Result<std::unique_ptr<FrameFileReader>> pinned = FrameFileReader::OpenCommit(
@@ -308,15 +350,23 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
       }
     }
     if (plan.kind == "full") {
-      // eps: as given; else the recorded one; at the first build (or --eps 0) estimated.
-      wanted.eps = options.eps ? *options.eps : (current ? current->params.eps : 0.0f);
+      // eps: as given; else the recorded one; estimated at the first build, with --eps 0 or
+      // when the rule changed.
+      wanted.eps = options.eps                      ? *options.eps
+                   : (current && !eps_rule_changed) ? current->params.eps
+                                                    : 0.0f;
       plan.estimate_eps = wanted.eps == 0;
       if (plan.estimate_eps) {
         wanted.eps_estimated = true;
+        wanted.eps_rule = EpsilonRuleName(plan.eps_rule.rule);
+        wanted.eps_angle_degrees =
+            plan.eps_rule.rule == EpsilonRule::kJointAngle ? plan.eps_rule.angle_degrees : 0.0;
       } else if (options.eps) {  // given: nothing was estimated
         wanted.eps_estimated = false;
         wanted.mu = 0;
         wanted.sigma = 0;
+        wanted.eps_rule.clear();
+        wanted.eps_angle_degrees = 0;
       }
       if (options.exclusion)
         wanted.exclusion_frames = *options.exclusion;
@@ -366,6 +416,8 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
   if (plan.kind == "full") {
     TrellisOptions trellis;
     trellis.eps = params.eps;
+    trellis.eps_rule = plan.eps_rule.rule;
+    trellis.eps_joint_angle_degrees = plan.eps_rule.angle_degrees;
     trellis.k_max = params.k_max;
     trellis.exclusion_frames = params.exclusion_frames;
     trellis.min_length_seconds = static_cast<double>(params.min_length) / fps;

@@ -43,7 +43,13 @@ struct ReindexOptions {
   std::string archive_path;
   std::string watch_dir;
   std::string out_dir;
-  std::optional<float> eps;                 // 0: the default rule of mine (joint angle 12 degrees)
+  std::optional<float> eps;  // 0: estimated by the rule below
+  // The rule eps is estimated by (epsilon_estimator.h) and its joint angle in (0, 180] degrees;
+  // unset: the recorded ones (mine's default, joint angle 12 degrees, at the first run). Giving
+  // one that the recorded eps was not estimated by estimates eps again (a full build); an
+  // explicit eps > 0 overrides them.
+  std::optional<EpsilonRule> eps_rule;
+  std::optional<double> eps_angle_degrees;
   std::optional<uint32_t> k_max;            // default: mine's (256)
   std::optional<uint32_t> exclusion;        // default 0: half the minimum length
   std::optional<TrellisSearchMode> search;  // default auto at the first run

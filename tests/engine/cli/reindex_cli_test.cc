@@ -306,6 +306,60 @@ TEST_F(ReindexCliTest, AChangedParameterRegrowsOrRebuildsAsAFromScratchMineWould
   EXPECT_EQ(Bytes(dir_.File("k128") + "/motifs.json"), Bytes(out_ + "/motifs.json"));
 }
 
+// The rule that estimates eps: recorded at the first run, and another rule or angle estimates it
+// again, as `mine` with that rule would, while a run without them keeps the recorded eps.
+TEST_F(ReindexCliTest, AnotherEpsRuleEstimatesEpsAgainAsMineWithThatRuleWould) {
+  Arrive("batch1", 0, 3);
+  ASSERT_EQ(Reindex().exit_code, 0);
+  const ReindexManifest v1 = Manifest();
+  EXPECT_TRUE(v1.params.eps_estimated);
+  EXPECT_EQ(v1.params.eps_rule, "joint-angle");
+  EXPECT_EQ(v1.params.eps_angle_degrees, 12.0);
+
+  RunResult angle = Reindex("--eps-angle 14");
+  ASSERT_EQ(angle.exit_code, 0) << angle.output;
+  const ReindexManifest v2 = Manifest();
+  EXPECT_EQ(v2.build.kind, "full");
+  EXPECT_EQ(v2.params.eps_angle_degrees, 14.0);
+  EXPECT_GT(v2.params.eps, v1.params.eps);
+  RunResult mined = RunTool("mine " + archive_ + " --out " + dir_.File("a14") +
+                            " --eps-angle 14 --search exact --no-report --quiet");
+  ASSERT_EQ(mined.exit_code, 0) << mined.output;
+  EXPECT_EQ(Bytes(dir_.File("a14") + "/motifs.json"), Bytes(out_ + "/motifs.json"));
+  // The same angle again, or none: up to date.
+  EXPECT_EQ(Reindex("--eps-angle 14").exit_code, 0);
+  EXPECT_EQ(Reindex().exit_code, 0);
+  EXPECT_EQ(Manifest().version, 2u);
+
+  RunResult paper = Reindex("--eps-rule paper");
+  ASSERT_EQ(paper.exit_code, 0) << paper.output;
+  const ReindexManifest v3 = Manifest();
+  EXPECT_EQ(v3.version, 3u);
+  EXPECT_EQ(v3.params.eps_rule, "paper");
+  EXPECT_EQ(v3.params.eps_angle_degrees, 0.0);
+  EXPECT_GT(v3.params.mu, 0.0f);
+  EXPECT_FLOAT_EQ(v3.params.eps, v3.params.mu - 2 * v3.params.sigma);
+  mined = RunTool("mine " + archive_ + " --out " + dir_.File("paper") +
+                  " --eps-rule paper --search exact --no-report --quiet");
+  ASSERT_EQ(mined.exit_code, 0) << mined.output;
+  EXPECT_EQ(Bytes(dir_.File("paper") + "/motifs.json"), Bytes(out_ + "/motifs.json"));
+
+  // An explicit eps overrides the rule; a bad rule or angle names the flag, exit 13 as in mine.
+  char eps[32];
+  std::snprintf(eps, sizeof eps, "%.9g", v1.params.eps);
+  RunResult given = Reindex(std::string("--eps ") + eps + " --eps-rule paper");
+  ASSERT_EQ(given.exit_code, 0) << given.output;
+  EXPECT_FALSE(Manifest().params.eps_estimated);
+  EXPECT_EQ(Manifest().params.eps_rule, "");
+  for (const std::string bad : {"--eps-rule median", "--eps-angle 0", "--eps-angle 200"}) {
+    RunResult refused = Reindex(bad);
+    EXPECT_EQ(refused.exit_code, 13) << bad << ": " << refused.output;
+    EXPECT_NE(refused.output.find(bad.substr(0, bad.find(' '))), std::string::npos)
+        << refused.output;
+  }
+  EXPECT_EQ(Manifest().version, 4u);
+}
+
 TEST_F(ReindexCliTest, ARerunImportsNothingAndAChangedFileIsReportedNotImported) {
   Arrive("batch1");
   ASSERT_EQ(Reindex().exit_code, 0);

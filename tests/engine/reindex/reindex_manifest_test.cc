@@ -1,5 +1,7 @@
 // The manifest's LSH parameters: written and read back whole, and a manifest written before
 // chain_probe_every existed reads as what those builds did (every column of a chain probed).
+// The eps rule likewise: kept, absent in older manifests (read as unknown), an unknown one
+// refused.
 #include "engine/reindex/reindex_manifest.h"
 
 #include <gtest/gtest.h>
@@ -44,6 +46,34 @@ TEST(ReindexManifestTest, AManifestWithoutChainProbeEveryReadsAsEveryColumnProbi
   // Another field still may not be missing.
   text["params"]["lsh"].erase("chained_max_candidates");
   EXPECT_FALSE(ParseManifest(text.dump(), "manifest.json").ok());
+}
+
+TEST(ReindexManifestTest, KeepsTheEpsRuleAndReadsAnOlderManifestAsRuleUnknown) {
+  ReindexManifest manifest = ALshManifest();
+  manifest.params.eps_estimated = true;
+  manifest.params.eps_rule = "joint-angle";
+  manifest.params.eps_angle_degrees = 14.5;
+  auto read = ParseManifest(ManifestText(manifest), "manifest.json");
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  EXPECT_EQ(read->params.eps_rule, "joint-angle");
+  EXPECT_EQ(read->params.eps_angle_degrees, 14.5);
+  EXPECT_TRUE(read->params == manifest.params);
+  ReindexManifest other = manifest;
+  other.params.eps_angle_degrees = 12;
+  EXPECT_FALSE(other.params == manifest.params);
+
+  nlohmann::json text = nlohmann::json::parse(ManifestText(manifest));
+  text["params"].erase("eps_rule");
+  text["params"].erase("eps_angle");
+  read = ParseManifest(text.dump(), "manifest.json");
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  EXPECT_EQ(read->params.eps_rule, "");
+  EXPECT_EQ(read->params.eps_angle_degrees, 0);
+
+  text["params"]["eps_rule"] = "median";
+  auto refused = ParseManifest(text.dump(), "manifest.json");
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("eps_rule"), std::string::npos);
 }
 
 }  // namespace
