@@ -142,6 +142,114 @@ std::vector<MotifInstance> PeriodicPieces(const PathCandidate& path, uint64_t mi
   return pieces;
 }
 
+namespace {
+
+// The pieces a periodic path cuts its span into: [start + j * piece, + piece), j < count.
+struct PeriodGrid {
+  uint64_t start = 0;
+  uint64_t period = 0;
+  uint64_t piece = 0;
+  uint64_t count = 0;
+  uint64_t end = 0;  // of the path's span (the last piece may end before it)
+  MotifInstance Piece(uint64_t j) const { return {start + j * piece, start + (j + 1) * piece}; }
+  MotifInstance Span() const { return {start, end}; }
+};
+
+std::optional<PeriodGrid> GridOf(const PathCandidate& path, uint64_t min_length) {
+  const std::vector<MotifInstance> pieces = PeriodicPieces(path, min_length);
+  if (pieces.empty()) return std::nullopt;
+  const uint64_t piece = pieces[0].length();
+  const uint64_t period = path.match_start > path.top_start ? path.match_start - path.top_start
+                                                            : path.top_start - path.match_start;
+  return PeriodGrid{pieces[0].start, period, piece, pieces.size(),
+                    std::max(path.top_end, path.match_end)};
+}
+
+uint64_t Shift(const PathCandidate& path) {
+  return path.match_start > path.top_start ? path.match_start - path.top_start
+                                           : path.top_start - path.match_start;
+}
+
+// The grid of the shortest period that `path` repeats a whole number k >= 2 of (its shift within
+// a quarter period of k periods), among the grids covering 3/4 of both its segments: the path
+// is that periodic motion matched with itself k periods later (a harmonic). Null if none.
+const PeriodGrid* FundamentalOf(const PathCandidate& path, const std::vector<PeriodGrid>& grids) {
+  const uint64_t shift = Shift(path);
+  const MotifInstance top{path.top_start, path.top_end};
+  const MotifInstance match{path.match_start, path.match_end};
+  const PeriodGrid* best = nullptr;
+  for (const PeriodGrid& grid : grids) {
+    const MotifInstance span = grid.Span();
+    if (4 * OverlapFrames(top, span) < 3 * top.length() ||
+        4 * OverlapFrames(match, span) < 3 * match.length()) {
+      continue;
+    }
+    if (grid.piece != grid.period) continue;  // a period shorter than lambda is no fundamental
+    const uint64_t k = (shift + grid.period / 2) / grid.period;
+    const uint64_t off =
+        k * grid.period > shift ? k * grid.period - shift : shift - k * grid.period;
+    if (k < 2 || 4 * off > grid.period) continue;
+    if (!best || grid.period < best->period ||
+        (grid.period == best->period && grid.count * grid.piece > best->count * best->piece)) {
+      best = &grid;
+    }
+  }
+  return best;
+}
+
+// A harmonic's links on its fundamental's pieces: each piece half inside its earlier segment to
+// the piece as many pieces later as the shift spans. Empty when the shift is under a piece.
+std::vector<std::pair<MotifInstance, MotifInstance>> HarmonicLinks(const PathCandidate& path,
+                                                                   const PeriodGrid& grid) {
+  const uint64_t step = (Shift(path) + grid.piece / 2) / grid.piece;
+  const MotifInstance earlier = path.top_start <= path.match_start
+                                    ? MotifInstance{path.top_start, path.top_end}
+                                    : MotifInstance{path.match_start, path.match_end};
+  std::vector<std::pair<MotifInstance, MotifInstance>> links;
+  for (uint64_t j = 0; step > 0 && j + step < grid.count; ++j) {
+    if (2 * OverlapFrames(grid.Piece(j), earlier) >= grid.piece) {
+      links.emplace_back(grid.Piece(j), grid.Piece(j + step));
+    }
+  }
+  return links;
+}
+
+}  // namespace
+
+RawInstanceSet RawInstances(const std::vector<PathCandidate>& paths, uint64_t min_length) {
+  RawInstanceSet set;
+  std::vector<PeriodGrid> grids;
+  for (const PathCandidate& path : paths) {
+    if (std::optional<PeriodGrid> grid = GridOf(path, min_length)) grids.push_back(*grid);
+  }
+  auto add_link = [&](const MotifInstance& a, const MotifInstance& b) {
+    set.links.emplace_back(set.instances.size(), set.instances.size() + 1);
+    set.instances.push_back(a);
+    set.instances.push_back(b);
+  };
+  for (const PathCandidate& path : paths) {
+    if (const PeriodGrid* fundamental = FundamentalOf(path, grids)) {
+      const auto links = HarmonicLinks(path, *fundamental);
+      if (!links.empty()) {
+        ++set.harmonic_paths;
+        for (const auto& [a, b] : links) add_link(a, b);
+        continue;
+      }
+    }
+    const std::vector<MotifInstance> pieces = PeriodicPieces(path, min_length);
+    if (pieces.empty()) {
+      add_link({path.top_start, path.top_end}, {path.match_start, path.match_end});
+      continue;
+    }
+    ++set.periodic_paths;
+    for (size_t piece_idx = 0; piece_idx < pieces.size(); ++piece_idx) {
+      if (piece_idx > 0) set.links.emplace_back(set.instances.size() - 1, set.instances.size());
+      set.instances.push_back(pieces[piece_idx]);
+    }
+  }
+  return set;
+}
+
 InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
                            const InstanceOptions& options) {
   InstanceSet set;
@@ -156,23 +264,11 @@ InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
   paths = KeepLongestPathPerRoot(std::move(paths));
   set.stats.kept_paths = paths.size();
 
-  // Each path's raw instances and the links between them (indices into raw).
-  std::vector<MotifInstance> raw;
-  std::vector<std::pair<size_t, size_t>> raw_links;
-  for (const PathCandidate& path : paths) {
-    std::vector<MotifInstance> pieces = PeriodicPieces(path, options.min_length);
-    if (pieces.empty()) {
-      raw_links.emplace_back(raw.size(), raw.size() + 1);
-      raw.push_back({path.top_start, path.top_end});
-      raw.push_back({path.match_start, path.match_end});
-      continue;
-    }
-    ++set.stats.periodic_paths;
-    for (size_t piece_idx = 0; piece_idx < pieces.size(); ++piece_idx) {
-      if (piece_idx > 0) raw_links.emplace_back(raw.size() - 1, raw.size());
-      raw.push_back(pieces[piece_idx]);
-    }
-  }
+  RawInstanceSet raw_set = RawInstances(paths, options.min_length);
+  std::vector<MotifInstance>& raw = raw_set.instances;
+  std::vector<std::pair<size_t, size_t>>& raw_links = raw_set.links;
+  set.stats.periodic_paths = raw_set.periodic_paths;
+  set.stats.harmonic_paths = raw_set.harmonic_paths;
   if (!options.pauses.empty()) {
     TrimToMovement(options.pauses, options.min_length, &raw, &raw_links,
                    &set.stats.trimmed_instances, &set.stats.still_instances);

@@ -9,6 +9,12 @@
 //     each at least min_length frames (one period, or the fewest that reach min_length), and
 //     each piece is linked to the next. So a walk gives one instance per gait cycle rather than
 //     one per take, and ten jumps in a row ten instances.
+//     A path that matches such a periodic motion with itself k >= 2 periods later (a harmonic:
+//     both its segments 3/4 inside the periodic path's span, its shift within a quarter period
+//     of k periods, the period at least min_length) links the periodic path's own pieces k
+//     pieces apart instead of giving two instances of its own: they would be a cycle and a
+//     third, or two cycles, at a phase of their own, and merge with the pieces into longer
+//     instances. Of several such periodic paths the shortest period is taken.
 //     Each raw instance is then trimmed to its movement (options.pauses): its still head and
 //     tail go, and with them a stretch shorter than lambda cut off by a pause (the end of the
 //     movement before). An instance that is all pauses and short stretches is dropped.
@@ -27,6 +33,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "engine/cluster/motif_instance.h"
@@ -50,6 +57,7 @@ struct InstanceSetStats {
   uint64_t links = 0;              // distinct links between merged instances
   uint64_t self_links = 0;         // kept paths whose two segments merged into one instance
   uint64_t periodic_paths = 0;     // kept paths cut into periods (their segments overlapped)
+  uint64_t harmonic_paths = 0;     // kept paths that repeat a periodic path k >= 2 periods later
   uint64_t trimmed_instances = 0;  // raw instances trimmed to their movement
   uint64_t still_instances = 0;    // raw instances with no movement of min_length, dropped
 };
@@ -69,6 +77,17 @@ bool OverlapsEnough(const MotifInstance& a, const MotifInstance& b, double fract
 // The pieces of a periodic path (its segments overlap; step 2 above), in order; empty when its
 // segments do not overlap.
 std::vector<MotifInstance> PeriodicPieces(const PathCandidate& path, uint64_t min_length);
+
+// Step 2 before the trimming: the raw instances of the kept paths (periodic ones cut into
+// pieces, harmonics linked on their periodic path's pieces) and the links between them, as
+// pairs of indices into `instances`. O(paths x periodic paths).
+struct RawInstanceSet {
+  std::vector<MotifInstance> instances;
+  std::vector<std::pair<size_t, size_t>> links;
+  uint64_t periodic_paths = 0;
+  uint64_t harmonic_paths = 0;
+};
+RawInstanceSet RawInstances(const std::vector<PathCandidate>& kept_paths, uint64_t min_length);
 
 // `range` trimmed to its movement: from the start of its first moving stretch (a stretch between
 // `pauses`, ascending and disjoint) of at least min_length frames to the end of its last one;

@@ -99,6 +99,36 @@ TEST(BuildInstancesTest, APeriodicPathIsCutIntoLinkedPeriods) {
   EXPECT_EQ(set.stats.self_links, 0u);
 }
 
+TEST(BuildInstancesTest, AHarmonicOfAPeriodicPathLinksItsPiecesKPiecesApart) {
+  // Period 100 over [0, 450): pieces [0,100) ... [300,400). A path matching [20,150) with
+  // [220,350) is the same motion two periods later: it links pieces 0-2 and 1-3 (each at least
+  // half inside [20,150)) and adds no instance of its own.
+  const PathCandidate periodic = Path(0, 350, 100, 450, 0, 100);
+  const PathCandidate harmonic = Path(20, 150, 220, 350, 20, 220);
+  InstanceSet set = BuildInstances({periodic, harmonic});
+  EXPECT_EQ(set.instances,
+            (std::vector<MotifInstance>{{0, 100}, {100, 200}, {200, 300}, {300, 400}}));
+  EXPECT_EQ(set.links, (std::vector<InstanceLink>{{0, 1}, {0, 2}, {1, 2}, {1, 3}, {2, 3}}));
+  EXPECT_EQ(set.stats.harmonic_paths, 1u);
+  EXPECT_EQ(set.stats.periodic_paths, 1u);
+
+  // Two and a half periods later (off by more than a quarter period): a path of its own, whose
+  // [270, 400) takes in the piece [300, 400) (3/4 of the longer shared).
+  set = BuildInstances({periodic, Path(20, 150, 270, 400, 20, 270)});
+  EXPECT_EQ(set.stats.harmonic_paths, 0u);
+  EXPECT_EQ(set.instances,
+            (std::vector<MotifInstance>{{0, 100}, {20, 150}, {100, 200}, {200, 300}, {270, 400}}));
+  // A quarter of a segment outside the periodic span: a path of its own too.
+  set = BuildInstances({periodic, Path(20, 150, 350, 480, 20, 350)});
+  EXPECT_EQ(set.stats.harmonic_paths, 0u);
+
+  // A period shorter than lambda (pieces of two periods) is no fundamental.
+  InstanceOptions options;
+  options.min_length = 150;
+  set = BuildInstances({periodic, harmonic}, options);
+  EXPECT_EQ(set.stats.harmonic_paths, 0u);
+}
+
 TEST(BuildInstancesTest, DeduplicatesRootsBeforeMerging) {
   InstanceSet set = BuildInstances({
       Path(0, 60, 1000, 1060, 0, 1000),
@@ -121,17 +151,8 @@ TEST(BuildInstancesTest, SweepMatchesAllPairsOnRandomPaths) {
     }
     const InstanceSet set = BuildInstances(candidates);
     // Brute force: all pairs, transitive closure, unions.
-    std::vector<PathCandidate> kept = KeepLongestPathPerRoot(candidates);
-    std::vector<MotifInstance> raw;
-    for (const PathCandidate& path : kept) {
-      const std::vector<MotifInstance> pieces = PeriodicPieces(path, 0);
-      if (!pieces.empty()) {
-        raw.insert(raw.end(), pieces.begin(), pieces.end());
-        continue;
-      }
-      raw.push_back({path.top_start, path.top_end});
-      raw.push_back({path.match_start, path.match_end});
-    }
+    const std::vector<MotifInstance> raw =
+        RawInstances(KeepLongestPathPerRoot(candidates), 0).instances;
     std::vector<size_t> label(raw.size());
     for (size_t idx = 0; idx < raw.size(); ++idx) label[idx] = idx;
     for (bool changed = true; changed;) {
