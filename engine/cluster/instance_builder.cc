@@ -9,6 +9,12 @@ namespace motif {
 
 namespace {
 
+// How far apart a path's two segments start (a periodic path's period).
+uint64_t Shift(const PathCandidate& path) {
+  return path.match_start > path.top_start ? path.match_start - path.top_start
+                                           : path.top_start - path.match_start;
+}
+
 // Union-find with path halving; the smaller index becomes the root, so results do not depend on
 // the order of unions.
 class DisjointSets {
@@ -128,8 +134,7 @@ std::vector<MotifInstance> PeriodicPieces(const PathCandidate& path, uint64_t mi
   const MotifInstance top{path.top_start, path.top_end};
   const MotifInstance match{path.match_start, path.match_end};
   if (OverlapFrames(top, match) == 0) return {};
-  const uint64_t period = path.match_start > path.top_start ? path.match_start - path.top_start
-                                                            : path.top_start - path.match_start;
+  const uint64_t period = Shift(path);
   if (period == 0) return {};
   const uint64_t periods = std::max<uint64_t>(1, (min_length + period - 1) / period);
   const uint64_t piece = periods * period;
@@ -159,15 +164,9 @@ std::optional<PeriodGrid> GridOf(const PathCandidate& path, uint64_t min_length)
   const std::vector<MotifInstance> pieces = PeriodicPieces(path, min_length);
   if (pieces.empty()) return std::nullopt;
   const uint64_t piece = pieces[0].length();
-  const uint64_t period = path.match_start > path.top_start ? path.match_start - path.top_start
-                                                            : path.top_start - path.match_start;
+  const uint64_t period = Shift(path);
   return PeriodGrid{pieces[0].start, period, piece, pieces.size(),
                     std::max(path.top_end, path.match_end)};
-}
-
-uint64_t Shift(const PathCandidate& path) {
-  return path.match_start > path.top_start ? path.match_start - path.top_start
-                                           : path.top_start - path.match_start;
 }
 
 // The grid of the shortest period that `path` repeats a whole number k >= 2 of (its shift within
