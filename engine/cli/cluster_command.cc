@@ -215,9 +215,12 @@ int RunCluster(const std::vector<std::string>& args) {
   std::printf("  coverage     %s frames, %s of the archive\n",
               WithCommas(report.covered_frames).c_str(),
               Percent(report.covered_frames, (*frames)->frame_count()).c_str());
-  std::printf("  graph        %s edges (%s similar pairs, %s links)\n",
-              WithCommas(similarity.edges).c_str(), WithCommas(similarity.similar_pairs).c_str(),
-              WithCommas(similarity.linked_pairs).c_str());
+  std::printf(
+      "  graph        %s edges (%s similar pairs, %s links), %s farther apart than %g scales "
+      "dropped\n",
+      WithCommas(similarity.edges).c_str(), WithCommas(similarity.similar_pairs).c_str(),
+      WithCommas(similarity.linked_pairs).c_str(),
+      WithCommas(report.warped_stats.dropped_edges).c_str(), options.warped.max_scales);
   std::printf(
       "  time         instances %.2fs, similarity %.2fs (%s blocks), warped distance %.2fs, cut "
       "%.2fs (%s eigenvectors)\n",

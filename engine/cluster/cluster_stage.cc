@@ -12,7 +12,7 @@
 namespace motif {
 namespace {
 
-constexpr int kClusterRulesVersion = 4;
+constexpr int kClusterRulesVersion = 5;
 
 // What determines a clustering: the paths (through the trellis identity, itself tied to its
 // archive, and the grow parameters) and every option that changes the result.
@@ -30,6 +30,7 @@ std::string ClusterKey(const ClusterStageInput& input, const ClusterOptions& opt
       << " warped_samples=" << options.warped.samples
       << " warped_fallback=" << options.warped.fallback_scale
       << " warped_floor=" << options.warped.floor_scale
+      << " warped_max_scales=" << options.warped.max_scales
       << " pause_speed=" << options.pauses.max_speed
       << " pause_seconds=" << options.pauses.min_seconds;
   return key.str();

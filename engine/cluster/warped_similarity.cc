@@ -147,14 +147,19 @@ Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
   std::vector<double> scales =
       LocalScales(instances, edges, distances, options.neighbours, options.fallback_scale * eps);
   for (double& scale : scales) scale = std::max(scale, options.floor_scale * eps);  // noise
+  const double max_squared = options.max_scales * options.max_scales;
+  uint64_t dropped = 0;
   for (size_t idx = 0; idx < edges.size(); ++idx) {
     const double squared =
         distances[idx] * distances[idx] / (scales[edges[idx].a] * scales[edges[idx].b]);
-    // A floor keeps every edge of the graph an edge (FromEdges drops weights <= 0).
-    edges[idx].weight = std::max(std::exp(-squared), 1e-12);
+    // FromEdges drops a weight of 0; a floor keeps every other edge an edge.
+    const bool far = squared > max_squared;
+    dropped += far ? 1 : 0;
+    edges[idx].weight = far ? 0.0 : std::max(std::exp(-squared), 1e-12);
   }
   if (stats != nullptr) {
     stats->edges = edges.size();
+    stats->dropped_edges = dropped;
     double total = 0;
     for (double distance : distances) total += distance;
     stats->mean_distance = total / static_cast<double>(edges.size());

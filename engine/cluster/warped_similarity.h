@@ -14,9 +14,13 @@
 // no frame with it. An edge of the graph gets the weight exp(-d(a, b)^2 / (s(a) s(b))): two
 // instances that are each other's nearest weigh exactly e^-1, and a movement twice as far away
 // as an instance's own repetitions weighs e^-4 of it. An instance with no such neighbour uses
-// fallback_scale · eps, and no scale is below floor_scale · eps. The edges stay those of the graph
-// (no pair gains or loses an edge). Cost: O(edges · samples^2) pose distances, in parallel;
-// O(instances · samples) features. Thread-safety: pure function (the reader is safe to share).
+// fallback_scale · eps, and no scale is below floor_scale · eps. No pair gains an edge; a pair
+// more than `max_scales` times the geometric mean of its two scales apart (weight below
+// e^-(max_scales^2)) loses its edge: by the rule's own measure it is not one movement, and on real
+// archives these edges are most of the graph and keep the normalized cut peeling one large
+// component (docs/design/motif_quality.md, section 6). Cost: O(edges · samples^2) pose distances,
+// in parallel; O(instances · samples) features. Thread-safety: pure function (the reader is safe
+// to share).
 #pragma once
 
 #include <cstdint>
@@ -39,12 +43,14 @@ struct WarpedSimilarityOptions {
   // inserted copies of docs/design/motif_quality.md, section 6).
   double floor_scale = 0.25;
   uint32_t samples = 32;  // frames of an instance compared, evenly spaced (at least 2)
+  double max_scales = 3;  // pairs farther apart than this many scales lose their edge
   int threads = 0;        // 0: all cores
 };
 
 struct WarpedSimilarityStats {
-  uint64_t edges = 0;
-  double mean_distance = 0;  // d over the edges
+  uint64_t edges = 0;          // of the graph given
+  uint64_t dropped_edges = 0;  // farther apart than max_scales
+  double mean_distance = 0;    // d over the edges
   double seconds = 0;
 };
 

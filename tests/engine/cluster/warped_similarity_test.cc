@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <vector>
@@ -82,8 +83,8 @@ TEST(WarpedSimilarityTest, EveryInstanceWeighsMostWithARepetitionOfItsOwnMotif) 
   auto warped =
       ReweightByWarpedDistance(*archive.reader, archive.instances, graph, kEps, {}, &stats);
   ASSERT_TRUE(warped.ok()) << warped.status().ToString();
-  EXPECT_EQ(warped->edge_count(), graph.edge_count());
   EXPECT_EQ(stats.edges, graph.edge_count());
+  EXPECT_EQ(warped->edge_count(), graph.edge_count() - stats.dropped_edges);
   EXPECT_GT(stats.mean_distance, 0);
   for (uint32_t a = 0; a < nodes; ++a) {
     uint32_t heaviest = a;
@@ -142,6 +143,7 @@ TEST(WarpedSimilarityTest, NoScaleIsBelowTheFloor) {
   auto lightest = [&](double floor_scale) {
     WarpedSimilarityOptions options;
     options.floor_scale = floor_scale;
+    options.max_scales = std::numeric_limits<double>::infinity();  // every pair keeps its edge
     auto warped = ReweightByWarpedDistance(*archive.reader, archive.instances, CompleteGraph(nodes),
                                            kEps, options);
     EXPECT_TRUE(warped.ok());
@@ -155,6 +157,39 @@ TEST(WarpedSimilarityTest, NoScaleIsBelowTheFloor) {
   // any two poses are apart) every pair is alike.
   EXPECT_LT(lightest(0), 0.1);
   EXPECT_GT(lightest(10), 0.9);
+}
+
+TEST(WarpedSimilarityTest, APairFartherApartThanThreeScalesLosesItsEdge) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  const uint32_t nodes = static_cast<uint32_t>(archive.instances.size());
+  const SimilarityGraph graph = CompleteGraph(nodes);
+  WarpedSimilarityStats stats;
+  auto warped =
+      ReweightByWarpedDistance(*archive.reader, archive.instances, graph, kEps, {}, &stats);
+  ASSERT_TRUE(warped.ok());
+  uint64_t same_motif_pairs = 0;
+  for (uint32_t a = 0; a < nodes; ++a) {
+    for (uint32_t b = a + 1; b < nodes; ++b) {
+      const double weight = Weight(*warped, a, b);
+      if (archive.motif_of[a] == archive.motif_of[b]) {
+        ++same_motif_pairs;
+        EXPECT_GT(weight, 0) << "repetitions " << a << " and " << b << " lost their edge";
+      }
+      if (weight > 0) EXPECT_GE(weight, std::exp(-9.0));
+    }
+  }
+  // The planted motifs are far apart on their own scales: most pairs of different motifs go.
+  EXPECT_GT(stats.dropped_edges, (graph.edge_count() - same_motif_pairs) / 2);
+  EXPECT_EQ(warped->edge_count(), graph.edge_count() - stats.dropped_edges);
+
+  WarpedSimilarityOptions keep_all;
+  keep_all.max_scales = std::numeric_limits<double>::infinity();
+  auto whole =
+      ReweightByWarpedDistance(*archive.reader, archive.instances, graph, kEps, keep_all, &stats);
+  ASSERT_TRUE(whole.ok());
+  EXPECT_EQ(stats.dropped_edges, 0u);
+  EXPECT_EQ(whole->edge_count(), graph.edge_count());
 }
 
 TEST(WarpedSimilarityTest, SameWeightsForAnyThreadCount) {
