@@ -65,11 +65,10 @@ void BM_PlantedMotifs(benchmark::State& state) {
   double eps = 0;
   for (auto _ : state) {
     std::filesystem::remove_all(dir + "/mined");
-    MinePipelineOptions mine = DefaultMinePipelineOptions();
+    motifmine::MineOptions mine;
     mine.out_dir = dir + "/mined";
-    mine.inputs = {archive};
     mine.write_report = false;
-    MinePipelineResult run = Check(MinePipeline(mine).Run());
+    MinePipelineResult run = Check(RunMine(mine, {archive}));
     eps = run.trellis.params.eps;
     candidates = run.paths.candidates;
     std::vector<FoundInstance> found;

@@ -31,8 +31,8 @@
 
 #include "bench/bench_util.h"
 #include "engine/cli/clip_range_take.h"
-#include "engine/cluster/cluster_stage.h"
-#include "engine/grow/paths_builder.h"
+#include "engine/pipeline/mine_pipeline.h"
+#include "engine/reindex/reindex_plan.h"
 #include "engine/reindex/reindexer.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "engine/trellis/trellis_builder.h"
@@ -152,8 +152,8 @@ void BM_ReindexOnePercent(benchmark::State& state) {
   options.watch_dir = dir + "/incoming";
   options.out_dir = dir + "/out";
   options.min_age_seconds = 0;
-  options.report = false;
-  options.threads = threads;
+  options.mine.write_report = false;
+  options.mine.threads = threads;
   Check(Reindex(options).status());  // the first, full build
   for (const auto& take : fs::directory_iterator(dir + "/first")) {
     fs::copy_file(take.path(), dir + "/incoming/" + take.path().filename().string());
@@ -179,35 +179,13 @@ void BM_ReindexOnePercent(benchmark::State& state) {
     const MiningParams& params = night.manifest.params;
     const double full_cpu_start = ProcessCpuSeconds();
     const Clock::time_point full_start = Clock::now();
-    TrellisOptions trellis;
-    trellis.eps = params.eps;
-    trellis.k_max = params.k_max;
-    trellis.exclusion_frames = params.exclusion_frames;
-    trellis.search = params.exact ? TrellisSearchMode::kExact : TrellisSearchMode::kLsh;
-    trellis.lsh = params.lsh;
-    trellis.seed = params.seed;
-    trellis.threads = threads;
-    const std::string full_trellis = dir + "/full.mtr";
-    Check(BuildTrellis(archive, full_trellis, trellis).status());
-    PathsOptions paths_options;
-    paths_options.branch = params.branch;
-    paths_options.min_length_frames = params.min_length;
-    const PathsReport paths =
-        Check(BuildPaths(archive, full_trellis, dir + "/full.mpa", paths_options));
-    auto reader = Check(FrameFileReader::Open(archive));
-    ClusterStageInput input;
-    input.archive_path = archive;
-    input.archive = reader.get();
-    input.trellis_path = full_trellis;
-    input.paths_path = dir + "/full.mpa";
-    input.paths_params = paths.params;
-    input.candidates = paths.candidates;
-    input.motifs_path = dir + "/full_motifs.json";
-    input.state_path = dir + "/full_state.json";
-    ClusterOptions cluster;
-    cluster.seed = params.seed;
-    cluster.threads = threads;
-    Check(RunClusterStage(input, cluster).status());
+    motifmine::MineOptions rebuild;
+    rebuild.threads = threads;
+    rebuild = RecordedOptions(params, rebuild);
+    rebuild.out_dir = dir + "/full";
+    rebuild.write_report = false;
+    const MinePipelineResult full = Check(RunMine(rebuild, {archive}));
+    const std::string full_trellis = dir + "/full/trellis.mtr";
     const double full_s = SecondsSince(full_start);
     const double full_cpu_s = ProcessCpuSeconds() - full_cpu_start;
 

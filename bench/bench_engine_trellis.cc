@@ -63,6 +63,7 @@
 #include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/exact_search.h"
 #include "engine/distance/pose_features.h"
+#include "engine/pipeline/stage_options.h"
 #include "engine/trellis/trellis_builder.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
@@ -108,8 +109,7 @@ Result<LoadedArchive> LoadFeatures(const std::string& archive_path) {
   LoadedArchive loaded;
   loaded.features = std::make_unique<PoseFeatures>(std::move(features));
   loaded.rules.k_max = TrellisOptions().k_max;
-  loaded.rules.exclusion_frames =
-      static_cast<uint32_t>(std::lround(TrellisOptions().min_length_seconds * reader->fps() / 2));
+  loaded.rules.exclusion_frames = ResolvedExclusionFrames(motifmine::MineOptions{}, reader->fps());
   loaded.rules.clip_first_frames = loaded.features->clip_first_frames();
   loaded.features_seconds = Seconds(start);
   return loaded;

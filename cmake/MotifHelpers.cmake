@@ -23,6 +23,8 @@ endfunction()
 function(motif_add_library name)
   add_library(motif_${name} STATIC ${ARGN})
   add_library(motif::${name} ALIAS motif_${name})
-  target_include_directories(motif_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  # The public headers too: the engine's options start from include/motifmine/defaults.h.
+  target_include_directories(motif_${name} PUBLIC ${PROJECT_SOURCE_DIR}
+                                                  ${PROJECT_SOURCE_DIR}/include)
   motif_set_warnings(motif_${name})
 endfunction()

@@ -50,7 +50,9 @@ void DieOnResultError(const Status& status) {
 
 Status Status::WithContext(const std::string& prefix) const {
   if (ok()) return *this;
-  return Status(code_, prefix + ": " + message_);
+  Status status(code_, prefix + ": " + message_);
+  status.option_ = option_;
+  return status;
 }
 
 }  // namespace motif

@@ -46,6 +46,19 @@ class [[nodiscard]] Status {
     return Status(Code::kResourceExhausted, std::move(msg));
   }
   static Status Busy(std::string msg) { return Status(Code::kBusy, std::move(msg)); }
+  // An impossible value of the option `name`, as the option table names it ("kmax"): the
+  // message is "kmax <problem>", and option() is "kmax", so that the tool can say "--kmax" and
+  // Python the keyword (engine/pipeline/option_table.h).
+  static Status InvalidOption(const std::string& name, const std::string& problem) {
+    return Status(Code::kInvalidArgument, name + " " + problem).WithOption(name);
+  }
+  // The same status, about the option `name`, which its message names as a word ("... (asf)"):
+  // the tool prints that word as its flag ("(--asf)").
+  Status WithOption(const std::string& name) const {
+    Status status = *this;
+    status.option_ = name;
+    return status;
+  }
   // A status received as its code and message (from another process of a distributed run).
   static Status FromCode(Code code, std::string msg) { return Status(code, std::move(msg)); }
   // An IOError built from errno: "<context>: <strerror(errno)>". ENOSPC and EDQUOT become
@@ -55,6 +68,8 @@ class [[nodiscard]] Status {
   bool ok() const { return code_ == Code::kOk; }
   Code code() const { return code_; }
   const std::string& message() const { return message_; }
+  // The option an InvalidOption status is about; empty otherwise.
+  const std::string& option() const { return option_; }
   // "Corruption: <message>", or "OK".
   std::string ToString() const;
   // The same status with "<prefix>: " put before the message (no-op on OK).
@@ -71,6 +86,7 @@ class [[nodiscard]] Status {
   Status(Code code, std::string msg) : code_(code), message_(std::move(msg)) {}
   Code code_ = Code::kOk;
   std::string message_;
+  std::string option_;
 };
 
 const char* StatusCodeName(Status::Code code);

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -73,38 +74,57 @@ motifmine::Status WithoutGil(const py::object& progress, ProgressSlot* slot, Cal
   return status;
 }
 
-// Sets MineOptions fields from keyword arguments; TypeError for an unknown one.
+// The option table's row for a keyword (its name with '_' for '-', or an older alias); null for
+// none.
+std::optional<motifmine::OptionInfo> OptionRow(const std::string& key) {
+  std::string dashed = key;
+  std::replace(dashed.begin(), dashed.end(), '_', '-');
+  for (const motifmine::OptionInfo& row : motifmine::MineOptionTable()) {
+    if (row.name == dashed) return row;
+    for (const std::string& alias : row.aliases) {
+      if (alias == key) return row;
+    }
+  }
+  return std::nullopt;
+}
+
+// A keyword's value as the text the option table reads: True/False for a switch, a number, or
+// text ("auto", "0.5s", a path); TypeError naming the keyword for another kind of value.
+std::string OptionText(const std::string& key, const std::string& type, py::handle value) {
+  const bool is_bool = py::isinstance<py::bool_>(value);
+  const bool is_number =
+      !is_bool && (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value));
+  const bool is_text = py::isinstance<py::str>(value);
+  const bool textual = type == "choice" || type == "text";
+  const bool may_be_text = type == "radius" || type == "groups" || type == "length";
+  if (type == "switch" && is_bool) return value.cast<bool>() ? "true" : "false";
+  if (type != "switch" && !textual && is_number) return py::str(value).cast<std::string>();
+  if ((textual || may_be_text) && is_text) return value.cast<std::string>();
+  throw py::type_error("mine(): " + key + " must be " +
+                       (type == "switch" ? std::string("True or False")
+                        : textual        ? std::string("a str")
+                        : may_be_text    ? std::string("a number or a str")
+                                         : std::string("a number")) +
+                       ", not " +
+                       py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+}
+
+// Sets one option from a keyword argument through the option table; TypeError for an unknown
+// keyword or a value of the wrong kind, motifmine.Error (code 13) for one out of range.
 void SetMineOption(motifmine::MineOptions* options, const std::string& key, py::handle value) {
-  if (key == "eps")
-    options->eps = value.cast<double>();
-  else if (key == "eps_rule")
-    options->eps_rule = value.cast<std::string>();
-  else if (key == "eps_angle_degrees")
-    options->eps_angle_degrees = value.cast<double>();
-  else if (key == "k_max")
-    options->k_max = value.cast<uint32_t>();
-  else if (key == "branch")
-    options->branch = value.cast<uint32_t>();
-  else if (key == "min_length_seconds")
-    options->min_length_seconds = value.cast<double>();
-  else if (key == "min_length_frames")
-    options->min_length_frames = value.cast<uint64_t>();
-  else if (key == "groups")
-    options->groups = value.cast<uint32_t>();
-  else if (key == "seed")
-    options->seed = value.cast<uint64_t>();
-  else if (key == "threads")
-    options->threads = value.cast<int>();
-  else if (key == "skip_bad")
-    options->skip_bad = value.cast<bool>();
-  else if (key == "write_report")
-    options->write_report = value.cast<bool>();
-  else if (key == "synth_frames")
-    options->synth_frames = value.cast<uint64_t>();
-  else if (key == "synth_motifs")
-    options->synth_motifs = value.cast<uint32_t>();
-  else
-    throw py::type_error("mine() got an unexpected keyword argument '" + key + "'");
+  // Older names the table knows as aliases that are not the option itself.
+  static const std::vector<std::pair<std::string, std::string>> kTranslated = {
+      {"min_length_seconds", "number"}, {"min_length_frames", "count"}, {"write_report", "switch"}};
+  std::string type;
+  for (const auto& [name, kind] : kTranslated) {
+    if (key == name) type = kind;
+  }
+  if (type.empty()) {
+    const std::optional<motifmine::OptionInfo> row = OptionRow(key);
+    if (!row) throw py::type_error("mine() got an unexpected keyword argument '" + key + "'");
+    type = row->type;
+  }
+  Check(motifmine::SetMineOption(options, key, OptionText(key, type, value)));
 }
 
 motifmine::MineResult Mine(const std::vector<std::string>& inputs, const std::string& out_dir,
@@ -268,10 +288,37 @@ PYBIND11_MODULE(motifmine, m) {
   m.def("mine", &Mine, py::arg("inputs") = std::vector<std::string>{}, py::kw_only(),
         py::arg("out_dir"), py::arg("progress") = py::none(),
         "Mines takes, folders or an archive (the built-in synthetic archive when `inputs` is "
-        "empty) into out_dir, as `motifmine mine` does; options as keyword arguments (eps, "
-        "eps_rule, eps_angle_degrees, k_max, branch, min_length_seconds, min_length_frames, "
-        "groups, seed, threads, skip_bad, write_report, synth_frames, synth_motifs). "
+        "empty) into out_dir, as `motifmine mine` does; options as keyword arguments named as "
+        "the tool's flags with '_' for '-' (kmax, min_length, eps_angle, ...: "
+        "motifmine.option_table() lists them), and the older k_max, eps_angle_degrees, "
+        "min_length_seconds, min_length_frames and write_report. "
         "progress(stage, done, total) is called as it goes.");
+  m.def(
+      "option_table",
+      [] {
+        py::list rows;
+        for (const motifmine::OptionInfo& row : motifmine::MineOptionTable()) {
+          py::dict entry;
+          entry["name"] = row.name;
+          entry["keyword"] = [&] {
+            std::string keyword = row.name;
+            std::replace(keyword.begin(), keyword.end(), '-', '_');
+            return keyword;
+          }();
+          entry["type"] = row.type;
+          entry["default"] = row.default_value;
+          entry["min"] = row.min;
+          entry["max"] = row.max;
+          entry["min_exclusive"] = row.min_exclusive;
+          entry["choices"] = row.choices;
+          entry["aliases"] = row.aliases;
+          entry["help"] = row.help;
+          rows.append(entry);
+        }
+        return rows;
+      },
+      "Every option of mine(): a list of dicts (name, keyword, type, default, min, max, "
+      "min_exclusive, choices, aliases, help), as `motifmine mine --help` lists them.");
   m.def("import_takes", &ImportTakes, py::arg("archive"), py::arg("paths"), py::kw_only(),
         py::arg("skip_bad") = false, py::arg("threads") = 0,
         "Imports BVH / ASF+AMC takes and folders into an archive (created if missing).");

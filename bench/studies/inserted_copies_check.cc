@@ -22,15 +22,12 @@
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/evaluation/truth_score.h"
-#include "engine/grow/paths_builder.h"
+#include "engine/pipeline/mine_pipeline.h"
 #include "engine/synth/segment_insertion.h"
-#include "engine/trellis/trellis_builder.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
 #include "formats/import/take_importer.h"
 #include "formats/motion/pose_frames.h"
-#include "formats/paths_file/paths_file_reader.h"
-#include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {
 namespace {
@@ -47,23 +44,14 @@ struct Found {
   uint32_t motif = 0;
 };
 
+// The archive mined as `motifmine mine` mines it (the exact search, no report).
 Result<std::vector<Found>> Mine(const std::string& dir, const std::string& archive) {
-  TrellisOptions trellis_options;
-  trellis_options.search = TrellisSearchMode::kExact;
-  MOTIF_RETURN_IF_ERROR(BuildTrellis(archive, dir + "/t.mtr", trellis_options).status());
-  MOTIF_ASSIGN_OR_RETURN(const PathsReport paths_report,
-                         BuildPaths(archive, dir + "/t.mtr", dir + "/t.mpa", PathsOptions{}));
-  MOTIF_ASSIGN_OR_RETURN(auto paths, PathsFileReader::Open(dir + "/t.mpa"));
-  MOTIF_ASSIGN_OR_RETURN(auto trellis, TrellisFileReader::Open(dir + "/t.mtr"));
-  MOTIF_ASSIGN_OR_RETURN(auto frames, FrameFileReader::Open(archive));
-  ClusterOptions options;
-  options.archive = frames.get();
-  options.instances.min_length = paths_report.params.min_length;
-  MOTIF_ASSIGN_OR_RETURN(const ClusterResult result,
-                         ClusterMotifs(paths->candidates(), *trellis, options));
-  MOTIF_ASSIGN_OR_RETURN(const MotifsDocument document,
-                         MakeMotifsDocument(result, archive, frames->frame_count(), frames->clips(),
-                                            MotifsJsonParams{}));
+  motifmine::MineOptions options;
+  options.out_dir = dir;
+  options.search = "exact";
+  options.write_report = false;
+  MOTIF_ASSIGN_OR_RETURN(const MinePipelineResult run, RunMine(options, {archive}));
+  const MotifsDocument& document = run.document;
   std::vector<Found> found;
   for (const MotifsJsonMotif& motif : document.motifs) {
     for (const MotifsJsonInstance& instance : motif.instances) {

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "engine/cli/numeric_options.h"
+#include "engine/cli/table_options.h"
 #include "formats/frame_file/frame_file_reader.h"
 
 namespace motif::cli {
@@ -24,7 +25,7 @@ int ExitCodeFor(const Status& status) {
 }
 
 int ReportError(const std::string& command, const Status& status) {
-  std::fprintf(stderr, "motifmine %s: error: %s\n", command.c_str(), status.message().c_str());
+  std::fprintf(stderr, "motifmine %s: error: %s\n", command.c_str(), FlagMessage(status).c_str());
   return ExitCodeFor(status);
 }
 
@@ -104,6 +105,8 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
     po::notify(*vm);
     const Status numbers = CheckNumericOptions(parsed, *vm);
     if (!numbers.ok()) throw po::error(numbers.message());
+    const Status table = CheckTableFlags(spec, *vm);
+    if (!table.ok()) throw po::error(table.message());
     // verify reads the previous version to report on it: the damage is its finding.
     if (spec.name != "verify") InstallOlderVersionPolicy(spec.name, vm->count("allow-older") > 0);
   } catch (const po::error& error) {
@@ -160,32 +163,6 @@ std::string Percent(uint64_t part, uint64_t whole) {
   return text;
 }
 
-Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds) {
-  const bool in_seconds = !text.empty() && text.back() == 's';
-  const std::string number = in_seconds ? text.substr(0, text.size() - 1) : text;
-  char* end = nullptr;
-  const double value = std::strtod(number.c_str(), &end);
-  const bool parsed =
-      !number.empty() && end == number.c_str() + number.size() && std::isfinite(value) && value > 0;
-  if (!parsed || (!in_seconds && (value != std::floor(value) || value > 4294967296.0))) {
-    return Status::InvalidArgument(
-        "--min-length must be a whole number of frames (60) or "
-        "seconds with an s (0.5s), not '" +
-        text + "'");
-  }
-  *frames = in_seconds ? 0 : static_cast<uint64_t>(value);
-  *seconds = in_seconds ? value : 0;
-  return Status::Ok();
-}
-
-Status ParseSimilarity(const std::string& text, bool* warped) {
-  if (text != "warped" && text != "shared") {
-    return Status::InvalidArgument("--similarity must be warped or shared, not '" + text + "'");
-  }
-  *warped = text == "warped";
-  return Status::Ok();
-}
-
 Status ParseGroups(const std::string& text, uint32_t* groups) {
   if (text == "auto") {
     *groups = 0;
@@ -227,73 +204,12 @@ Result<WordsReaderOutput> WordsReaderOutputFrom(const po::variables_map& vm,
   return output;
 }
 
-void AddEpsilonRuleOptions(CommandSpec& spec) {
-  namespace po = boost::program_options;
-  spec.options.add_options()(
-      "eps-rule", po::value<std::string>()->default_value("joint-angle"),
-      "how eps is chosen when --eps is not given: joint-angle (poses match when their weighted "
-      "joints differ by about --eps-angle degrees) or paper (mu - 2 sigma of sampled pair "
-      "distances, Meng et al. 2008)")(
-      "eps-angle", po::value<double>()->default_value(kDefaultJointAngleDegrees),
-      "the joint-angle rule's tolerated rotation per weighted joint, in degrees");
-}
-
-Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisOptions* options) {
-  MOTIF_ASSIGN_OR_RETURN(options->eps_rule, ParseEpsilonRule(vm["eps-rule"].as<std::string>()));
-  const double angle = vm["eps-angle"].as<double>();
-  if (!(angle > 0 && angle <= 180)) {
-    return Status::InvalidArgument("--eps-angle must be in (0, 180] degrees, not " +
-                                   std::to_string(angle));
-  }
-  options->eps_joint_angle_degrees = angle;
-  return Status::Ok();
-}
-
 void ReportSkippedTakes(const std::string& command, const std::vector<std::string>& failures,
                         ProgressMode mode) {
   if (mode != ProgressMode::kQuiet) return;  // the progress display named them already
   for (const std::string& failure : failures) {
     std::fprintf(stderr, "motifmine %s: skipped: %s\n", command.c_str(), failure.c_str());
   }
-}
-
-void AddPauseOptions(CommandSpec& spec) {
-  namespace po = boost::program_options;
-  spec.options.add_options()(
-      "pause-speed", po::value<double>()->default_value(PauseOptions{}.max_speed),
-      "instances are trimmed to their movement: a pause, at least --pause-seconds in which the "
-      "joints turn slower than this (degrees per second, on average), is never an instance's "
-      "head or tail (0: no trimming)")(
-      "pause-seconds", po::value<double>()->default_value(PauseOptions{}.min_seconds),
-      "the shortest pause, seconds");
-}
-
-Status PauseOptionsFrom(const boost::program_options::variables_map& vm, PauseOptions* options) {
-  // The flags' ranges were checked with the other numbers (numeric_options.h, exit 2).
-  options->max_speed = vm["pause-speed"].as<double>();
-  options->min_seconds = vm["pause-seconds"].as<double>();
-  return ValidatePauseOptions(*options);
-}
-
-void AddPlaybackOption(CommandSpec& spec) {
-  spec.options.add_options()(
-      "playback-mb",
-      boost::program_options::value<uint32_t>()->default_value(
-          static_cast<uint32_t>(ReportOptions().playback_bytes >> 20)),
-      "MB of playback data in report.html (the player of every instance), motifs in rank "
-      "order; 0: none");
-}
-
-bool PlaybackBytesFrom(const CommandSpec& spec, const boost::program_options::variables_map& vm,
-                       uint64_t* bytes) {
-  const uint32_t megabytes = vm["playback-mb"].as<uint32_t>();
-  if (megabytes > 4096) {
-    std::fprintf(stderr, "motifmine %s: --playback-mb must be 0 to 4096, not %u\nusage: %s\n",
-                 spec.name.c_str(), megabytes, spec.usage.c_str());
-    return false;
-  }
-  *bytes = uint64_t{megabytes} << 20;
-  return true;
 }
 
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy) {

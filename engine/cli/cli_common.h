@@ -48,6 +48,7 @@ struct CommandSpec {
   std::string summary;  // one paragraph
   boost::program_options::options_description options{"Options", 100};
   std::vector<std::pair<std::string, int>> positional;  // name, count (-1: the rest)
+  std::vector<std::string> table_flags;  // the option table's flags it takes (table_options.h)
 };
 
 // Parses args (without the command name). On --help prints the help and sets *exit_now = true
@@ -70,28 +71,8 @@ std::string FormatBytes(uint64_t bytes);
 // part / whole as "57.2%" (0.0% when whole is 0).
 std::string Percent(uint64_t part, uint64_t whole);
 
-// --min-length: "60" is 60 frames (*frames = 60, *seconds = 0); "0.5s" is half a second at the
-// archive's rate (*frames = 0, *seconds = 0.5). InvalidArgument otherwise.
-Status ParseMinLength(const std::string& text, uint64_t* frames, double* seconds);
 // --groups: "auto" (*groups = 0) or a positive number. InvalidArgument otherwise.
 Status ParseGroups(const std::string& text, uint32_t* groups);
-// --similarity: "warped" (edge weights from the instances' time-warped distance) or "shared"
-// (the shared similar frames alone, as the paper scores instance pairs).
-Status ParseSimilarity(const std::string& text, bool* warped);
-// --eps-rule joint-angle|paper and --eps-angle DEG: how eps is chosen when --eps is not given
-// (engine/distance/epsilon_estimator.h). EpsilonRuleFrom reads them back into the trellis
-// options; InvalidArgument naming the flag for an unknown rule or an angle outside (0, 180].
-void AddEpsilonRuleOptions(CommandSpec& spec);
-Status EpsilonRuleFrom(const boost::program_options::variables_map& vm, TrellisOptions* options);
-// --pause-speed DEG_PER_S and --pause-seconds S: the pauses instances are trimmed at
-// (engine/cluster/pauses.h). PauseOptionsFrom reads them back; InvalidArgument naming the flag.
-void AddPauseOptions(CommandSpec& spec);
-Status PauseOptionsFrom(const boost::program_options::variables_map& vm, PauseOptions* options);
-// --playback-mb of `report` and `mine`: the report's player data budget (ReportOptions).
-void AddPlaybackOption(CommandSpec& spec);
-// Its value in bytes; false after a usage error naming the flag (exit 2) above 4096 MB.
-bool PlaybackBytesFrom(const CommandSpec& spec, const boost::program_options::variables_map& vm,
-                       uint64_t* bytes);
 // --first-frame: "auto", "keep" or "drop". InvalidArgument otherwise.
 Status ParseFirstFrame(const std::string& text, FirstFramePolicy* policy);
 

@@ -7,11 +7,13 @@
 #include <filesystem>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/cluster/cluster_stage.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motifs_json.h"
 #include "engine/evaluation/planted_motif_score.h"
 #include "engine/grow/paths_builder.h"
+#include "engine/pipeline/stage_options.h"
 #include "engine/synth/truth_json_reader.h"
 #include "engine/trellis/trellis_builder.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -57,9 +59,7 @@ int PrintTruthScore(const std::string& truth_path, const MotifsDocument& documen
   return kExitOk;
 }
 
-}  // namespace
-
-int RunCluster(const std::vector<std::string>& args) {
+CommandSpec ClusterCommandSpec() {
   CommandSpec spec;
   spec.name = "cluster";
   spec.usage =
@@ -72,134 +72,67 @@ int RunCluster(const std::vector<std::string>& args) {
       "(Shi & Malik), recursively until no cut is cheap (--groups auto) or into G groups.\n"
       "Writes DIR/motifs.json, motifs most important first. --truth scores them against the\n"
       "planted motifs of a synthetic archive (recall, precision, adjusted Rand index).";
-  NormalizedCutOptions cut_defaults;
-  SimilarityOptions similarity_defaults;
   spec.options.add_options()("trellis", po::value<std::string>()->default_value(""),
                              "default: ARCHIVE.mtr")(
       "paths", po::value<std::string>()->default_value(""), "default: ARCHIVE.mpa")(
-      "groups", po::value<std::string>()->default_value("auto"),
-      "number of motifs G, or auto (cut while a cut's Ncut is below --max-ncut)")(
-      "seed", po::value<uint64_t>()->default_value(1), "seed of the sparse eigensolver")(
       "out", po::value<std::string>(), "output folder (created if missing): DIR/motifs.json")(
       "truth", po::value<std::string>()->default_value(""),
-      "a synthetic archive's truth file: print recall, precision and ARI")(
-      "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
-      "similarity", po::value<std::string>()->default_value("warped"),
-      "how instance pairs are weighted for the normalized cut: warped (the time-warped distance of "
-      "their motions, each instance scaled by its nearest repetition) or shared (the similar "
-      "frames they share, as in the paper)")(
-      "max-ncut", po::value<double>()->default_value(cut_defaults.max_ncut),
-      "auto: stop cutting a group when its best cut's Ncut (0..2) is not below this")(
-      "min-similarity", po::value<double>()->default_value(similarity_defaults.min_similarity),
-      "instance pairs sharing less than this fraction of the shorter get no edge")(
-      "max-length-ratio", po::value<double>()->default_value(ClusterOptions{}.max_length_ratio),
-      "drop an instance from its motif when its length is more than this factor from the "
-      "motif's median (a fragment or a run-on; 0 keeps all)");
-  AddPauseOptions(spec);
+      "a synthetic archive's truth file: print recall, precision and ARI");
+  AddTableFlags(spec, kClusterFlags);
+  AddTableFlags(spec, kRunFlags);
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  if (!vm.count("out")) {
-    std::fprintf(stderr, "motifmine cluster: error: --out DIR is required\nusage: %s\n",
-                 spec.usage.c_str());
-    return kExitUsage;
-  }
-  const std::string archive = vm["archive"].as<std::string>();
-  std::string trellis_path = vm["trellis"].as<std::string>();
-  if (trellis_path.empty()) trellis_path = DefaultTrellisPath(archive);
+  return spec;
+}
+
+// The archive, its trellis and the paths grown through it, each checked against the others.
+struct ClusterInputs {
+  std::string archive_path;
+  std::string trellis_path;
+  std::unique_ptr<FrameFileReader> archive;
+  std::unique_ptr<TrellisFileReader> trellis;
+  LoadedPaths paths;
+};
+
+Result<ClusterInputs> OpenClusterInputs(const po::variables_map& vm) {
+  ClusterInputs inputs;
+  inputs.archive_path = vm["archive"].as<std::string>();
+  inputs.trellis_path = vm["trellis"].as<std::string>();
+  if (inputs.trellis_path.empty()) inputs.trellis_path = DefaultTrellisPath(inputs.archive_path);
   std::string paths_path = vm["paths"].as<std::string>();
-  if (paths_path.empty()) paths_path = DefaultPathsPath(archive);
-  const std::string out_dir = vm["out"].as<std::string>();
+  if (paths_path.empty()) paths_path = DefaultPathsPath(inputs.archive_path);
+  MOTIF_ASSIGN_OR_RETURN(inputs.archive, FrameFileReader::Open(inputs.archive_path));
+  MOTIF_ASSIGN_OR_RETURN(inputs.trellis, TrellisFileReader::Open(inputs.trellis_path));
+  if (inputs.trellis->params().archive_identity != inputs.archive->summary().identity ||
+      inputs.trellis->column_count() != inputs.archive->frame_count()) {
+    return Status::InvalidArgument(inputs.trellis_path + " was built over another archive than " +
+                                   inputs.archive_path + " (or another version of it)");
+  }
+  MOTIF_ASSIGN_OR_RETURN(inputs.paths, LoadPathCandidates(paths_path, *inputs.trellis));
+  return inputs;
+}
 
-  ClusterOptions options;
-  if (Status status = ParseGroups(vm["groups"].as<std::string>(), &options.cut.groups);
-      !status.ok()) {
-    return ReportError("cluster", status);
-  }
-  options.seed = vm["seed"].as<uint64_t>();
-  options.threads = vm["threads"].as<int>();
-  if (Status status = PauseOptionsFrom(vm, &options.pauses); !status.ok()) {
-    return ReportError("cluster", status);
-  }
-  options.cut.max_ncut = vm["max-ncut"].as<double>();
-  options.similarity.min_similarity = vm["min-similarity"].as<double>();
-  options.max_length_ratio = vm["max-length-ratio"].as<double>();
-  if (Status status = ParseSimilarity(vm["similarity"].as<std::string>(), &options.warped.enabled);
-      !status.ok()) {
-    return ReportError("cluster", status);
-  }
-  if (!(options.cut.max_ncut > 0) || !(options.similarity.min_similarity > 0) ||
-      options.similarity.min_similarity > 1) {
-    return ReportError("cluster", Status::InvalidArgument(
-                                      "--max-ncut must be > 0 and --min-similarity in (0, 1]"));
-  }
-  if (!(options.max_length_ratio == 0 || options.max_length_ratio >= 1) ||
-      !std::isfinite(options.max_length_ratio)) {
-    return ReportError("cluster",
-                       Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1"));
-  }
-
-  Result<std::unique_ptr<FrameFileReader>> frames = FrameFileReader::Open(archive);
-  if (!frames.ok()) return ReportError("cluster", frames.status());
-  Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(trellis_path);
-  if (!trellis.ok()) return ReportError("cluster", trellis.status());
-  if ((*trellis)->params().archive_identity != (*frames)->summary().identity ||
-      (*trellis)->column_count() != (*frames)->frame_count()) {
-    return ReportError(
-        "cluster", Status::InvalidArgument(trellis_path + " was built over another archive than " +
-                                           archive + " (or another version of it)"));
-  }
-  Result<LoadedPaths> paths = LoadPathCandidates(paths_path, **trellis);
-  if (!paths.ok()) return ReportError("cluster", paths.status());
-
-  ProgressReporter progress(ProgressModeFrom(vm));
-  bool started = false;
-  options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-    if (!started) progress.BeginStage(stage, total, "columns");
-    started = true;
-    progress.Update(done);
-  };
-  options.instances.min_length = paths->params.min_length;
-  options.archive = frames->get();
-  Result<ClusterResult> result = ClusterMotifs(paths->candidates, **trellis, options);
-  if (started) progress.EndStage();
-  if (!result.ok()) return ReportError("cluster", result.status());
-
-  MotifsJsonParams params;
-  params.eps = (*trellis)->params().eps;
-  params.kmax = (*trellis)->params().k_max;
-  params.branch = paths->params.branch;
-  params.min_length = paths->params.min_length;
-  params.groups = options.cut.groups;
-  params.seed = options.seed;
-  params.similarity = options.warped.enabled ? "warped" : "shared";
-  if (options.archive != nullptr) {  // trimmed only with the archive
-    params.pause_speed = options.pauses.max_speed;
-    params.pause_seconds = options.pauses.min_seconds;
-  }
-  Result<MotifsDocument> document =
-      MakeMotifsDocument(*result, archive, (*frames)->frame_count(), (*frames)->clips(), params);
-  if (!document.ok()) return ReportError("cluster", document.status());
-  document->archive_version = ArchiveVersionOf(**frames);
+// DIR/motifs.json; its path.
+Result<std::string> WriteClusterDocument(const std::string& out_dir,
+                                         const MotifsDocument& document) {
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
-  if (error) {
-    return ReportError("cluster",
-                       Status::IOError("cannot create " + out_dir + ": " + error.message()));
-  }
+  if (error) return Status::IOError("cannot create " + out_dir + ": " + error.message());
   const std::string out_path = (std::filesystem::path(out_dir) / "motifs.json").string();
-  if (Status status = WriteMotifsJson(out_path, *document); !status.ok()) {
-    return ReportError("cluster", status);
-  }
+  MOTIF_RETURN_IF_ERROR(WriteMotifsJson(out_path, document));
+  return out_path;
+}
 
-  const ClusterReport& report = result->report;
+void PrintClusterReport(const std::string& out_path, const ClusterResult& result,
+                        const MotifsDocument& document, const ClusterOptions& options,
+                        uint64_t frame_count) {
+  const ClusterReport& report = result.report;
   const InstanceSetStats& instances = report.instance_stats;
   const SimilarityStats& similarity = report.similarity_stats;
   std::printf("wrote %s\n", out_path.c_str());
   std::printf("  motifs       %s (groups %s; %s connected components)\n",
-              WithCommas(result->motifs.size()).c_str(),
-              params.groups ? std::to_string(params.groups).c_str() : "auto",
+              WithCommas(result.motifs.size()).c_str(),
+              options.cut.groups ? std::to_string(options.cut.groups).c_str() : "auto",
               WithCommas(report.cut_stats.components).c_str());
   std::printf(
       "  instances    %s in motifs (%s fragments dropped), of %s merged from "
@@ -214,7 +147,7 @@ int RunCluster(const std::vector<std::string>& args) {
       WithCommas(instances.still_instances).c_str());
   std::printf("  coverage     %s frames, %s of the archive\n",
               WithCommas(report.covered_frames).c_str(),
-              Percent(report.covered_frames, (*frames)->frame_count()).c_str());
+              Percent(report.covered_frames, frame_count).c_str());
   std::printf(
       "  graph        %s edges (%s similar pairs, %s links), %s farther apart than %g scales "
       "dropped\n",
@@ -227,14 +160,54 @@ int RunCluster(const std::vector<std::string>& args) {
       report.instance_seconds, similarity.seconds, WithCommas(similarity.blocks_decoded).c_str(),
       report.warped_stats.seconds, report.cut_seconds,
       WithCommas(report.cut_stats.eigen_solves).c_str());
-  for (size_t rank = 0; rank < std::min<size_t>(5, document->motifs.size()); ++rank) {
-    const MotifsJsonMotif& motif = document->motifs[rank];
+  for (size_t rank = 0; rank < std::min<size_t>(5, document.motifs.size()); ++rank) {
+    const MotifsJsonMotif& motif = document.motifs[rank];
     const MotifsJsonInstance& first = motif.instances.front();
     std::printf("  motif %-6zu %zu instances, mean %.0f frames, e.g. %s [%llu, %llu)\n", rank,
-                motif.instances.size(), result->motifs[rank].mean_length(), first.clip.c_str(),
+                motif.instances.size(), result.motifs[rank].mean_length(), first.clip.c_str(),
                 static_cast<unsigned long long>(first.start),
                 static_cast<unsigned long long>(first.end));
   }
+}
+
+}  // namespace
+
+int RunCluster(const std::vector<std::string>& args) {
+  CommandSpec spec = ClusterCommandSpec();
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  if (!vm.count("out")) {
+    std::fprintf(stderr, "motifmine cluster: error: --out DIR is required\nusage: %s\n",
+                 spec.usage.c_str());
+    return kExitUsage;
+  }
+  const auto fail = [](const Status& status) { return ReportError("cluster", status); };
+  motifmine::MineOptions mine;
+  ReadTableFlags(spec, vm, &mine);
+  Result<ClusterOptions> options = ClusterOptionsFor(mine);
+  if (!options.ok()) return fail(options.status());
+  Result<ClusterInputs> inputs = OpenClusterInputs(vm);
+  if (!inputs.ok()) return fail(inputs.status());
+  ProgressReporter progress(ProgressModeFrom(vm));
+  bool started = false;
+  options->progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
+    if (!started) progress.BeginStage(stage, total, "columns");
+    started = true;
+    progress.Update(done);
+  };
+  options->instances.min_length = inputs->paths.params.min_length;
+  options->archive = inputs->archive.get();
+  Result<ClusterResult> result =
+      ClusterMotifs(inputs->paths.candidates, *inputs->trellis, *options);
+  if (started) progress.EndStage();
+  if (!result.ok()) return fail(result.status());
+  Result<MotifsDocument> document =
+      ClusteredDocument(*result, inputs->archive_path, *inputs->archive, *inputs->trellis,
+                        inputs->paths.params, *options);
+  if (!document.ok()) return fail(document.status());
+  Result<std::string> out_path = WriteClusterDocument(vm["out"].as<std::string>(), *document);
+  if (!out_path.ok()) return fail(out_path.status());
+  PrintClusterReport(*out_path, *result, *document, *options, inputs->archive->frame_count());
   const std::string truth = vm["truth"].as<std::string>();
   if (!truth.empty()) return PrintTruthScore(truth, *document);
   return kExitOk;

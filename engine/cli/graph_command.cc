@@ -14,6 +14,7 @@
 #include "engine/graph/transition_search.h"
 #include "engine/graph/transition_signatures.h"
 #include "engine/graph/walk_take.h"
+#include "engine/pipeline/mine_pipeline.h"
 #include "engine/trellis/trellis_builder.h"
 #include "formats/export/bvh_writer.h"
 
@@ -113,15 +114,39 @@ nlohmann::json WalkJson(const std::vector<WalkPiece>& pieces, const FrameFileRea
   return json;
 }
 
-// Whether `path` holds a finished trellis of `reader`'s archive version.
-bool TrellisOfArchive(const std::string& path, const FrameFileReader& reader) {
-  Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(path);
-  return trellis.ok() && (*trellis)->params().archive_identity == reader.summary().identity &&
-         (*trellis)->column_count() == reader.frame_count();
-}
-
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A finished trellis of this archive is used as it is, whatever options built it (its eps is
+// the user's choice); one of another archive version, or none, is built with the defaults: the
+// pipeline's trellis stage alone.
+Status EnsureGraphTrellis(const FrameFileReader& archive, const std::string& archive_path,
+                          const std::string& trellis_path, int threads,
+                          ProgressReporter* progress) {
+  motifmine::MineOptions options;
+  options.threads = threads;
+  RunFiles files;
+  files.dir = std::filesystem::path(trellis_path).parent_path().string();
+  if (files.dir.empty()) files.dir = ".";
+  files.archive = archive_path;
+  files.trellis = trellis_path;
+  RunHooks hooks;
+  hooks.progress = [progress](const std::string& stage, uint64_t done, uint64_t total,
+                              const std::string& unit) {
+    progress->StageUpdate(stage, done, total, unit);
+  };
+  hooks.note = [progress](const std::string& message) { progress->Note(message); };
+  RunSession session(options, {}, files, hooks);
+  session.UseArchive(&archive);
+  StagePlan plan;
+  plan.archive = ArchiveStep::kGiven;
+  plan.trellis = TrellisStep::kAnyOfArchive;
+  plan.grow = plan.cluster = plan.score = plan.report = plan.run_record = false;
+  plan.lock_folder = false;
+  const Status status = MinePipeline(&session, plan).Run().status();
+  progress->EndStages();
+  return status;
 }
 
 }  // namespace
@@ -203,18 +228,9 @@ int RunGraph(const std::vector<std::string>& args) {
   auto clock = std::chrono::steady_clock::now();
   run.trellis = vm["trellis"].as<std::string>();
   if (run.trellis.empty()) run.trellis = DefaultTrellisPath(run.archive);
-  // A finished trellis of this archive is used as it is, whatever options built it (its eps is
-  // the user's choice); one of another archive version, or none, is built with the defaults.
-  if (!TrellisOfArchive(run.trellis, reader)) {
-    TrellisOptions trellis_options;
-    trellis_options.threads = threads;
-    trellis_options.progress = [&](const std::string& name, uint64_t done, uint64_t total) {
-      progress.StageUpdate(name, done, total, name == "eps" ? "pairs" : "frames");
-    };
-    trellis_options.note = [&](const std::string& message) { progress.Note(message); };
-    Result<TrellisReport> built = BuildTrellis(run.archive, run.trellis, trellis_options);
-    progress.EndStages();
-    if (!built.ok()) return fail(built.status());
+  if (Status status = EnsureGraphTrellis(reader, run.archive, run.trellis, threads, &progress);
+      !status.ok()) {
+    return fail(status);
   }
   Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(run.trellis);
   if (!trellis.ok()) return fail(trellis.status());

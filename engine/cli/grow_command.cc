@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/grow/paths_builder.h"
 #include "engine/trellis/trellis_builder.h"
 
@@ -28,14 +29,8 @@ int RunGrow(const std::vector<std::string>& args) {
       "An existing paths file grown from the same trellis with the same parameters is reused.";
   spec.options.add_options()("trellis", po::value<std::string>()->default_value(""),
                              "default: ARCHIVE.mtr")(
-      "branch", po::value<uint32_t>()->default_value(GrowOptions{}.branch),
-      "branching factor B (the paper's experiments: 5)")(
-      "min-length", po::value<std::string>()->default_value("0.5s"),
-      "minimum path length lambda, on both sides: frames (60) or seconds (0.5s)")(
-      "all-branches",
-      "keep every path of a tree that died long enough (default: the longest "
-      "of each tree)")("out", po::value<std::string>()->default_value(""),
-                       "paths file (default ARCHIVE.mpa)");
+      "out", po::value<std::string>()->default_value(""), "paths file (default ARCHIVE.mpa)");
+  AddTableFlags(spec, kGrowFlags);
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   po::variables_map vm;
@@ -46,14 +41,13 @@ int RunGrow(const std::vector<std::string>& args) {
   std::string out = vm["out"].as<std::string>();
   if (out.empty()) out = DefaultPathsPath(archive);
 
+  motifmine::MineOptions mine;
+  ReadTableFlags(spec, vm, &mine);
   PathsOptions options;
-  options.branch = vm["branch"].as<uint32_t>();
-  options.all_branches = vm.count("all-branches") > 0;
-  if (Status status = ParseMinLength(vm["min-length"].as<std::string>(), &options.min_length_frames,
-                                     &options.min_length_seconds);
-      !status.ok()) {
-    return ReportError("grow", status);
-  }
+  options.branch = mine.branch;
+  options.all_branches = mine.all_branches;
+  options.min_length_frames = mine.min_length_frames;
+  options.min_length_seconds = mine.min_length_seconds;
   ProgressReporter progress(ProgressModeFrom(vm));
   bool started = false;
   options.progress = [&](uint64_t done, uint64_t total) {

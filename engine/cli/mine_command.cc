@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/pipeline/mine_pipeline.h"
 
 namespace motif::cli {
@@ -174,136 +175,83 @@ bool IsOtherRank(const MineAcrossRanks& across) {
   return across.ranks != nullptr && across.ranks->rank() != 0;
 }
 
+const char kMineSummary[] =
+    "Mines the recurring motions of an archive end to end: the matching trellis (eps-NN of\n"
+    "every frame), the continuous paths through it, their clustering into motifs, and a\n"
+    "report. INPUT is an archive (.mfs) or BVH / ASF+AMC takes and folders (imported into\n"
+    "DIR/archive.mfs); with no INPUT a built-in synthetic archive with planted motifs is\n"
+    "mined and the planted motifs are scored. Writes DIR/motifs.json, DIR/report.html and a\n"
+    "summary. A second run reuses every stage whose inputs and parameters did not change.";
+
+CommandSpec MineCommandSpec() {
+  CommandSpec spec;
+  spec.name = "mine";
+  spec.usage = "motifmine mine [INPUT...] --out DIR [options]";
+  spec.summary = kMineSummary;
+  spec.options.add_options()("out", po::value<std::string>(), "output folder (created if missing)");
+  AddTableFlags(spec, AllTableFlags());
+  AddProgressOptions(spec);
+  spec.positional = {{"input", -1}};
+  return spec;
+}
+
+// The run's options and inputs from the command line; -1, or the exit code of a usage error.
+int ReadMineCommand(const CommandSpec& spec, const po::variables_map& vm,
+                    const MineAcrossRanks& across, motifmine::MineOptions* options,
+                    std::vector<std::string>* inputs) {
+  if (!vm.count("out")) {
+    std::fprintf(stderr, "motifmine mine: error: --out DIR is required\nusage: %s\n",
+                 spec.usage.c_str());
+    return kExitUsage;
+  }
+  ReadTableFlags(spec, vm, options);
+  options->out_dir = vm["out"].as<std::string>();
+  if (options->threads == 0) options->threads = across.default_threads;
+  if (vm.count("input")) *inputs = vm["input"].as<std::vector<std::string>>();
+  return -1;
+}
+
+// The summary, and the takes --skip-bad passed over: exit 3 when there were any.
+int FinishMine(const MinePipelineResult& result, const po::variables_map& vm) {
+  PrintSummary(result);
+  if (result.skipped_takes.empty()) return kExitOk;
+  std::printf("  skipped      %s (--skip-bad; named on stderr)\n",
+              CountOf(result.skipped_takes.size(), "bad take").c_str());
+  ReportSkippedTakes("mine", result.skipped_takes, ProgressModeFrom(vm));
+  return kExitWarnings;  // mined the good takes
+}
+
 // `mine`, on one process or on a rank of a distributed run.
 int RunMineCommand(const std::vector<std::string>& args, const MineAcrossRanks& across) {
   // Another rank of a distributed run prints nothing but an error of its own: rank 0 reports.
   const bool other_rank = IsOtherRank(across);
   std::optional<SilencedOutput> silenced;
   if (other_rank) silenced.emplace();
-  CommandSpec spec;
-  spec.name = "mine";
-  spec.usage = "motifmine mine [INPUT...] --out DIR [options]";
-  spec.summary =
-      "Mines the recurring motions of an archive end to end: the matching trellis (eps-NN of\n"
-      "every frame), the continuous paths through it, their clustering into motifs, and a\n"
-      "report. INPUT is an archive (.mfs) or BVH / ASF+AMC takes and folders (imported into\n"
-      "DIR/archive.mfs); with no INPUT a built-in synthetic archive with planted motifs is\n"
-      "mined and the planted motifs are scored. Writes DIR/motifs.json, DIR/report.html and a\n"
-      "summary. A second run reuses every stage whose inputs and parameters did not change.";
-  const MinePipelineOptions defaults = DefaultMinePipelineOptions();
-  spec.options.add_options()("out", po::value<std::string>(), "output folder (created if missing)")(
-      "eps", po::value<float>()->default_value(0), "pose distance threshold; 0: by --eps-rule")(
-      "kmax", po::value<uint32_t>()->default_value(defaults.trellis.k_max),
-      "neighbours kept per frame, nearest")(
-      "exclusion", po::value<uint32_t>()->default_value(defaults.trellis.exclusion_frames),
-      "same-clip exclusion radius in frames; 0: half the minimum length")(
-      "search", po::value<std::string>()->default_value("auto"),
-      "neighbour search: auto (exact on small archives), lsh or exact")(
-      "tables", po::value<uint32_t>()->default_value(LshOptions{}.tables), "LSH hash tables")(
-      "hashes", po::value<uint32_t>()->default_value(0),
-      "LSH projections per table (0: from the archive's size)")(
-      "width", po::value<float>()->default_value(0), "LSH bucket width (0: from the data)")(
-      "branch", po::value<uint32_t>()->default_value(defaults.paths.branch),
-      "branching factor B of the path grower")("min-length",
-                                               po::value<std::string>()->default_value("0.5s"),
-                                               "least motif length: frames (60) or seconds (0.5s)")(
-      "groups", po::value<std::string>()->default_value("auto"), "number of motifs, or auto")(
-      "similarity", po::value<std::string>()->default_value("warped"),
-      "how instance pairs are weighted for the normalized cut: warped (the time-warped distance of "
-      "their motions, each instance scaled by its nearest repetition) or shared (the similar "
-      "frames they share, as in the paper)")(
-      "max-length-ratio", po::value<double>()->default_value(defaults.cluster.max_length_ratio),
-      "drop an instance from its motif when its length is more than this factor from the "
-      "motif's median (0 keeps all)")("seed", po::value<uint64_t>()->default_value(defaults.seed),
-                                      "seed of every random choice")(
-      "threads", po::value<int>()->default_value(defaults.threads), "threads (0: all cores)")(
-      "synth-frames", po::value<uint64_t>()->default_value(defaults.synth.frames),
-      "no INPUT: frames of the synthetic archive")(
-      "synth-motifs", po::value<uint32_t>()->default_value(defaults.synth.motifs),
-      "no INPUT: planted motifs of the synthetic archive")(
-      "skip-bad", "import: report malformed takes and import the others")(
-      "descriptions", po::value<std::string>()->default_value(""),
-      "import: a tab-separated index with 'file' and 'description' columns; the report shows "
-      "each take's description")("no-report", "do not write report.html");
-  AddPlaybackOption(spec);
-  AddEpsilonRuleOptions(spec);
-  AddPauseOptions(spec);
-  AddProgressOptions(spec);
-  spec.positional = {{"input", -1}};
+  CommandSpec spec = MineCommandSpec();
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  if (!vm.count("out")) {
-    std::fprintf(stderr, "motifmine mine: error: --out DIR is required\nusage: %s\n",
-                 spec.usage.c_str());
-    return kExitUsage;
-  }
-  MinePipelineOptions options = DefaultMinePipelineOptions();
-  options.out_dir = vm["out"].as<std::string>();
-  if (vm.count("input")) options.inputs = vm["input"].as<std::vector<std::string>>();
-  options.seed = vm["seed"].as<uint64_t>();
-  options.threads = vm["threads"].as<int>();
-  if (options.threads == 0) options.threads = across.default_threads;
-  options.ranks = across.ranks;
-  options.on_shared_failure = [&](const Status& status) {
+  motifmine::MineOptions options;
+  std::vector<std::string> inputs;
+  if (int code = ReadMineCommand(spec, vm, across, &options, &inputs); code >= 0) return code;
+
+  ProgressReporter progress(other_rank ? ProgressMode::kQuiet : ProgressModeFrom(vm));
+  StageProgress stages(&progress);
+  RunHooks hooks;
+  hooks.ranks = across.ranks;
+  hooks.on_shared_failure = [&](const Status& status) {
     silenced.reset();
     const int code = ReportError("mine", status);
     if (across.abort_all) across.abort_all(code);
   };
-  options.skip_bad = vm.count("skip-bad") > 0;
-  options.descriptions_path = vm["descriptions"].as<std::string>();
-  options.write_report = vm.count("no-report") == 0;
-  if (!PlaybackBytesFrom(spec, vm, &options.report_playback_bytes)) return kExitUsage;
-  options.synth.frames = vm["synth-frames"].as<uint64_t>();
-  options.synth.motifs = vm["synth-motifs"].as<uint32_t>();
-  const auto fail = [](const Status& status) { return ReportError("mine", status); };
-
-  // Every parameter is checked before any work.
-  TrellisOptions& trellis = options.trellis;
-  trellis.eps = vm["eps"].as<float>();
-  trellis.k_max = vm["kmax"].as<uint32_t>();
-  trellis.exclusion_frames = vm["exclusion"].as<uint32_t>();
-  if (Status status = EpsilonRuleFrom(vm, &trellis); !status.ok()) return fail(status);
-  Result<TrellisSearchMode> search = ParseTrellisSearchMode(vm["search"].as<std::string>());
-  if (!search.ok()) return fail(search.status());
-  trellis.search = *search;
-  trellis.lsh.tables = vm["tables"].as<uint32_t>();
-  trellis.lsh.hashes_per_table = vm["hashes"].as<uint32_t>();
-  trellis.lsh.bucket_width = vm["width"].as<float>();
-  options.paths.branch = vm["branch"].as<uint32_t>();
-  if (Status status =
-          ParseMinLength(vm["min-length"].as<std::string>(), &options.paths.min_length_frames,
-                         &options.paths.min_length_seconds);
-      !status.ok()) {
-    return fail(status);
-  }
-  options.groups_text = vm["groups"].as<std::string>();
-  ClusterOptions& cluster = options.cluster;
-  if (Status status = ParseGroups(options.groups_text, &cluster.cut.groups); !status.ok()) {
-    return fail(status);
-  }
-  if (Status status = ParseSimilarity(vm["similarity"].as<std::string>(), &cluster.warped.enabled);
-      !status.ok()) {
-    return fail(status);
-  }
-  if (Status status = PauseOptionsFrom(vm, &cluster.pauses); !status.ok()) return fail(status);
-  cluster.max_length_ratio = vm["max-length-ratio"].as<double>();
-
-  ProgressReporter progress(other_rank ? ProgressMode::kQuiet : ProgressModeFrom(vm));
-  StageProgress stages(&progress);
-  options.progress = [&](const std::string& stage, uint64_t done, uint64_t total,
-                         const std::string& unit) { stages.Update(stage, done, total, unit); };
-  options.note = [&](const std::string& message) {
+  hooks.progress = [&](const std::string& stage, uint64_t done, uint64_t total,
+                       const std::string& unit) { stages.Update(stage, done, total, unit); };
+  hooks.note = [&](const std::string& message) {
     if (!other_rank) progress.Note(message);
   };
-  Result<MinePipelineResult> result = MinePipeline(std::move(options)).Run();
+  Result<MinePipelineResult> result = RunMine(options, inputs, std::move(hooks));
   stages.End();
-  if (!result.ok()) return fail(result.status());
-  PrintSummary(*result);
-  if (result->skipped_takes.empty()) return kExitOk;
-  std::printf("  skipped      %s (--skip-bad; named on stderr)\n",
-              CountOf(result->skipped_takes.size(), "bad take").c_str());
-  ReportSkippedTakes("mine", result->skipped_takes, ProgressModeFrom(vm));
-  return kExitWarnings;  // mined the good takes
+  if (!result.ok()) return ReportError("mine", result.status());
+  return FinishMine(*result, vm);
 }
 
 }  // namespace

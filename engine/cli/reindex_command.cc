@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/reindex/reindexer.h"
 
 namespace motif::cli {
@@ -140,9 +141,7 @@ void PrintSummary(const ReindexReport& report, int exit_code, bool json) {
   }
 }
 
-}  // namespace
-
-int RunReindex(const std::vector<std::string>& args) {
+CommandSpec ReindexCommandSpec() {
   CommandSpec spec;
   spec.name = "reindex";
   spec.usage = "motifmine reindex ARCHIVE --watch DIR --out OUTDIR [options]";
@@ -156,47 +155,28 @@ int RunReindex(const std::vector<std::string>& args) {
       "done or up to date, 3 done with files not imported, 17 another run holds OUTDIR.";
   spec.options.add_options()("watch", po::value<std::string>(),
                              "folder of BVH / ASF+AMC takes (searched recursively)")(
-      "out", po::value<std::string>(), "output folder (created if missing)")(
-      "eps", po::value<std::string>(),
-      "pose distance threshold, or auto (estimated by --eps-rule); default: recorded at the "
-      "first run (auto then)")(
-      "eps-rule", po::value<std::string>(),
-      "how eps is estimated: joint-angle (mine's default) or paper (mu - 2 sigma of sampled "
-      "pairs); default: the recorded rule; another one estimates eps again (a full build)")(
-      "eps-angle", po::value<double>(),
-      "the joint-angle rule's tolerated rotation per weighted joint, in degrees (first run: "
-      "12); another one estimates eps again")("kmax", po::value<uint32_t>(),
-                                              "neighbours kept per frame (first run: 256)")(
-      "exclusion", po::value<uint32_t>(),
-      "same-clip exclusion radius in frames (0: half the "
-      "minimum length)")("search", po::value<std::string>(),
-                         "auto, lsh or exact (first run: auto)")("tables", po::value<uint32_t>(),
-                                                                 "LSH hash tables")(
-      "hashes", po::value<uint32_t>(), "LSH projections per table (first run: from the size)")(
-      "width", po::value<float>(), "LSH bucket width (first run: from the data)")(
-      "seed", po::value<uint64_t>(), "seed of every random choice (first run: 1)")(
-      "weights", po::value<std::string>(), "per-joint weights file")(
-      "branch", po::value<uint32_t>(), "branching factor B of the path grower (first run: 5)")(
-      "min-length", po::value<std::string>(),
-      "least motif length: frames (60) or seconds "
-      "(0.5s, the first run's default)")("groups", po::value<std::string>(),
-                                         "number of motifs, or auto (the first run's)")(
-      "max-ncut", po::value<double>(), "clustering: stop cutting at this Ncut (0.5)")(
-      "min-similarity", po::value<double>(), "clustering: least similarity of an edge (0.1)")(
-      "max-length-ratio", po::value<double>(), "clustering: split by length beyond this (3)")(
+      "out", po::value<std::string>(), "output folder (created if missing)");
+  for (const std::vector<std::string>* flags :
+       {&kRadiusFlags, &kTrellisFlags, &kLshFlags, &kGrowFlags, &kClusterFlags}) {
+    AddTableFlags(spec, *flags, TableDefaults::kRecorded);
+  }
+  AddTableFlags(spec, {"seed"}, TableDefaults::kRecorded);
+  AddTableFlags(spec, {"threads", "skip-bad", "no-report"});
+  spec.options.add_options()(
       "min-age", po::value<double>()->default_value(60),
       "seconds since a take's last change before it is imported (files still being copied "
       "wait for the next run)")("fps", po::value<double>()->default_value(0),
                                 "frame rate of a NEW archive")(
       "first-frame", po::value<std::string>()->default_value("auto"),
-      "auto: drop a first frame that is a converter's T-pose; keep; drop")(
-      "skip-bad", "import the good takes and report the bad ones (exit 3) instead of stopping")(
-      "no-report", "do not write report.html")("threads", po::value<int>()->default_value(0),
-                                               "threads (0: all cores)");
+      "auto: drop a first frame that is a converter's T-pose; keep; drop");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  return spec;
+}
+
+// The run's options from the command line; -1, or the exit code of a usage error or a failure.
+int ReadReindexCommand(const CommandSpec& spec, const po::variables_map& vm,
+                       ReindexOptions* options) {
   if (!vm.count("watch") || !vm.count("out")) {
     std::fprintf(stderr,
                  "motifmine reindex: error: --watch DIR and --out OUTDIR are required\n"
@@ -204,91 +184,27 @@ int RunReindex(const std::vector<std::string>& args) {
                  spec.usage.c_str());
     return kExitUsage;
   }
-  const auto fail = [](const Status& status) { return ReportError("reindex", status); };
-
-  ReindexOptions options;
-  options.archive_path = vm["archive"].as<std::string>();
-  options.watch_dir = vm["watch"].as<std::string>();
-  options.out_dir = vm["out"].as<std::string>();
-  if (vm.count("eps")) {
-    const std::string text = vm["eps"].as<std::string>();
-    char* end = nullptr;
-    const float eps = text == "auto" ? 0.0f : std::strtof(text.c_str(), &end);
-    if (text != "auto" && (*end != '\0' || !(eps > 0) || !std::isfinite(eps))) {
-      return fail(Status::InvalidArgument("--eps must be a positive number or auto"));
-    }
-    options.eps = eps;
-  }
-  if (vm.count("eps-rule")) {
-    Result<EpsilonRule> rule = ParseEpsilonRule(vm["eps-rule"].as<std::string>());
-    if (!rule.ok()) return fail(rule.status());
-    options.eps_rule = *rule;
-  }
-  if (vm.count("eps-angle")) {
-    const double angle = vm["eps-angle"].as<double>();
-    if (!(angle > 0 && angle <= 180)) {
-      return fail(Status::InvalidArgument("--eps-angle must be in (0, 180] degrees, not " +
-                                          std::to_string(angle)));
-    }
-    options.eps_angle_degrees = angle;
-  }
-  if (vm.count("kmax")) {
-    options.k_max = vm["kmax"].as<uint32_t>();
-    if (*options.k_max == 0) return fail(Status::InvalidArgument("--kmax must be > 0"));
-  }
-  if (vm.count("exclusion")) options.exclusion = vm["exclusion"].as<uint32_t>();
-  if (vm.count("search")) {
-    Result<TrellisSearchMode> search = ParseTrellisSearchMode(vm["search"].as<std::string>());
-    if (!search.ok()) return fail(search.status());
-    options.search = *search;
-  }
-  if (vm.count("tables")) options.lsh_tables = vm["tables"].as<uint32_t>();
-  if (vm.count("hashes")) options.lsh_hashes = vm["hashes"].as<uint32_t>();
-  if (vm.count("width")) options.lsh_width = vm["width"].as<float>();
-  if (vm.count("seed")) options.seed = vm["seed"].as<uint64_t>();
-  if (vm.count("weights")) options.weights_path = vm["weights"].as<std::string>();
-  if (vm.count("branch")) {
-    options.branch = vm["branch"].as<uint32_t>();
-    if (*options.branch == 0) return fail(Status::InvalidArgument("--branch must be > 0"));
-  }
-  if (vm.count("min-length")) {
-    uint64_t frames = 0;
-    double seconds = 0;
-    if (Status status = ParseMinLength(vm["min-length"].as<std::string>(), &frames, &seconds);
-        !status.ok()) {
-      return fail(status);
-    }
-    if (frames > 0) {
-      options.min_length_frames = frames;
-    } else {
-      options.min_length_seconds = seconds;
-    }
-  }
-  if (vm.count("groups")) {
-    uint32_t groups = 0;
-    if (Status status = ParseGroups(vm["groups"].as<std::string>(), &groups); !status.ok()) {
-      return fail(status);
-    }
-    options.groups = groups;
-  }
-  if (vm.count("max-ncut")) options.max_ncut = vm["max-ncut"].as<double>();
-  if (vm.count("min-similarity")) options.min_similarity = vm["min-similarity"].as<double>();
-  if (vm.count("max-length-ratio")) {
-    options.max_length_ratio = vm["max-length-ratio"].as<double>();
-    if (!(*options.max_length_ratio == 0 || *options.max_length_ratio >= 1)) {
-      return fail(Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1"));
-    }
-  }
-  options.min_age_seconds = vm["min-age"].as<double>();
+  options->archive_path = vm["archive"].as<std::string>();
+  options->watch_dir = vm["watch"].as<std::string>();
+  options->out_dir = vm["out"].as<std::string>();
+  ReadTableFlags(spec, vm, &options->mine, &options->given);
+  options->min_age_seconds = vm["min-age"].as<double>();
   if (Status status =
-          ParseFirstFrame(vm["first-frame"].as<std::string>(), &options.import.first_frame);
+          ParseFirstFrame(vm["first-frame"].as<std::string>(), &options->import.first_frame);
       !status.ok()) {
-    return fail(status);
+    return ReportError("reindex", status);
   }
-  options.skip_bad = vm.count("skip-bad") > 0;
-  options.report = vm.count("no-report") == 0;
-  options.threads = vm["threads"].as<int>();
+  return -1;
+}
 
+}  // namespace
+
+int RunReindex(const std::vector<std::string>& args) {
+  CommandSpec spec = ReindexCommandSpec();
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  ReindexOptions options;
+  if (int code = ReadReindexCommand(spec, vm, &options); code >= 0) return code;
   const ProgressMode mode = ProgressModeFrom(vm);
   ProgressReporter reporter(mode);
   StageProgress stages(&reporter);
@@ -301,7 +217,7 @@ int RunReindex(const std::vector<std::string>& args) {
     const int code = ReportError("reindex", report.status());
     if (mode == ProgressMode::kJson) {
       nlohmann::json line = {
-          {"event", "reindex"}, {"exit_code", code}, {"error", report.status().message()}};
+          {"event", "reindex"}, {"exit_code", code}, {"error", FlagMessage(report.status())}};
       std::printf("%s\n", line.dump().c_str());
     }
     return code;

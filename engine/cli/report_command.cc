@@ -5,8 +5,10 @@
 
 #include "engine/cli/cli_common.h"
 #include "engine/cli/mined_motifs.h"
+#include "engine/cli/table_options.h"
 #include "engine/evaluation/planted_motif_score.h"
 #include "engine/pipeline/run_record.h"
+#include "engine/pipeline/stage_options.h"
 #include "engine/report/report_html.h"
 #include "engine/synth/truth_json_reader.h"
 
@@ -40,7 +42,7 @@ int RunReport(const std::vector<std::string>& args) {
       "motifs whose figures are written as SVG; the rest are drawn by the page's script")(
       "truth", po::value<std::string>()->default_value(""),
       "a synthetic archive's truth file: add recall, precision and ARI to the overview");
-  AddPlaybackOption(spec);
+  AddTableFlags(spec, {"playback-mb"});
   spec.positional = {{"dir", 1}};
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
@@ -54,7 +56,9 @@ int RunReport(const std::vector<std::string>& args) {
   options.keyframes = vm["keyframes"].as<uint32_t>();
   options.instances_per_motif = vm["instances"].as<uint32_t>();
   options.eager_motifs = vm["eager"].as<uint32_t>();
-  if (!PlaybackBytesFrom(spec, vm, &options.playback_bytes)) return kExitUsage;
+  motifmine::MineOptions mine;
+  ReadTableFlags(spec, vm, &mine);
+  options.playback_bytes = ReportOptionsFor(mine).playback_bytes;
   if (options.keyframes == 0 || options.keyframes > 50) {
     return ReportError("report", Status::InvalidArgument("--keyframes must be 1 to 50"));
   }

@@ -3,8 +3,11 @@
 #include <cstdio>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
+#include "engine/pipeline/stage_options.h"
 #include "engine/trellis/trellis_audit.h"
 #include "engine/trellis/trellis_builder.h"
+#include "formats/frame_file/frame_file_reader.h"
 
 namespace motif::cli {
 
@@ -13,13 +16,15 @@ namespace po = boost::program_options;
 namespace {
 
 int RunAudit(const po::variables_map& vm, const std::string& archive, const std::string& trellis,
-             const LshOptions& lsh, ProgressReporter* progress) {
+             const motifmine::MineOptions& mine, ProgressReporter* progress) {
   AuditOptions options;
   options.sample_columns = vm["sample"].as<uint64_t>();
-  options.seed = vm["seed"].as<uint64_t>();
-  options.threads = vm["threads"].as<int>();
-  options.weights_path = vm["weights"].as<std::string>();
-  options.lsh = lsh;
+  options.seed = mine.seed;
+  options.threads = mine.threads;
+  options.weights_path = mine.weights_path;
+  Result<LshOptions> lsh = LshOptionsFor(mine);
+  if (!lsh.ok()) return ReportError("trellis", lsh.status());
+  options.lsh = *lsh;
   bool started = false;
   options.progress = [&](uint64_t done, uint64_t total) {
     if (!started) progress->BeginStage("audit", total, "columns");
@@ -68,9 +73,7 @@ int RunAudit(const po::variables_map& vm, const std::string& archive, const std:
   return kExitOk;
 }
 
-}  // namespace
-
-int RunTrellis(const std::vector<std::string>& args) {
+CommandSpec TrellisCommandSpec() {
   CommandSpec spec;
   spec.name = "trellis";
   spec.usage =
@@ -85,160 +88,109 @@ int RunTrellis(const std::vector<std::string>& args) {
       "and written to disk block by block. A finished trellis with the same parameters is\n"
       "reused; an interrupted build resumes. --audit compares the trellis with exact eps-NN on\n"
       "sampled columns and prints the recall.";
-  LshOptions lsh_defaults;
-  spec.options.add_options()("eps", po::value<std::string>()->default_value("auto"),
-                             "neighbour radius: a number, or auto (chosen by --eps-rule)")(
-      "kmax", po::value<uint32_t>()->default_value(TrellisOptions{}.k_max),
-      "at most this many neighbours a column")(
-      "exclusion", po::value<uint32_t>()->default_value(0),
-      "frames of the same clip closer than this are never neighbours (0: half of --min-length)")(
-      "min-length", po::value<double>()->default_value(0.5),
-      "minimum motif length in seconds (its half is the default exclusion radius)")(
-      "search", po::value<std::string>()->default_value("auto"),
-      ("how columns are found: lsh, exact (blocked brute force, O(N^2)), or auto (exact below " +
-       std::to_string(kAutoExactMaxFrames) + " frames, lsh from there on)")
-          .c_str())("exact", "the same as --search exact")(
-      "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
-      "seed", po::value<uint64_t>()->default_value(1), "seed of the eps sample and the LSH tables")(
-      "weights", po::value<std::string>()->default_value(""),
-      "per-joint weights file (\"joint weight\" lines) overriding the defaults")(
+  AddTableFlags(spec, kRadiusFlags);
+  AddTableFlags(spec, kTrellisFlags);
+  AddTableFlags(spec, {"min-length"});
+  AddTableFlags(spec, kRunFlags);
+  AddTableFlags(spec, kLshFlags);
+  spec.options.add_options()("exact", "the same as --search exact")(
       "out", po::value<std::string>()->default_value(""), "trellis path (default ARCHIVE.mtr)")(
-      "tables", po::value<uint32_t>()->default_value(lsh_defaults.tables), "LSH hash tables")(
-      "hashes", po::value<uint32_t>()->default_value(lsh_defaults.hashes_per_table),
-      "LSH projections per table")("width", po::value<float>()->default_value(0),
-                                   "LSH bucket width (0: from the data)")(
-      "probes", po::value<uint32_t>()->default_value(lsh_defaults.probes_per_table),
-      "LSH buckets visited per table (multi-probe)")(
-      "width-per-hash", po::value<float>()->default_value(lsh_defaults.width_per_hash),
-      "LSH cell width per projection, relative to the measured neighbour distance (the width "
-      "is this x projections per table x the 90th percentile of a column's neighbours' "
-      "embedding distance)")("max-candidates",
-                             po::value<uint32_t>()->default_value(lsh_defaults.max_candidates),
-                             "LSH: at most this many exact distance evaluations a column")(
-      "chain", po::value<uint32_t>()->default_value(lsh_defaults.chain_columns),
-      "LSH: columns searched as chains of this many, each seeded with its predecessor's "
-      "neighbours (0: every column alone)")(
-      "chained-max-candidates",
-      po::value<uint32_t>()->default_value(lsh_defaults.chained_max_candidates),
-      "LSH: evaluations a probing chained column spends on the probed buckets after its seeds")(
-      "chain-probe-every", po::value<uint32_t>()->default_value(lsh_defaults.chain_probe_every),
-      "LSH: only every this-many-th column of a chain probes the buckets (with "
-      "--chained-max-candidates); the columns between keep their seeds and what the chain "
-      "sweeps carry over (1: every column probes)")(
-      "chain-sweeps", po::value<uint32_t>()->default_value(lsh_defaults.chain_sweeps),
-      "LSH: passes over each finished chain, backward then forward, in which every column "
-      "verifies its neighbour column's neighbours moved by up to 2 frames (0: none)")(
-      "ranking", po::value<std::string>()->default_value("sort"),
-      "LSH candidate order: sort (fastest) or code (ranks gathered entries by position code: "
-      "better recall on low-contrast archives, ~1.5-2.5x the time)")(
-      "max-entries", po::value<uint32_t>()->default_value(lsh_defaults.max_entries),
-      "LSH, --ranking code: bucket entries gathered and ranked per column")(
       "audit", "compare the existing trellis with exact eps-NN on sampled columns")(
       "sample", po::value<uint64_t>()->default_value(1000), "columns sampled by --audit");
-  AddEpsilonRuleOptions(spec);
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  const std::string archive = vm["archive"].as<std::string>();
-  std::string trellis = vm["out"].as<std::string>();
-  if (trellis.empty()) trellis = DefaultTrellisPath(archive);
-  ProgressReporter progress(ProgressModeFrom(vm));
+  return spec;
+}
 
-  LshOptions lsh;
-  lsh.tables = vm["tables"].as<uint32_t>();
-  lsh.hashes_per_table = vm["hashes"].as<uint32_t>();
-  lsh.bucket_width = vm["width"].as<float>();
-  lsh.probes_per_table = vm["probes"].as<uint32_t>();
-  lsh.width_per_hash = vm["width-per-hash"].as<float>();
-  lsh.max_candidates = vm["max-candidates"].as<uint32_t>();
-  lsh.max_entries = vm["max-entries"].as<uint32_t>();
-  lsh.chain_columns = vm["chain"].as<uint32_t>();
-  lsh.chained_max_candidates = vm["chained-max-candidates"].as<uint32_t>();
-  lsh.chain_probe_every = vm["chain-probe-every"].as<uint32_t>();
-  lsh.chain_sweeps = vm["chain-sweeps"].as<uint32_t>();
-  if (!ParseLshRanking(vm["ranking"].as<std::string>(), &lsh.ranking)) {
-    return ReportError("trellis", Status::InvalidArgument("--ranking must be sort or code, not '" +
-                                                          vm["ranking"].as<std::string>() + "'"));
+// Each stage reports (0 or its resume point, total) first and (total, total) last.
+class TrellisStageProgress {
+ public:
+  explicit TrellisStageProgress(ProgressReporter* progress) : progress_(progress) {}
+  ~TrellisStageProgress() {
+    if (!stage_.empty()) progress_->EndStage();
   }
-  if (vm.count("audit")) return RunAudit(vm, archive, trellis, lsh, &progress);
-
-  TrellisOptions options;
-  const std::string eps = vm["eps"].as<std::string>();
-  if (eps != "auto") {
-    char* end = nullptr;
-    options.eps = std::strtof(eps.c_str(), &end);
-    if (end == eps.c_str() || *end != '\0' || !(options.eps > 0)) {
-      return ReportError("trellis", Status::InvalidArgument("--eps must be a positive number or "
-                                                            "auto, not '" +
-                                                            eps + "'"));
+  void Update(const std::string& name, uint64_t done, uint64_t total) {
+    if (name != stage_) {
+      if (!stage_.empty()) progress_->EndStage();
+      stage_ = name;
+      progress_->BeginStage(name, total, name == "trellis" ? "columns" : "frames");
     }
-  }
-  if (Status status = EpsilonRuleFrom(vm, &options); !status.ok()) {
-    return ReportError("trellis", status);
-  }
-  options.k_max = vm["kmax"].as<uint32_t>();
-  options.exclusion_frames = vm["exclusion"].as<uint32_t>();
-  options.min_length_seconds = vm["min-length"].as<double>();
-  Result<TrellisSearchMode> search = ParseTrellisSearchMode(vm["search"].as<std::string>());
-  options.exact = vm.count("exact") > 0;
-  if (!search.ok() || (options.exact && *search == TrellisSearchMode::kLsh)) {
-    std::fprintf(stderr, "motifmine trellis: %s\nusage: %s\n",
-                 search.ok() ? "--exact and --search lsh contradict each other"
-                             : search.status().message().c_str(),
-                 spec.usage.c_str());
-    return kExitUsage;
-  }
-  options.search = *search;
-  options.threads = vm["threads"].as<int>();
-  options.seed = vm["seed"].as<uint64_t>();
-  options.weights_path = vm["weights"].as<std::string>();
-  options.lsh = lsh;
-  std::string stage;
-  // Each stage reports (0 or its resume point, total) first and (total, total) last.
-  options.progress = [&](const std::string& name, uint64_t done, uint64_t total) {
-    if (name != stage) {
-      if (!stage.empty()) progress.EndStage();
-      stage = name;
-      progress.BeginStage(name, total, name == "trellis" ? "columns" : "frames");
-    }
-    progress.Update(done);
+    progress_->Update(done);
     if (done == total) {
-      progress.EndStage();
-      stage.clear();
+      progress_->EndStage();
+      stage_.clear();
     }
-  };
-  options.note = [&](const std::string& message) { progress.Note(message); };
-  Result<TrellisReport> report = BuildTrellis(archive, trellis, options);
-  if (!stage.empty()) progress.EndStage();
-  if (!report.ok()) return ReportError("trellis", report.status());
-  const TrellisParams& params = report->params;
-  if (report->reused) {
+  }
+
+ private:
+  ProgressReporter* progress_;
+  std::string stage_;
+};
+
+void PrintTrellisReport(const std::string& trellis, const TrellisReport& report) {
+  const TrellisParams& params = report.params;
+  if (report.reused) {
     std::printf("%s is up to date (same archive and parameters): reused\n", trellis.c_str());
   } else {
     std::printf("wrote %s\n", trellis.c_str());
   }
   std::printf("  eps          %.4f  (%s; the paper's mu - 2 sigma: %.4f)\n", params.eps,
-              report->eps_how.c_str(), report->paper_eps);
+              report.eps_how.c_str(), report.paper_eps);
   std::printf("  columns      %s, %s entries, mean K %.1f (k_max %u)\n",
-              WithCommas(report->columns).c_str(), WithCommas(report->neighbours).c_str(),
-              report->mean_k, params.k_max);
+              WithCommas(report.columns).c_str(), WithCommas(report.neighbours).c_str(),
+              report.mean_k, params.k_max);
   std::printf("  exclusion    %u frames of the same clip\n", params.exclusion_frames);
   std::printf("  search       %s\n", params.search_params.c_str());
-  if (!report->reused) {
-    std::printf("  capped       %s columns had more than k_max neighbours within eps\n",
-                WithCommas(report->capped_columns).c_str());
-    std::printf("  evaluations  %.0f exact distances per column\n",
-                report->columns
-                    ? static_cast<double>(report->distance_evaluations) /
-                          std::max<uint64_t>(1, report->columns - report->resumed_from_column)
-                    : 0.0);
-    std::printf(
-        "  time         features %.1fs, eps %.1fs, index %.1fs, columns %.1fs (writes "
-        "%.1fs beside the search, %.1fs waited for)\n",
-        report->features_seconds, report->eps_seconds, report->index_seconds,
-        report->search_seconds, report->write_seconds, report->write_wait_seconds);
+  if (report.reused) return;
+  std::printf("  capped       %s columns had more than k_max neighbours within eps\n",
+              WithCommas(report.capped_columns).c_str());
+  std::printf("  evaluations  %.0f exact distances per column\n",
+              report.columns
+                  ? static_cast<double>(report.distance_evaluations) /
+                        std::max<uint64_t>(1, report.columns - report.resumed_from_column)
+                  : 0.0);
+  std::printf(
+      "  time         features %.1fs, eps %.1fs, index %.1fs, columns %.1fs (writes "
+      "%.1fs beside the search, %.1fs waited for)\n",
+      report.features_seconds, report.eps_seconds, report.index_seconds, report.search_seconds,
+      report.write_seconds, report.write_wait_seconds);
+}
+
+}  // namespace
+
+int RunTrellis(const std::vector<std::string>& args) {
+  CommandSpec spec = TrellisCommandSpec();
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const std::string archive_path = vm["archive"].as<std::string>();
+  std::string trellis = vm["out"].as<std::string>();
+  if (trellis.empty()) trellis = DefaultTrellisPath(archive_path);
+  motifmine::MineOptions mine;
+  ReadTableFlags(spec, vm, &mine);
+  if (vm.count("exact")) {
+    if (mine.search == "lsh") {
+      std::fprintf(stderr,
+                   "motifmine trellis: --exact and --search lsh contradict each other\n"
+                   "usage: %s\n",
+                   spec.usage.c_str());
+      return kExitUsage;
+    }
+    mine.search = "exact";
   }
+  ProgressReporter progress(ProgressModeFrom(vm));
+  if (vm.count("audit")) return RunAudit(vm, archive_path, trellis, mine, &progress);
+  Result<std::unique_ptr<FrameFileReader>> archive = FrameFileReader::Open(archive_path);
+  if (!archive.ok()) return ReportError("trellis", archive.status());
+  Result<TrellisOptions> options = TrellisOptionsFor(mine, (*archive)->fps());
+  if (!options.ok()) return ReportError("trellis", options.status());
+  TrellisStageProgress stages(&progress);
+  options->progress = [&](const std::string& name, uint64_t done, uint64_t total) {
+    stages.Update(name, done, total);
+  };
+  options->note = [&](const std::string& message) { progress.Note(message); };
+  Result<TrellisReport> report = BuildTrellis(**archive, trellis, *options);
+  if (!report.ok()) return ReportError("trellis", report.status());
+  PrintTrellisReport(trellis, *report);
   return kExitOk;
 }
 

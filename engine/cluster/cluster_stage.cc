@@ -59,6 +59,31 @@ MotifsArchiveVersion ArchiveVersionOf(const FrameFileReader& archive) {
   return {summary.generation, summary.file_bytes, summary.identity};
 }
 
+Result<MotifsDocument> ClusteredDocument(const ClusterResult& clustered,
+                                         const std::string& archive_path,
+                                         const FrameFileReader& archive,
+                                         const TrellisFileReader& trellis,
+                                         const PathsParams& paths_params,
+                                         const ClusterOptions& options) {
+  MotifsJsonParams params;
+  params.eps = trellis.params().eps;
+  params.kmax = trellis.params().k_max;
+  params.branch = paths_params.branch;
+  params.min_length = paths_params.min_length;
+  params.groups = options.cut.groups;
+  params.seed = options.seed;
+  params.similarity = options.warped.enabled ? "warped" : "shared";
+  if (options.archive != nullptr) {  // trimmed only with the archive
+    params.pause_speed = options.pauses.max_speed;
+    params.pause_seconds = options.pauses.min_seconds;
+  }
+  MOTIF_ASSIGN_OR_RETURN(
+      MotifsDocument document,
+      MakeMotifsDocument(clustered, archive_path, archive.frame_count(), archive.clips(), params));
+  document.archive_version = ArchiveVersionOf(archive);
+  return document;
+}
+
 Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
                                            const ClusterOptions& options) {
   ClusterStageResult result;
@@ -74,8 +99,11 @@ Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
       return result;
     }
   }
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,
-                         TrellisFileReader::Open(input.trellis_path));
+  std::unique_ptr<TrellisFileReader> opened;
+  if (input.trellis == nullptr) {
+    MOTIF_ASSIGN_OR_RETURN(opened, TrellisFileReader::Open(input.trellis_path));
+  }
+  const TrellisFileReader* trellis = input.trellis ? input.trellis : opened.get();
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<PathsFileReader> paths,
                          PathsFileReader::Open(input.paths_path));
   ClusterOptions with_length = options;
@@ -83,22 +111,9 @@ Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
   with_length.archive = input.archive;
   MOTIF_ASSIGN_OR_RETURN(ClusterResult clustered,
                          ClusterMotifs(paths->candidates(), *trellis, with_length));
-  MotifsJsonParams params;
-  params.eps = trellis->params().eps;
-  params.kmax = trellis->params().k_max;
-  params.branch = input.paths_params.branch;
-  params.min_length = input.paths_params.min_length;
-  params.groups = options.cut.groups;
-  params.seed = options.seed;
-  params.similarity = options.warped.enabled ? "warped" : "shared";
-  if (with_length.archive != nullptr) {  // trimmed only with the archive
-    params.pause_speed = options.pauses.max_speed;
-    params.pause_seconds = options.pauses.min_seconds;
-  }
   MOTIF_ASSIGN_OR_RETURN(result.document,
-                         MakeMotifsDocument(clustered, input.archive_path, archive.frame_count(),
-                                            archive.clips(), params));
-  result.document.archive_version = ArchiveVersionOf(archive);
+                         ClusteredDocument(clustered, input.archive_path, archive, *trellis,
+                                           input.paths_params, with_length));
   result.report = clustered.report;
   MOTIF_RETURN_IF_ERROR(WriteMotifsJson(input.motifs_path, result.document));
   const nlohmann::json state = {{"version", 1}, {"cluster_key", key}};

@@ -14,6 +14,7 @@
 #include "engine/cluster/motifs_json.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/paths_file/paths_file_writer.h"
+#include "formats/trellis_file/trellis_file_reader.h"
 
 namespace motif {
 
@@ -21,6 +22,7 @@ struct ClusterStageInput {
   std::string archive_path;                  // as motifs.json records it
   const FrameFileReader* archive = nullptr;  // the version the trellis was built over
   std::string trellis_path;
+  const TrellisFileReader* trellis = nullptr;  // that file, open already; null: opened here
   std::string paths_path;
   PathsParams paths_params;  // of the paths file (its trellis identity and grow options)
   uint64_t candidates = 0;   // in the paths file
@@ -36,6 +38,15 @@ struct ClusterStageResult {
 
 // The archive version a reader has open, as motifs.json records it.
 MotifsArchiveVersion ArchiveVersionOf(const FrameFileReader& archive);
+
+// The motifs.json document of a clustering of `archive`'s paths (their parameters
+// `paths_params`) through `trellis` with `options` (params.eps and kmax are the trellis's).
+Result<MotifsDocument> ClusteredDocument(const ClusterResult& clustered,
+                                         const std::string& archive_path,
+                                         const FrameFileReader& archive,
+                                         const TrellisFileReader& trellis,
+                                         const PathsParams& paths_params,
+                                         const ClusterOptions& options);
 
 // Errors of the trellis and paths files (NotFound, Corruption), of the clustering, and of the
 // writes (IOError, ResourceExhausted).

@@ -30,13 +30,15 @@
 #include "engine/cluster/motif_instance.h"
 #include "engine/cluster/similarity_graph.h"
 #include "formats/trellis_file/trellis_file_reader.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
 struct SimilarityOptions {
-  double min_similarity = 0.1;  // pairs below this (and not linked) get no edge
-  double link_weight = 1.0;     // added to linked pairs (similarity is at most 1)
-  int threads = 0;              // 0: all cores
+  double min_similarity =
+      motifmine::defaults::kMinSimilarity;  // pairs below this (and not linked) get no edge
+  double link_weight = 1.0;                 // added to linked pairs (similarity is at most 1)
+  int threads = 0;                          // 0: all cores
   // Called after each decoded block with (columns done, columns to read).
   std::function<void(uint64_t, uint64_t)> progress;
 };

@@ -32,6 +32,7 @@
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/paths_file/path_candidate.h"
 #include "formats/trellis_file/trellis_file_reader.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
@@ -46,11 +47,11 @@ struct ClusterOptions {
   // differ by 2x at most; 3 leaves room for a typical length pulled down by split instances
   // (2 dropped a whole planted instance on one archive), while the fragments seen are 4-10x
   // shorter than their motif (60-90 frames against 300-800).
-  double max_length_ratio = 3.0;
+  double max_length_ratio = motifmine::defaults::kMaxLengthRatio;
   // With the archive set: instances are cut at the archive's pauses (pauses.h); max_speed 0
   // cuts nothing.
   PauseOptions pauses;
-  uint64_t seed = 1;
+  uint64_t seed = motifmine::defaults::kSeed;
   int threads = 0;  // 0: all cores
   // The archive the trellis was built from: when set, instances that are held poses
   // (held_pose.h, at the trellis's eps) are kept out of the motifs.

@@ -29,12 +29,14 @@
 
 #include "engine/cluster/similarity_graph.h"
 #include "engine/cluster/spectral_split.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
 struct NormalizedCutOptions {
-  uint32_t groups = 0;    // 0: automatic
-  double max_ncut = 0.5;  // automatic: cut while the best cut's Ncut is below this
+  uint32_t groups = 0;  // 0: automatic
+  double max_ncut =
+      motifmine::defaults::kMaxNcut;  // automatic: cut while the best cut's Ncut is below this
   uint32_t min_group_size = 2;
   SpectralOptions spectral;
   int threads = 0;  // 0: all cores

@@ -18,12 +18,14 @@
 #include "common/status.h"
 #include "engine/cluster/motif_instance.h"
 #include "formats/frame_file/frame_file_reader.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
 struct PauseOptions {
-  double max_speed = 15.0;   // degrees per second, mean over the weighted joints
-  double min_seconds = 0.2;  // the shortest pause
+  double max_speed =
+      motifmine::defaults::kPauseSpeed;  // degrees per second, mean over the weighted joints
+  double min_seconds = motifmine::defaults::kPauseSeconds;  // the shortest pause
 };
 
 // InvalidArgument unless max_speed >= 0 and min_seconds > 0, both finite.

@@ -95,7 +95,7 @@ Result<std::vector<FramePair>> EpsilonEstimator::SamplePairs() const {
 Result<EpsilonRule> ParseEpsilonRule(const std::string& text) {
   if (text == "joint-angle") return EpsilonRule::kJointAngle;
   if (text == "paper") return EpsilonRule::kPaper;
-  return Status::InvalidArgument("--eps-rule must be joint-angle or paper, not '" + text + "'");
+  return Status::InvalidOption("eps-rule", "must be joint-angle or paper, not '" + text + "'");
 }
 
 const char* EpsilonRuleName(EpsilonRule rule) {
@@ -134,7 +134,7 @@ Result<EpsilonEstimate> EpsilonEstimator::Estimate() const {
   if (options_.explicit_eps) {
     estimate.eps = *options_.explicit_eps;
     estimate.explicit_eps = true;
-    estimate.how = "given explicitly (--eps)";
+    estimate.how = "given explicitly";
   } else if (options_.rule == EpsilonRule::kJointAngle) {
     estimate.eps =
         static_cast<float>(JointAngleEpsilon(features_.weights(), options_.joint_angle_degrees));

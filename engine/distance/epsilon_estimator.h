@@ -35,6 +35,7 @@
 #include "common/status.h"
 #include "engine/distance/neighbour_search.h"
 #include "engine/distance/pose_features.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
@@ -47,7 +48,7 @@ enum class EpsilonRule {
 
 // The default tolerated rotation per weighted joint, theta, in degrees (chosen on the labelled
 // repetitions: docs/design/motif_quality.md).
-inline constexpr double kDefaultJointAngleDegrees = 12.0;
+inline constexpr double kDefaultJointAngleDegrees = motifmine::defaults::kEpsAngleDegrees;
 
 // "joint-angle" / "paper"; InvalidArgument naming the text otherwise.
 Result<EpsilonRule> ParseEpsilonRule(const std::string& text);

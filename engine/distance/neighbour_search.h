@@ -16,14 +16,15 @@
 
 #include "common/status.h"
 #include "formats/trellis_file/trellis_column.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
 struct NeighbourRules {
-  float eps = 0;                            // include D <= eps
-  uint32_t k_max = 256;                     // at most this many per column, the nearest kept
-  uint32_t exclusion_frames = 30;           // same clip and |t - j| < this: excluded
-  std::vector<uint64_t> clip_first_frames;  // ascending, starts with 0
+  float eps = 0;                                // include D <= eps
+  uint32_t k_max = motifmine::defaults::kKMax;  // at most this many per column, the nearest kept
+  uint32_t exclusion_frames = 30;               // same clip and |t - j| < this: excluded
+  std::vector<uint64_t> clip_first_frames;      // ascending, starts with 0
 
   // True if j may never be a neighbour of t (t itself, or too close in the same clip).
   bool Excluded(uint64_t t, uint64_t j, uint32_t clip_of_t, uint32_t clip_of_j) const {

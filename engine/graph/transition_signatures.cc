@@ -38,7 +38,8 @@ Result<SignatureConstraint> Threshold(const LoadedWords& words) {
   if (all.empty()) {
     return Status::InvalidArgument("motion graph: no take has the 2 x " +
                                    std::to_string(kConstraintWindowWords / 2) +
-                                   " motion words a change score needs; use --unconstrained");
+                                   " motion words a change score needs; use unconstrained")
+        .WithOption("unconstrained");
   }
   std::sort(all.begin(), all.end());
   const size_t mid = all.size() / 2;

@@ -38,12 +38,11 @@ struct Tree {
 
 Status ValidateGrowOptions(const GrowOptions& options) {
   if (options.branch < 1 || options.branch > kMaxBranch) {
-    return Status::InvalidArgument("the branching factor must be in [1, " +
-                                   std::to_string(kMaxBranch) + "], not " +
-                                   std::to_string(options.branch));
+    return Status::InvalidOption("branch", "must be in [1, " + std::to_string(kMaxBranch) +
+                                               "], not " + std::to_string(options.branch));
   }
   if (options.min_length < 1) {
-    return Status::InvalidArgument("the minimum path length must be at least 1 frame");
+    return Status::InvalidOption("min-length", "must be at least 1 frame");
   }
   return Status::Ok();
 }

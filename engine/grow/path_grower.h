@@ -37,6 +37,7 @@
 #include "common/status.h"
 #include "formats/paths_file/path_candidate.h"
 #include "formats/trellis_file/trellis_column.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
@@ -50,7 +51,7 @@ struct GrowOptions {
   // experiments use 5 (its Figure 2 illustrates 3): a step breaks only when all B cells are
   // missing, probability (1-p)^B at neighbour recall p: at p = 0.9 a 200-frame path survives
   // with 99.8 % at B = 5 but 82 % at B = 3, for 5/3 the (cheap, cache-local) checks.
-  uint32_t branch = 5;
+  uint32_t branch = motifmine::defaults::kBranch;
   // lambda: a dead path is a candidate if it spans at least this many top-row columns AND
   // this many matched frames (the paper: 60 frames at 120 fps, 0.5 s).
   uint64_t min_length = 60;

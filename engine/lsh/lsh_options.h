@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <string>
+#include "motifmine/defaults.h"
 
 namespace motif {
 
@@ -30,25 +31,25 @@ enum class LshRanking {
 
 struct LshOptions {
   // L: independent hash tables. Each costs 10 bytes per frame (frame id, bucket key, sort value).
-  uint32_t tables = 8;
+  uint32_t tables = motifmine::defaults::kLshTables;
   // m: projections per table (the cell is m-dimensional). 0: from the archive size
   // (DefaultHashesPerTable in lsh_tuning.h: 13 at 40k frames, 16 at 1M, 18 at 10M).
-  uint32_t hashes_per_table = 0;
+  uint32_t hashes_per_table = motifmine::defaults::kLshHashes;
   // w: cell width along each projection, in embedding units (|e_i - e_j| <= D). 0: chosen from
   // the data, width_per_hash * m * the 90th percentile of the embedding distance of a column's
   // neighbours (ResolveLshOptions in lsh_tuning.h).
-  float bucket_width = 0;
-  float width_per_hash = 0.04f;
+  float bucket_width = static_cast<float>(motifmine::defaults::kLshWidth);
+  float width_per_hash = static_cast<float>(motifmine::defaults::kLshWidthPerHash);
   // Buckets visited per table, nearest first (multi-probe); 1 visits only the query's own.
-  uint32_t probes_per_table = 8;
+  uint32_t probes_per_table = motifmine::defaults::kLshProbes;
   // Work bounds per column: exact distance evaluations, and entries examined in one bucket
   // (heavy buckets: a static pose repeated thousands of times falls into one bucket).
-  uint32_t max_candidates = 4096;
+  uint32_t max_candidates = motifmine::defaults::kLshMaxCandidates;
   uint32_t max_bucket_scan = 2048;
   LshRanking ranking = LshRanking::kSortValue;
   // kPositionCode: bucket entries gathered and ranked per column (and per extension stage)
   // before the best max_candidates of them are verified.
-  uint32_t max_entries = 16384;
+  uint32_t max_entries = motifmine::defaults::kLshMaxEntries;
   // Buckets are scanned breadth first: all probed buckets to this depth, then 4x deeper, ...
   // up to max_bucket_scan.
   uint32_t first_round_scan = 64;
@@ -66,7 +67,7 @@ struct LshOptions {
   // is a probing column, see chain_probe_every) spends at most chained_max_candidates further
   // evaluations on the probed buckets (new paths).
   // chain_columns 0 or 1: every column is searched alone with max_candidates.
-  uint32_t chain_columns = 256;
+  uint32_t chain_columns = motifmine::defaults::kLshChainColumns;
   uint32_t chain_advance = 2;
   // Only every chain_probe_every-th column of a chain (those at positions 0, S, 2S, ... from
   // its start) probes the buckets, with chained_max_candidates after its seeds; the columns
@@ -74,8 +75,8 @@ struct LshOptions {
   // Neighbouring columns probe nearly the same buckets and find nearly the same candidates, so
   // one column going deep finds more new paths than S columns going shallow, at a fraction of
   // the probing cost (docs/design/lsh.md section 3c). 1: every column probes.
-  uint32_t chain_probe_every = 4;
-  uint32_t chained_max_candidates = 6144;
+  uint32_t chain_probe_every = motifmine::defaults::kLshChainProbeEvery;
+  uint32_t chained_max_candidates = motifmine::defaults::kLshChainedMaxCandidates;
   uint32_t chained_probe_stride = 1;  // DEV
   uint32_t chained_off_budget = 0;    // DEV
   // Sweeps over a finished chain, alternately backward and forward, without probing: each column
@@ -83,7 +84,7 @@ struct LshOptions {
   // predecessor's moved on (forward), so a path found anywhere in the chain reaches all of its
   // columns, not only the later ones. 0: none (a column then depends only on the columns before
   // it in its chain).
-  uint32_t chain_sweeps = 4;
+  uint32_t chain_sweeps = motifmine::defaults::kLshChainSweeps;
   // Random projections and offsets are drawn from this seed; the same seed gives the same index
   // and the same columns for any thread count.
   uint64_t seed = 0x6d6f746966ull;

@@ -1,23 +1,23 @@
 #include "engine/pipeline/mine_pipeline.h"
 
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <utility>
 
 #include "common/byte_coding.h"
-#include "common/file_lock.h"
 #include "common/file_util.h"
 #include "common/peak_memory.h"
 #include "common/seconds_since.h"
+#include "engine/cluster/cluster_stage.h"
 #include "engine/ingest/archive_import.h"
-#include "engine/pipeline/motif_stages.h"
+#include "engine/pipeline/option_table.h"
 #include "engine/pipeline/run_record.h"
+#include "engine/pipeline/stage_options.h"
 #include "engine/report/report_html.h"
 #include "engine/synth/synthetic_archive.h"
 #include "engine/synth/truth_json_reader.h"
-#include "formats/frame_file/frame_file_reader.h"
+#include "engine/trellis/trellis_strategy.h"
 #include "formats/frame_file/frame_file_writer.h"
 #include "formats/import/take_descriptions.h"
 
@@ -25,81 +25,61 @@ namespace motif {
 
 namespace {
 
+namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 // The file a run holds an exclusive flock on, in its output folder.
 constexpr char kRunLockName[] = ".motifmine.lock";
 
-// The files a run writes in its folder, whose temporary files a killed run may have left.
-const std::vector<std::string> kOwnedFiles = {
-    "archive.mfs", "archive.truth.json", "trellis.mtr", "paths.mpa",
-    "motifs.json", "mine_state.json",    "report.html", "run.json"};
+bool IsArchivePath(const std::string& path) { return fs::path(path).extension() == ".mfs"; }
 
-std::string Join(const std::string& dir, const char* name) {
-  return (std::filesystem::path(dir) / name).string();
+// The names of the files a run writes in its folder, whose temporary files a killed run may
+// have left.
+std::vector<std::string> OwnedFileNames(const RunFiles& files) {
+  std::vector<std::string> names;
+  const std::string truth = TruthPathFor(files.archive);
+  for (const std::string* path :
+       {&files.archive, &truth, &files.trellis, &files.search_cache, &files.paths, &files.motifs,
+        &files.cluster_state, &files.report, &files.run_record}) {
+    if (!path->empty() && fs::path(*path).parent_path() == fs::path(files.dir)) {
+      names.push_back(fs::path(*path).filename().string());
+    }
+  }
+  return names;
 }
 
-bool IsArchivePath(const std::string& path) {
-  return std::filesystem::path(path).extension() == ".mfs";
+// The unit of each trellis stage's progress.
+const char* TrellisProgressUnit(const std::string& stage) {
+  if (stage == "eps") return "pairs";
+  if (stage == "features" || stage == "index") return "frames";
+  if (stage == "thresholds" || stage == "merge") return "blocks";
+  return "columns";
+}
+
+// Whether `path` is a finished trellis of exactly this archive version.
+bool TrellisOfArchive(const std::string& path, const FrameFileReader& archive) {
+  std::error_code error;
+  if (!fs::exists(path, error)) return false;
+  Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(path);
+  return trellis.ok() && (*trellis)->params().archive_identity == archive.summary().identity &&
+         (*trellis)->params().frame_count == archive.frame_count();
 }
 
 }  // namespace
 
-MinePipelineOptions DefaultMinePipelineOptions() {
-  MinePipelineOptions options;
-  // Background that does not repeat within eps, so the planted motifs are the only long repeats
-  // and precision against them means something (docs/guide.md, synth).
-  options.synth.background_variation_degrees = kRecommendedBackgroundVariation;
-  options.synth.frames = 120000;
-  options.synth.motifs = 12;
-  return options;
-}
-
-MinePipeline::MinePipeline(MinePipelineOptions options) : options_(std::move(options)) {
-  options_.trellis.seed = options_.seed;
-  options_.trellis.threads = options_.threads;
-  options_.cluster.seed = options_.seed;
-  options_.cluster.threads = options_.threads;
-  options_.synth.seed = options_.seed;
-  options_.synth.threads = options_.threads > 0 ? static_cast<uint32_t>(options_.threads) : 0;
-}
-
-void MinePipeline::Progress(const std::string& stage, uint64_t done, uint64_t total,
-                            const std::string& unit) {
-  if (options_.progress) options_.progress(stage, done, total, unit);
-}
-
-Status MinePipeline::CheckOptions() const {
-  const ClusterOptions& cluster = options_.cluster;
-  if (options_.out_dir.empty()) return Status::InvalidArgument("no output folder given");
-  // Before the output folder is made: a mistyped input leaves nothing behind.
-  for (const std::string& input : options_.inputs) {
-    std::error_code error;
-    if (!std::filesystem::exists(input, error)) {
-      return Status::NotFound(input + ": no such file or folder");
-    }
-  }
-  if (!(cluster.max_length_ratio == 0 || cluster.max_length_ratio >= 1) ||
-      !std::isfinite(cluster.max_length_ratio)) {
-    return Status::InvalidArgument("--max-length-ratio must be 0 (keep all) or >= 1");
-  }
-  if (options_.trellis.eps < 0 || !std::isfinite(options_.trellis.eps)) {
-    return Status::InvalidArgument("--eps must be >= 0 (0: chosen by --eps-rule)");
-  }
-  if (options_.trellis.k_max == 0) return Status::InvalidArgument("--kmax must be > 0");
-  if (options_.paths.branch == 0) return Status::InvalidArgument("--branch must be > 0");
-  return ValidatePauseOptions(cluster.pauses);
-}
+MinePipeline::MinePipeline(RunSession* session, StagePlan plan)
+    : session_(session), plan_(std::move(plan)) {}
 
 Result<MinePipelineResult> MinePipeline::Run() {
-  if (options_.ranks != nullptr && options_.ranks->rank() != 0) return RunOtherRank();
+  if (!session_->root()) return RunOtherRank();
   const Clock::time_point job_start = Clock::now();
   ExclusiveFileLock run_lock;
   const Status prepared = Prepare(&run_lock);
   MOTIF_RETURN_IF_ERROR(ShareArchive(prepared));
   MOTIF_RETURN_IF_ERROR(prepared);
-  if (Status built = BuildTrellisStage(); !built.ok()) return SharedFailure(built);
-  MOTIF_RETURN_IF_ERROR(MotifStages());
+  if (Status built = TrellisStage(); !built.ok()) return SharedFailure(built);
+  MOTIF_RETURN_IF_ERROR(GrowStage());
+  MOTIF_RETURN_IF_ERROR(ClusterStage());
   MOTIF_RETURN_IF_ERROR(ScoreStage());
   result_.total_seconds = SecondsSince(job_start);
   // The peak of the mining, before the report: the one figure the report, run.json and the
@@ -112,42 +92,59 @@ Result<MinePipelineResult> MinePipeline::Run() {
 }
 
 Status MinePipeline::Prepare(ExclusiveFileLock* run_lock) {
-  MOTIF_RETURN_IF_ERROR(CheckOptions());
-  if (!options_.descriptions_path.empty()) {
-    MOTIF_ASSIGN_OR_RETURN(descriptions_, ReadTakeDescriptions(options_.descriptions_path));
+  const RunFiles& files = session_->files();
+  if (files.dir.empty()) return Status::InvalidArgument("no output folder given");
+  // Before the output folder is made: a mistyped input leaves nothing behind.
+  for (const std::string& input : session_->inputs()) {
+    std::error_code error;
+    if (!fs::exists(input, error)) return Status::NotFound(input + ": no such file or folder");
   }
+  MOTIF_RETURN_IF_ERROR(CheckMineOptions(session_->options()));
+  if (!session_->options().descriptions_path.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(descriptions_,
+                           ReadTakeDescriptions(session_->options().descriptions_path));
+  }
+  if (plan_.lock_folder) MOTIF_RETURN_IF_ERROR(LockFolder(run_lock));
+  if (plan_.archive == ArchiveStep::kFromInputs) {
+    MOTIF_RETURN_IF_ERROR(MakeArchive());
+  } else if (!session_->has_archive()) {
+    MOTIF_RETURN_IF_ERROR(session_->OpenArchive());
+  }
+  return ArchiveOpened();
+}
+
+Status MinePipeline::LockFolder(ExclusiveFileLock* run_lock) {
+  const RunFiles& files = session_->files();
   std::error_code error;
-  std::filesystem::create_directories(options_.out_dir, error);
-  if (error) {
-    return Status::IOError("cannot create " + options_.out_dir + ": " + error.message());
-  }
+  fs::create_directories(files.dir, error);
+  if (error) return Status::IOError("cannot create " + files.dir + ": " + error.message());
   // One run per folder: a second run (an overlapping cron job) leaves at once, before touching
   // anything. The lock goes with the process, even on kill -9.
   MOTIF_RETURN_IF_ERROR(run_lock->Acquire(
-      Join(options_.out_dir, kRunLockName),
+      (fs::path(files.dir) / kRunLockName).string(),
       "another motifmine run is working in this folder; nothing was changed (exit 17: try "
       "again when it has finished)",
       /*create=*/true));
-  RemoveStaleTemporaries(options_.out_dir, kOwnedFiles);
-  return MakeArchive();
+  RemoveStaleTemporaries(files.dir, OwnedFileNames(files));
+  return Status::Ok();
 }
 
 Status MinePipeline::ShareArchive(const Status& prepared) {
-  if (options_.ranks == nullptr) return Status::Ok();
+  if (session_->ranks() == nullptr) return Status::Ok();
   std::string message;
   if (prepared.ok()) {
-    message = "0\n" + std::to_string(options_.trellis.archive_version.generation) + "\n" +
-              std::to_string(options_.trellis.archive_version.committed_bytes) + "\n" +
-              result_.archive_path;
+    const FrameFileVersion version = session_->archive().version();
+    message = "0\n" + std::to_string(version.generation) + "\n" +
+              std::to_string(version.committed_bytes) + "\n" + result_.archive_path;
   } else {
     message = std::to_string(static_cast<int>(prepared.code())) + "\n" + prepared.message();
   }
-  return options_.ranks->Broadcast(&message);
+  return session_->ranks()->Broadcast(&message);
 }
 
 Result<MinePipelineResult> MinePipeline::RunOtherRank() {
   std::string message;
-  MOTIF_RETURN_IF_ERROR(options_.ranks->Broadcast(&message));
+  MOTIF_RETURN_IF_ERROR(session_->ranks()->Broadcast(&message));
   std::istringstream in(message);
   int code = 0;
   in >> code;
@@ -162,130 +159,218 @@ Result<MinePipelineResult> MinePipeline::RunOtherRank() {
   in.get();
   std::getline(in, result_.archive_path, '\0');
   // The archive at the same path on this rank's node: shared, or a copy.
-  Result<std::unique_ptr<FrameFileReader>> archive =
-      FrameFileReader::OpenVersion(result_.archive_path, version);
-  if (!archive.ok()) {
-    return SharedFailure(archive.status().WithContext(
+  session_->mutable_files().archive = result_.archive_path;
+  if (Status opened = session_->OpenArchive(version); !opened.ok()) {
+    return SharedFailure(opened.WithContext(
         "the archive rank 0 opened (generation " + std::to_string(version.generation) + ", " +
         std::to_string(version.committed_bytes) + " bytes) does not open here"));
   }
-  archive_ = std::move(*archive);
-  options_.trellis.archive_version = version;
-  options_.paths.archive_version = version;
-  if (Status built = BuildTrellisStage(); !built.ok()) return SharedFailure(built);
+  if (Status resolved = ArchiveOpened(); !resolved.ok()) return SharedFailure(resolved);
+  if (Status built = TrellisStage(); !built.ok()) return SharedFailure(built);
   return std::move(result_);
 }
 
 Status MinePipeline::SharedFailure(const Status& failed) const {
-  if (options_.ranks == nullptr) return failed;
-  const Status named = failed.WithContext("rank " + std::to_string(options_.ranks->rank()));
-  if (options_.on_shared_failure) options_.on_shared_failure(named);
+  if (session_->ranks() == nullptr) return failed;
+  const Status named = failed.WithContext("rank " + std::to_string(session_->ranks()->rank()));
+  if (session_->hooks().on_shared_failure) session_->hooks().on_shared_failure(named);
   return named;
 }
 
 // Stage 1: the archive, then opened once; every later stage reads that version.
 Status MinePipeline::MakeArchive() {
-  const Clock::time_point start = Clock::now();
-  const std::vector<std::string>& inputs = options_.inputs;
-  std::string archive = Join(options_.out_dir, "archive.mfs");
-  std::error_code error;
+  const std::vector<std::string>& inputs = session_->inputs();
   if (inputs.empty()) {
-    const std::string truth = TruthPathFor(archive);
-    const SynthOptions& synth = options_.synth;
-    bool reused = false;
-    if (std::filesystem::exists(archive, error)) {
-      Result<TruthFile> stored = ReadTruthJson(truth);
-      reused = stored.ok() && stored->frames == synth.frames && stored->seed == synth.seed &&
-               stored->motifs == synth.motifs && FrameFileReader::Open(archive).ok();
-    }
-    if (!reused) {
-      MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
-                             MotionSynthesizer::Create(synth));
-      MOTIF_RETURN_IF_ERROR(
-          WriteSyntheticArchive(
-              archive, *synthesizer, synth, FrameFileWriterOptions{}.block_frames,
-              [&](uint64_t done, uint64_t total) { Progress("synth", done, total, "frames"); })
-              .status());
-    }
-    result_.truth_path = truth;
-    result_.times.push_back({"synth", SecondsSince(start), reused});
+    MOTIF_RETURN_IF_ERROR(MakeSyntheticArchive());
   } else if (inputs.size() == 1 && IsArchivePath(inputs[0])) {
-    archive = inputs[0];
-    if (std::filesystem::exists(TruthPathFor(archive), error)) {
-      result_.truth_path = TruthPathFor(archive);
+    RunFiles& files = session_->mutable_files();
+    files.archive = inputs[0];
+    std::error_code error;
+    if (fs::exists(TruthPathFor(files.archive), error)) files.truth = TruthPathFor(files.archive);
+  } else {
+    MOTIF_RETURN_IF_ERROR(ImportInputs());
+  }
+  return session_->OpenArchive();
+}
+
+Status MinePipeline::MakeSyntheticArchive() {
+  const Clock::time_point start = Clock::now();
+  RunFiles& files = session_->mutable_files();
+  files.truth = TruthPathFor(files.archive);
+  const SynthOptions synth = SynthOptionsFor(session_->options());
+  bool reused = false;
+  std::error_code error;
+  if (fs::exists(files.archive, error)) {
+    Result<TruthFile> stored = ReadTruthJson(files.truth);
+    reused = stored.ok() && stored->frames == synth.frames && stored->seed == synth.seed &&
+             stored->motifs == synth.motifs && FrameFileReader::Open(files.archive).ok();
+  }
+  if (!reused) {
+    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MotionSynthesizer> synthesizer,
+                           MotionSynthesizer::Create(synth));
+    MOTIF_RETURN_IF_ERROR(WriteSyntheticArchive(files.archive, *synthesizer, synth,
+                                                FrameFileWriterOptions{}.block_frames,
+                                                [&](uint64_t done, uint64_t total) {
+                                                  session_->Progress("synth", done, total,
+                                                                     "frames");
+                                                })
+                              .status());
+  }
+  result_.times.push_back({"synth", SecondsSince(start), reused});
+  return Status::Ok();
+}
+
+Status MinePipeline::ImportInputs() {
+  const Clock::time_point start = Clock::now();
+  ArchiveImportOptions import_options;
+  import_options.import.descriptions = descriptions_;
+  import_options.skip_bad = session_->options().skip_bad;
+  import_options.threads = session_->options().threads;
+  import_options.note = session_->hooks().note;
+  import_options.progress = [&](uint64_t done, uint64_t total) {
+    session_->Progress("import", done, total, "takes");
+  };
+  MOTIF_ASSIGN_OR_RETURN(
+      ArchiveImportResult imported,
+      ImportIntoArchive(session_->files().archive, session_->inputs(), import_options));
+  result_.times.push_back({"import", SecondsSince(start), imported.takes_imported == 0});
+  result_.skipped_takes = imported.failures;
+  return Status::Ok();
+}
+
+Status MinePipeline::ArchiveOpened() {
+  const FrameFileReader& archive = session_->archive();
+  result_.archive_path = session_->files().archive;
+  result_.truth_path = session_->files().truth;
+  result_.fps = archive.fps();
+  result_.frames = archive.frame_count();
+  result_.clips = archive.clips().size();
+  const motifmine::MineOptions& options = session_->options();
+  MOTIF_ASSIGN_OR_RETURN(trellis_options_, TrellisOptionsFor(options, archive.fps()));
+  trellis_options_.archive_version = archive.version();
+  paths_options_ = PathsOptionsFor(options, archive.fps());
+  paths_options_.archive_version = archive.version();
+  MOTIF_ASSIGN_OR_RETURN(cluster_options_, ClusterOptionsFor(options));
+  return Status::Ok();
+}
+
+void MinePipeline::TrellisProgress(const std::string& stage, uint64_t done, uint64_t total) const {
+  session_->Progress(stage == "trellis" ? "trellis" : "trellis " + stage, done, total,
+                     TrellisProgressUnit(stage));
+}
+
+// Stage 2: the matching trellis, built, updated, linked or taken as it is.
+Status MinePipeline::TrellisStage() {
+  TrellisStep step = plan_.trellis;
+  if (step == TrellisStep::kSkip) return Status::Ok();
+  const RunFiles& files = session_->files();
+  if (step == TrellisStep::kAnyOfArchive) {
+    step = TrellisOfArchive(files.trellis, session_->archive()) ? TrellisStep::kLink
+                                                                : TrellisStep::kBuild;
+  }
+  const Clock::time_point start = Clock::now();
+  if (step == TrellisStep::kLink) {
+    MOTIF_RETURN_IF_ERROR(LinkPreviousTrellis());
+    MOTIF_RETURN_IF_ERROR(session_->OpenTrellis());
+    result_.trellis.trellis_path = files.trellis;
+    result_.trellis.reused = true;
+    result_.trellis.params = session_->trellis().params();
+    result_.times.push_back({"trellis", SecondsSince(start), true});
+    return Status::Ok();
+  }
+  TrellisStageInput input;
+  input.archive = &session_->archive();
+  input.trellis_path = files.trellis;
+  input.options = trellis_options_;
+  input.options.progress = [this](const std::string& stage, uint64_t done, uint64_t total) {
+    TrellisProgress(stage, done, total);
+  };
+  input.options.note = session_->hooks().note;
+  input.options.ranks = session_->ranks();
+  input.options.file_system = session_->hooks().file_system;
+  if (plan_.save_search_cache) input.options.search_cache_path = files.search_cache;
+  std::unique_ptr<TrellisStrategy> strategy;
+  if (step == TrellisStep::kUpdate) {
+    strategy =
+        std::make_unique<IncrementalTrellisUpdate>(plan_.previous_trellis, plan_.previous_cache);
+    if (plan_.grow) {
+      MOTIF_ASSIGN_OR_RETURN(streamed_paths_,
+                             StreamedPaths::Create(session_->archive(), paths_options_));
+      input.on_block = [this](uint64_t first_column,
+                              const std::vector<std::vector<Neighbour>>& columns) {
+        return streamed_paths_->AddBlock(first_column, columns);
+      };
     }
   } else {
-    ArchiveImportOptions import_options;
-    import_options.import.descriptions = descriptions_;
-    import_options.skip_bad = options_.skip_bad;
-    import_options.threads = options_.threads;
-    import_options.note = options_.note;
-    import_options.progress = [&](uint64_t done, uint64_t total) {
-      Progress("import", done, total, "takes");
-    };
-    MOTIF_ASSIGN_OR_RETURN(ArchiveImportResult imported,
-                           ImportIntoArchive(archive, inputs, import_options));
-    result_.times.push_back({"import", SecondsSince(start), imported.takes_imported == 0});
-    result_.skipped_takes = imported.failures;
+    strategy = std::make_unique<FullTrellisBuild>();
   }
-  result_.archive_path = archive;
-  MOTIF_ASSIGN_OR_RETURN(archive_, FrameFileReader::Open(archive));
-  options_.trellis.archive_version = archive_->version();
-  options_.paths.archive_version = archive_->version();
-  result_.fps = archive_->fps();
-  result_.frames = archive_->frame_count();
-  result_.clips = archive_->clips().size();
-  return Status::Ok();
-}
-
-// Stage 2: the matching trellis.
-Status MinePipeline::BuildTrellisStage() {
-  TrellisOptions trellis = options_.trellis;
-  const PathsOptions& paths = options_.paths;
-  trellis.min_length_seconds = paths.min_length_frames > 0
-                                   ? static_cast<double>(paths.min_length_frames) / archive_->fps()
-                                   : paths.min_length_seconds;
-  trellis.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-    const bool columns = stage == "trellis";
-    Progress(columns ? "trellis" : "trellis " + stage, done, total,
-             stage == "eps" ? "pairs"
-             : columns      ? "columns"
-                            : "frames");
-  };
-  trellis.note = options_.note;
-  trellis.ranks = options_.ranks;
-  const Clock::time_point start = Clock::now();
-  MOTIF_ASSIGN_OR_RETURN(
-      result_.trellis,
-      BuildTrellis(result_.archive_path, Join(options_.out_dir, "trellis.mtr"), trellis));
+  MOTIF_ASSIGN_OR_RETURN(result_.trellis, strategy->Run(input));
   result_.times.push_back({"trellis", SecondsSince(start), result_.trellis.reused});
+  if (!session_->root()) return Status::Ok();
+  return session_->OpenTrellis();
+}
+
+// The previous version's trellis at files.trellis (a hard link; a copy where links are refused).
+Status MinePipeline::LinkPreviousTrellis() const {
+  const std::string& target = session_->files().trellis;
+  std::error_code error;
+  if (plan_.previous_trellis.empty() || fs::exists(target, error)) return Status::Ok();
+  fs::create_hard_link(plan_.previous_trellis, target, error);
+  if (error) fs::copy_file(plan_.previous_trellis, target, error);
+  if (error) {
+    return Status::IOError("cannot link " + plan_.previous_trellis + " to " + target + ": " +
+                           error.message());
+  }
   return Status::Ok();
 }
 
-// Stages 3 and 4: the paths, then the motifs (RunMotifStages, shared with reindex).
-Status MinePipeline::MotifStages() {
-  MotifStagesInput input;
-  input.archive_path = result_.archive_path;
-  input.archive = archive_.get();
-  input.trellis_path = Join(options_.out_dir, "trellis.mtr");
-  input.paths_path = Join(options_.out_dir, "paths.mpa");
-  input.motifs_path = Join(options_.out_dir, "motifs.json");
-  input.state_path = Join(options_.out_dir, "mine_state.json");
-  input.paths = options_.paths;
-  input.cluster = options_.cluster;
-  input.progress = options_.progress;
-  MOTIF_ASSIGN_OR_RETURN(MotifStagesResult stages, RunMotifStages(input));
-  result_.paths = stages.paths;
-  result_.document = std::move(stages.clustered.document);
-  result_.motifs_path = input.motifs_path;
-  result_.times.push_back({"grow", stages.grow_seconds, stages.paths.reused});
-  result_.times.push_back({"cluster", stages.cluster_seconds, stages.clustered.reused});
+// Stage 3: the paths (finished from the update's blocks when it streamed them all).
+Status MinePipeline::GrowStage() {
+  if (!plan_.grow) return Status::Ok();
+  const RunFiles& files = session_->files();
+  const Clock::time_point start = Clock::now();
+  if (streamed_paths_) {
+    MOTIF_RETURN_IF_ERROR(streamed_paths_->FinishIfComplete(session_->trellis(), files.paths));
+  }
+  PathsOptions paths = paths_options_;
+  paths.progress = [this](uint64_t done, uint64_t total) {
+    session_->Progress("grow", done, total, "columns");
+  };
+  MOTIF_ASSIGN_OR_RETURN(result_.paths,
+                         BuildPaths(session_->archive(), session_->trellis(), files.paths, paths));
+  result_.times.push_back({"grow", SecondsSince(start), result_.paths.reused});
+  return Status::Ok();
+}
+
+// Stage 4: the motifs.
+Status MinePipeline::ClusterStage() {
+  if (!plan_.cluster) return Status::Ok();
+  const RunFiles& files = session_->files();
+  ClusterStageInput input;
+  input.archive_path = files.archive;
+  input.archive = &session_->archive();
+  input.trellis_path = files.trellis;
+  input.trellis = &session_->trellis();
+  input.paths_path = files.paths;
+  input.paths_params = result_.paths.params;
+  input.candidates = result_.paths.candidates;
+  input.motifs_path = files.motifs;
+  input.state_path = files.cluster_state;
+  ClusterOptions cluster = cluster_options_;
+  cluster.progress = [this](const std::string&, uint64_t done, uint64_t total) {
+    session_->Progress("cluster", done, total, "columns");
+  };
+  const Clock::time_point start = Clock::now();
+  MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(input, cluster));
+  result_.document = std::move(clustered.document);
+  result_.motifs_path = files.motifs;
+  result_.times.push_back({"cluster", SecondsSince(start), clustered.reused});
   return Status::Ok();
 }
 
 // The planted motifs, when the archive is synthetic.
 Status MinePipeline::ScoreStage() {
-  if (result_.truth_path.empty()) return Status::Ok();
+  if (!plan_.score || !plan_.cluster || result_.truth_path.empty()) return Status::Ok();
   MOTIF_ASSIGN_OR_RETURN(TruthFile truth, ReadTruthJson(result_.truth_path));
   result_.score = ScoreMotifsDocument(result_.document, truth.instances);
   return Status::Ok();
@@ -293,6 +378,7 @@ Status MinePipeline::ScoreStage() {
 
 std::string MinePipeline::ParametersText() const {
   const TrellisReport& trellis = result_.trellis;
+  if (session_->report_parameters) return session_->report_parameters(trellis);
   // What motifs.json's params do not say: how the radius was chosen, and the search.
   std::ostringstream parameters;
   parameters << "radius: " << trellis.eps_how
@@ -302,6 +388,7 @@ std::string MinePipeline::ParametersText() const {
 
 // OUT/run.json: what `report OUT` needs to show this run's overview again.
 Status MinePipeline::WriteRunStage() {
+  if (!plan_.run_record || !plan_.cluster) return Status::Ok();
   MOTIF_ASSIGN_OR_RETURN(std::string motifs, ReadFileToString(result_.motifs_path));
   RunRecord record;
   record.motifs_checksum = Checksum64(motifs.data(), motifs.size());
@@ -313,34 +400,40 @@ Status MinePipeline::WriteRunStage() {
   record.peak_memory_bytes = result_.peak_memory_bytes;
   if (!result_.truth_path.empty()) {
     std::error_code error;
-    const std::filesystem::path truth =
-        std::filesystem::relative(std::filesystem::absolute(result_.truth_path),
-                                  std::filesystem::absolute(options_.out_dir), error);
-    record.truth_path =
-        error ? std::filesystem::absolute(result_.truth_path).string() : truth.string();
+    const fs::path truth =
+        fs::relative(fs::absolute(result_.truth_path), fs::absolute(session_->files().dir), error);
+    record.truth_path = error ? fs::absolute(result_.truth_path).string() : truth.string();
   }
-  return WriteRunRecord(Join(options_.out_dir, "run.json"), record);
+  return WriteRunRecord(session_->files().run_record, record);
 }
 
 // Stage 5: the report.
 Status MinePipeline::ReportStage() {
-  if (!options_.write_report) return Status::Ok();
+  if (!plan_.report || !plan_.cluster || !session_->options().write_report) return Status::Ok();
   const Clock::time_point start = Clock::now();
   ReportInfo info;
   info.archive_path = result_.archive_path;
   info.parameters_text = ParametersText();
-  for (const MineStageTime& time : result_.times)
+  for (const RunSession::EarlierStage& earlier : session_->earlier_stages) {
+    info.timings.push_back({earlier.stage, earlier.seconds});
+  }
+  for (const MineStageTime& time : result_.times) {
     info.timings.push_back({time.stage, time.seconds});
+  }
   info.peak_memory_bytes = result_.peak_memory_bytes;
   info.planted_score = result_.score;
   info.truth_path = result_.truth_path;
-  result_.report_path = Join(options_.out_dir, "report.html");
-  ReportOptions report_options;
-  report_options.playback_bytes = options_.report_playback_bytes;
-  MOTIF_RETURN_IF_ERROR(
-      WriteReportHtml(result_.report_path, result_.document, *archive_, info, report_options));
+  result_.report_path = session_->files().report;
+  MOTIF_RETURN_IF_ERROR(WriteReportHtml(result_.report_path, result_.document, session_->archive(),
+                                        info, ReportOptionsFor(session_->options())));
   result_.times.push_back({"report", SecondsSince(start), false});
   return Status::Ok();
+}
+
+Result<MinePipelineResult> RunMine(const motifmine::MineOptions& options,
+                                   const std::vector<std::string>& inputs, RunHooks hooks) {
+  RunSession session(options, inputs, MineFolderFiles(options.out_dir), std::move(hooks));
+  return MinePipeline(&session).Run();
 }
 
 }  // namespace motif

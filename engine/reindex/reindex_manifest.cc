@@ -186,7 +186,9 @@ bool MiningParams::operator==(const MiningParams& other) const {
          weights_path == other.weights_path && weights_hash == other.weights_hash &&
          block_columns == other.block_columns && branch == other.branch &&
          min_length == other.min_length && groups == other.groups && max_ncut == other.max_ncut &&
-         min_similarity == other.min_similarity && max_length_ratio == other.max_length_ratio;
+         min_similarity == other.min_similarity && max_length_ratio == other.max_length_ratio &&
+         similarity == other.similarity && pause_speed == other.pause_speed &&
+         pause_seconds == other.pause_seconds;
 }
 
 std::string VersionDirName(uint64_t version) {
@@ -233,7 +235,10 @@ std::string ManifestText(const ReindexManifest& manifest) {
                      {"groups", params.groups},
                      {"max_ncut", params.max_ncut},
                      {"min_similarity", params.min_similarity},
-                     {"max_length_ratio", params.max_length_ratio}}},
+                     {"max_length_ratio", params.max_length_ratio},
+                     {"similarity", params.similarity},
+                     {"pause_speed", params.pause_speed},
+                     {"pause_seconds", params.pause_seconds}}},
                    {"files",
                     {{"trellis", FileJson(manifest.trellis)},
                      {"paths", FileJson(manifest.paths)},
@@ -313,6 +318,13 @@ Result<ReindexManifest> ParseManifest(const std::string& text, const std::string
     out.max_ncut = params.Get<double>("max_ncut");
     out.min_similarity = params.Get<double>("min_similarity");
     out.max_length_ratio = params.Get<double>("max_length_ratio");
+    // Absent before they were recorded (2026-12-01): mine's defaults then.
+    out.similarity = params.GetOr<std::string>("similarity", motifmine::defaults::kSimilarity);
+    if (problem.empty() && out.similarity != "warped" && out.similarity != "shared") {
+      problem = where + ": \"similarity\" is neither warped nor shared";
+    }
+    out.pause_speed = params.GetOr<double>("pause_speed", motifmine::defaults::kPauseSpeed);
+    out.pause_seconds = params.GetOr<double>("pause_seconds", motifmine::defaults::kPauseSeconds);
   }
   {
     Fields files(top.Object("files"), top.Sub("files"), &problem);

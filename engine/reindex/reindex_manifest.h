@@ -16,6 +16,7 @@
 #include "common/status.h"
 #include "common/writable_file.h"
 #include "engine/lsh/lsh_options.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
@@ -64,6 +65,11 @@ struct MiningParams {
   double max_ncut = 0;
   double min_similarity = 0;
   double max_length_ratio = 0;
+  // How instance pairs are weighted and the pauses instances are trimmed at; absent from
+  // manifests written before they were recorded (2026-12-01), read as mine's defaults then.
+  std::string similarity = motifmine::defaults::kSimilarity;
+  double pause_speed = motifmine::defaults::kPauseSpeed;
+  double pause_seconds = motifmine::defaults::kPauseSeconds;
   // Every field equal; the LSH options only when the search is LSH (threads never count).
   bool operator==(const MiningParams& other) const;
 };

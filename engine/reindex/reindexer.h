@@ -11,7 +11,8 @@
 //        * "incremental" when takes were appended: UpdateTrellis from version N's trellis
 //          (eps, K_max, the search and its LSH family are the recorded ones);
 //        * "regrow" when only grow or clustering parameters changed (the trellis is shared);
-//      then the paths (BuildPaths) and the motifs (RunClusterStage), and the report;
+//      then the paths and the motifs, and the report: MinePipeline runs the plan ReindexPlan
+//      works out (reindex_plan.h), so the stages are mine's;
 //   4. switches: OUTDIR/manifest.json is replaced atomically (WriteManifest), then
 //      OUTDIR/motifs.json and OUTDIR/report.html (renamed into place from the version's);
 //   5. removes versions older than the previous one (a reader of the previous version keeps it
@@ -27,50 +28,31 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "common/status.h"
 #include "common/writable_file.h"
 #include "engine/reindex/reindex_manifest.h"
-#include "engine/trellis/trellis_builder.h"
 #include "formats/import/take_importer.h"
+#include "motifmine/options.h"
 
 namespace motif {
 
-// Unset fields keep the value recorded in the manifest (the defaults at the first run).
 struct ReindexOptions {
   std::string archive_path;
   std::string watch_dir;
   std::string out_dir;
-  std::optional<float> eps;  // 0: estimated by the rule below
-  // The rule eps is estimated by (epsilon_estimator.h) and its joint angle in (0, 180] degrees;
-  // unset: the recorded ones (mine's default, joint angle 12 degrees, at the first run). Giving
-  // one that the recorded eps was not estimated by estimates eps again (a full build); an
-  // explicit eps > 0 overrides them.
-  std::optional<EpsilonRule> eps_rule;
-  std::optional<double> eps_angle_degrees;
-  std::optional<uint32_t> k_max;            // default: mine's (256)
-  std::optional<uint32_t> exclusion;        // default 0: half the minimum length
-  std::optional<TrellisSearchMode> search;  // default auto at the first run
-  std::optional<uint32_t> lsh_tables;       // LSH family overrides
-  std::optional<uint32_t> lsh_hashes;
-  std::optional<float> lsh_width;
-  std::optional<uint64_t> seed;  // default 1
-  std::optional<std::string> weights_path;
-  std::optional<uint32_t> branch;  // default 5
-  // lambda: frames if min_length_frames > 0, else seconds (default 0.5 s).
-  std::optional<uint64_t> min_length_frames;
-  std::optional<double> min_length_seconds;
-  std::optional<uint32_t> groups;  // 0: auto
-  std::optional<double> max_ncut;
-  std::optional<double> min_similarity;
-  std::optional<double> max_length_ratio;
-  bool skip_bad = false;        // import the good takes, report the bad ones
+  // The run's options (include/motifmine/options.h, the option table's). At the first run they
+  // are the version's; after it, only those named in `given` replace the recorded ones (a change
+  // rebuilds what depends on it), while threads, write_report and skip_bad are always this
+  // run's. An explicit eps > 0 overrides eps_rule and eps_angle_degrees; giving a rule or an
+  // angle the recorded eps was not estimated by estimates eps again (a full build).
+  motifmine::MineOptions mine;
+  std::set<std::string> given;  // option-table names ("kmax", "min-length", ...)
   double min_age_seconds = 60;  // files modified more recently wait for the next run
   ImportOptions import;
-  bool report = true;  // write report.html
-  int threads = 0;
   FileSystem* file_system = PosixFileSystem();  // manifest, trellis, archive writes
   // Progress: (stage, done, total, unit); a new stage name begins a stage.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total,

@@ -24,7 +24,7 @@ Result<WatchScan> ScanWatchedFolder(const std::string& dir, const std::vector<Cl
                                     const ImportOptions& options, double min_age_seconds) {
   std::error_code error;
   if (!fs::is_directory(dir, error)) {
-    return Status::NotFound(dir + ": no such folder to watch (--watch)");
+    return Status::NotFound(dir + ": no such folder to watch (watch)").WithOption("watch");
   }
   MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources,
                          DiscoverTakes({WatchedPath(dir)}, options));

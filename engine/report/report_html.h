@@ -25,6 +25,7 @@
 #include "engine/report/html_page.h"
 #include "engine/report/stick_figure_svg.h"
 #include "formats/frame_file/frame_file_reader.h"
+#include "motifmine/defaults.h"
 
 namespace motif {
 
@@ -52,7 +53,7 @@ struct ReportOptions {
   uint32_t clip_names_per_motif = 12;  // clip names listed per motif before "+N more"
   // Playback data embedded for the player (instance_playback.h), motif by motif in rank order,
   // up to this many bytes; the later motifs say how to raise it.
-  uint64_t playback_bytes = uint64_t{32} << 20;
+  uint64_t playback_bytes = uint64_t{motifmine::defaults::kPlaybackMegabytes} << 20;
 };
 
 // The report's HTML. InvalidArgument if the document does not match the archive

@@ -46,8 +46,8 @@ Result<AuditReport> AuditTrellis(const std::string& archive_path, const std::str
   MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
                          LoadDistanceWeights(reader->skeleton(), options.weights_path));
   if (WeightsHash(weights) != params.weights_hash) {
-    return Status::InvalidArgument(trellis_path +
-                                   " was built with other joint weights: pass the same --weights");
+    return Status::InvalidOption("weights", "must be the joint weights " + trellis_path +
+                                                " was built with, which are other ones");
   }
   MOTIF_ASSIGN_OR_RETURN(PoseFeatures features, PoseFeatures::FromArchive(*reader, weights));
   NeighbourRules rules;

@@ -15,6 +15,8 @@
 #include "engine/lsh/lsh_tuning.h"
 #include "engine/trellis/block_write_queue.h"
 #include "engine/trellis/distributed_columns.h"
+#include "engine/trellis/search_cache.h"
+#include "engine/trellis/trellis_search.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/trellis_file/trellis_file_reader.h"
 
@@ -147,6 +149,119 @@ Status WriteColumnsHere(const NeighbourSearch& search, const TrellisOptions& opt
   return finish_pending_write();
 }
 
+// InvalidOption for options no build can run with.
+Status CheckTrellisOptions(const TrellisOptions& options) {
+  if (options.k_max == 0) return Status::InvalidOption("kmax", "must be at least 1");
+  if (options.eps < 0 || !std::isfinite(options.eps)) {
+    return Status::InvalidOption("eps", "must be a positive number or auto");
+  }
+  if (options.exact && options.search == TrellisSearchMode::kLsh) {
+    return Status::InvalidOption("search", "lsh contradicts the exact search asked for");
+  }
+  return Status::Ok();
+}
+
+// The search: as asked, or by the archive's size (the exact search is faster on small ones).
+TrellisSearchMode ChooseSearchMode(const TrellisOptions& options, uint64_t frame_count,
+                                   const std::function<void(const std::string&)>& note) {
+  TrellisSearchMode mode = options.exact ? TrellisSearchMode::kExact : options.search;
+  if (mode != TrellisSearchMode::kAuto) return mode;
+  mode = frame_count < options.auto_exact_max_frames ? TrellisSearchMode::kExact
+                                                     : TrellisSearchMode::kLsh;
+  note(std::string("search: ") + TrellisSearchModeName(mode) +
+       " (auto: " + std::to_string(frame_count) + " frames, exact below " +
+       std::to_string(options.auto_exact_max_frames) + ")");
+  return mode;
+}
+
+// The radius: explicit, or estimated by the rule; into params (eps, mu, sigma) and the report.
+Status ChooseRadius(const PoseFeatures& features, const NeighbourRules& rules,
+                    const TrellisOptions& options, TrellisParams* params, TrellisReport* report,
+                    const std::function<void(const std::string&)>& note) {
+  const auto start = std::chrono::steady_clock::now();
+  EpsilonOptions eps_options;
+  eps_options.rule = options.eps_rule;
+  eps_options.joint_angle_degrees = options.eps_joint_angle_degrees;
+  eps_options.sample_pairs = options.eps_sample_pairs;
+  eps_options.seed = options.seed;
+  eps_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
+  if (options.eps > 0) eps_options.explicit_eps = options.eps;
+  EpsilonEstimator estimator(features, rules, eps_options);
+  MOTIF_ASSIGN_OR_RETURN(EpsilonEstimate estimate, estimator.Estimate());
+  params->eps = estimate.eps;
+  if (!estimate.explicit_eps) {
+    params->mu = static_cast<float>(estimate.mu);
+    params->sigma = static_cast<float>(estimate.sigma);
+  }
+  report->eps_how = estimate.how;
+  report->paper_eps = estimate.paper_eps;
+  if (!estimate.note.empty()) note(estimate.note);
+  report->eps_seconds = SecondsSince(start);
+  return Status::Ok();
+}
+
+// The features, the LSH tables (none for the exact search) of a finished build, for the next
+// incremental update. Best effort: a cache.
+void SaveSearchCache(const TrellisOptions& options, const FrameFileReader& archive,
+                     const PoseFeatures& features, const TrellisSearch& search,
+                     const TrellisParams& params,
+                     const std::function<void(const std::string&)>& note) {
+  const SearchCacheKey key{archive.summary().identity, params.weights_hash,
+                           search.lsh ? DescribeLshOptions(search.lsh->options()) : ""};
+  const Status saved =
+      WriteSearchCache(options.search_cache_path, key, features,
+                       search.lsh ? &search.lsh->index() : nullptr, 0, {}, options.file_system);
+  if (!saved.ok()) note("search cache not saved (the next run rebuilds it): " + saved.message());
+}
+
+// Rank 0's writer (opened first in a distributed run, to tell the others where to start), and
+// whether the finished trellis is reused; every rank learns both.
+Status OpenWriterAndAgree(const TrellisOptions& options, const std::string& trellis_path,
+                          const TrellisParams& params, TrellisReport* report,
+                          std::unique_ptr<TrellisFileWriter>* writer) {
+  const bool root = options.ranks == nullptr || options.ranks->rank() == 0;
+  if (root) report->reused = ReadReusable(trellis_path, params, report);
+  TrellisFileWriterOptions writer_options;
+  writer_options.block_columns = options.block_columns;
+  if (root && !report->reused) {
+    MOTIF_ASSIGN_OR_RETURN(*writer,
+                           TrellisFileWriter::OpenOrResume(trellis_path, params, writer_options));
+    report->resumed_from_column = (*writer)->next_column();
+  }
+  if (options.ranks == nullptr) return Status::Ok();
+  BuildPlan plan{report->reused, report->resumed_from_column};
+  MOTIF_RETURN_IF_ERROR(AgreeOnPlan(options.ranks, params, &plan));
+  report->reused = plan.reused;
+  report->resumed_from_column = plan.first_column;
+  return Status::Ok();
+}
+
+// The columns, searched and written block by block; then the counters and the file's size.
+Status WriteAllColumns(const TrellisSearch& search, const TrellisOptions& options,
+                       const std::string& trellis_path, TrellisFileWriter* writer,
+                       TrellisReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  SearchStats stats;
+  if (options.ranks != nullptr) {
+    MOTIF_RETURN_IF_ERROR(
+        WriteColumnsAcrossRanks(*search.search, options, report->params, writer, report, &stats));
+    if (options.ranks->rank() != 0) return Status::Ok();
+  } else {
+    MOTIF_RETURN_IF_ERROR(
+        WriteColumnsHere(*search.search, options, trellis_path, writer, report, &stats));
+  }
+  MOTIF_RETURN_IF_ERROR(writer->Finish());
+  report->search_seconds = SecondsSince(start);
+  report->distance_evaluations = stats.distance_evaluations;
+  report->capped_columns = stats.capped_columns;
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> finished,
+                         TrellisFileReader::Open(trellis_path));
+  report->columns = finished->column_count();
+  report->neighbours = finished->neighbour_count();
+  report->mean_k = report->columns ? static_cast<double>(report->neighbours) / report->columns : 0;
+  return Status::Ok();
+}
+
 }  // namespace
 
 const char* TrellisSearchModeName(TrellisSearchMode mode) {
@@ -166,7 +281,7 @@ Result<TrellisSearchMode> ParseTrellisSearchMode(const std::string& name) {
        {TrellisSearchMode::kAuto, TrellisSearchMode::kLsh, TrellisSearchMode::kExact}) {
     if (name == TrellisSearchModeName(mode)) return mode;
   }
-  return Status::InvalidArgument("--search must be auto, lsh or exact, not '" + name + "'");
+  return Status::InvalidOption("search", "must be auto, lsh or exact, not '" + name + "'");
 }
 
 uint64_t WeightsHash(const std::vector<float>& weights) {
@@ -179,7 +294,7 @@ std::string DefaultTrellisPath(const std::string& archive_path) {
   return path.string() + ".mtr";
 }
 
-Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::string& trellis_path,
+Result<TrellisReport> BuildTrellis(const FrameFileReader& reader, const std::string& trellis_path,
                                    const TrellisOptions& options) {
   auto note = [&](const std::string& message) {
     if (options.note) options.note(message);
@@ -187,41 +302,20 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::s
   auto progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
     if (options.progress) options.progress(stage, done, total);
   };
-  if (options.k_max == 0) return Status::InvalidArgument("--kmax must be at least 1");
-  if (options.eps < 0 || !std::isfinite(options.eps)) {
-    return Status::InvalidArgument("--eps must be a positive number or auto");
-  }
-  if (options.min_length_seconds <= 0) {
-    return Status::InvalidArgument("the minimum motif length must be positive");
-  }
-  if (options.exact && options.search == TrellisSearchMode::kLsh) {
-    return Status::InvalidArgument("--exact and --search lsh contradict each other");
-  }
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
-                         FrameFileReader::OpenVersion(archive_path, options.archive_version));
-  if (reader->frame_count() >= (uint64_t{1} << 32)) {
-    return Status::NotSupported(archive_path + ": more than 2^32 frames");
+  MOTIF_RETURN_IF_ERROR(CheckTrellisOptions(options));
+  if (reader.frame_count() >= (uint64_t{1} << 32)) {
+    return Status::NotSupported(reader.path() + ": more than 2^32 frames");
   }
   MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
-                         LoadDistanceWeights(reader->skeleton(), options.weights_path));
-
+                         LoadDistanceWeights(reader.skeleton(), options.weights_path));
   TrellisReport report;
   report.trellis_path = trellis_path;
-  // The search: as asked, or by the archive's size (the exact search is faster on small ones).
-  TrellisSearchMode search_mode = options.exact ? TrellisSearchMode::kExact : options.search;
-  if (search_mode == TrellisSearchMode::kAuto) {
-    search_mode = reader->frame_count() < options.auto_exact_max_frames ? TrellisSearchMode::kExact
-                                                                        : TrellisSearchMode::kLsh;
-    note(std::string("search: ") + TrellisSearchModeName(search_mode) +
-         " (auto: " + std::to_string(reader->frame_count()) + " frames, exact below " +
-         std::to_string(options.auto_exact_max_frames) + ")");
-  }
-  const bool exact = search_mode == TrellisSearchMode::kExact;
-  report.search = search_mode;
+  report.search = ChooseSearchMode(options, reader.frame_count(), note);
+  const bool exact = report.search == TrellisSearchMode::kExact;
   auto start = std::chrono::steady_clock::now();
-  progress("features", 0, reader->frame_count());
+  progress("features", 0, reader.frame_count());
   MOTIF_ASSIGN_OR_RETURN(PoseFeatures features, PoseFeatures::FromArchive(
-                                                    *reader, weights,
+                                                    reader, weights,
                                                     [&](uint64_t done, uint64_t total) {
                                                       progress("features", done, total);
                                                     },
@@ -229,42 +323,21 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::s
   report.features_seconds = SecondsSince(start);
   report.feature_bytes = features.memory_bytes();
 
-  NeighbourRules rules;
-  rules.k_max = options.k_max;
-  rules.exclusion_frames =
-      options.exclusion_frames > 0
-          ? options.exclusion_frames
-          : static_cast<uint32_t>(std::lround(options.min_length_seconds * reader->fps() / 2));
-  rules.clip_first_frames = features.clip_first_frames();
-
+  const uint32_t exclusion = options.exclusion_frames > 0
+                                 ? options.exclusion_frames
+                                 : static_cast<uint32_t>(std::lround(
+                                       motifmine::defaults::kMinLengthSeconds * reader.fps() / 2));
+  NeighbourRules rules = TrellisRules(features, 0, options.k_max, exclusion);
   TrellisParams params;
-  params.frame_count = reader->frame_count();
-  params.archive_identity = reader->summary().identity;
+  params.frame_count = reader.frame_count();
+  params.archive_identity = reader.summary().identity;
   params.k_max = rules.k_max;
   params.exclusion_frames = rules.exclusion_frames;
   params.search_mode = exact ? 0 : 1;
   params.seed = options.seed;
   params.weights_hash = WeightsHash(weights);
-  start = std::chrono::steady_clock::now();
-  EpsilonOptions eps_options;
-  eps_options.rule = options.eps_rule;
-  eps_options.joint_angle_degrees = options.eps_joint_angle_degrees;
-  eps_options.sample_pairs = options.eps_sample_pairs;
-  eps_options.seed = options.seed;
-  eps_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
-  if (options.eps > 0) eps_options.explicit_eps = options.eps;
-  EpsilonEstimator estimator(features, rules, eps_options);
-  MOTIF_ASSIGN_OR_RETURN(EpsilonEstimate estimate, estimator.Estimate());
-  params.eps = estimate.eps;
-  if (!estimate.explicit_eps) {
-    params.mu = static_cast<float>(estimate.mu);
-    params.sigma = static_cast<float>(estimate.sigma);
-  }
-  report.eps_how = estimate.how;
-  report.paper_eps = estimate.paper_eps;
-  if (!estimate.note.empty()) note(estimate.note);
+  MOTIF_RETURN_IF_ERROR(ChooseRadius(features, rules, options, &params, &report, note));
   rules.eps = params.eps;
-  report.eps_seconds = SecondsSince(start);
 
   // The file records the search as requested (the LSH bucket width "auto" included): the
   // width chosen from the data follows from the data and the seed.
@@ -276,73 +349,36 @@ Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::s
 
   // A finished trellis with the same parameters over the same archive is the answer already
   // (rank 0 decides for every rank).
-  const bool root = options.ranks == nullptr || options.ranks->rank() == 0;
-  if (root) report.reused = ReadReusable(trellis_path, params, &report);
-  // A distributed run: rank 0 opens the writer first, to tell the others where to start.
   std::unique_ptr<TrellisFileWriter> writer;
-  TrellisFileWriterOptions writer_options;
-  writer_options.block_columns = options.block_columns;
-  if (options.ranks != nullptr) {
-    BuildPlan plan{report.reused, 0};
-    if (root && !report.reused) {
-      MOTIF_ASSIGN_OR_RETURN(writer,
-                             TrellisFileWriter::OpenOrResume(trellis_path, params, writer_options));
-      plan.first_column = writer->next_column();
-    }
-    MOTIF_RETURN_IF_ERROR(AgreeOnPlan(options.ranks, params, &plan));
-    report.reused = plan.reused;
-    report.resumed_from_column = plan.first_column;
-  }
+  MOTIF_RETURN_IF_ERROR(OpenWriterAndAgree(options, trellis_path, params, &report, &writer));
   if (report.reused) {
     if (!exact) report.lsh_resolved = ResolveLshOptions(features, rules, lsh);
     return report;
   }
-
   start = std::chrono::steady_clock::now();
-  std::unique_ptr<NeighbourSearch> search;
-  if (exact) {
-    ExactSearchOptions exact_options;
-    exact_options.threads = options.threads > 0 ? static_cast<uint32_t>(options.threads) : 0;
-    search = std::make_unique<ExactSearch>(features, rules, exact_options);
-  } else {
-    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<LshSearch> lsh_search,
-                           LshSearch::Create(features, rules, lsh, options.ranks));
-    note("LSH index: " + lsh_search->DescribeParams());
-    report.lsh_resolved = lsh_search->options();
-    search = std::move(lsh_search);
+  MOTIF_ASSIGN_OR_RETURN(TrellisSearch search, MakeTrellisSearch(features, rules, exact, lsh,
+                                                                 options.threads, options.ranks));
+  if (search.lsh != nullptr) {
+    note("LSH index: " + search.lsh->DescribeParams());
+    report.lsh_resolved = search.lsh->options();
   }
   report.index_seconds = SecondsSince(start);
-
-  if (writer == nullptr && root) {
-    MOTIF_ASSIGN_OR_RETURN(writer,
-                           TrellisFileWriter::OpenOrResume(trellis_path, params, writer_options));
-    report.resumed_from_column = writer->next_column();
-  }
   if (report.resumed_from_column > 0) {
     note("resuming the interrupted build at column " + std::to_string(report.resumed_from_column));
   }
-  start = std::chrono::steady_clock::now();
-  SearchStats stats;
-  if (options.ranks != nullptr) {
-    MOTIF_RETURN_IF_ERROR(
-        WriteColumnsAcrossRanks(*search, options, params, writer.get(), &report, &stats));
-    if (!root) return report;
-  } else {
-    MOTIF_RETURN_IF_ERROR(
-        WriteColumnsHere(*search, options, trellis_path, writer.get(), &report, &stats));
+  MOTIF_RETURN_IF_ERROR(WriteAllColumns(search, options, trellis_path, writer.get(), &report));
+  const bool root = options.ranks == nullptr || options.ranks->rank() == 0;
+  if (root && !options.search_cache_path.empty()) {
+    SaveSearchCache(options, reader, features, search, params, note);
   }
-  MOTIF_RETURN_IF_ERROR(writer->Finish());
-  if (options.on_search_done) options.on_search_done(features, *search);
-  report.search_seconds = SecondsSince(start);
-  report.distance_evaluations = stats.distance_evaluations;
-  report.capped_columns = stats.capped_columns;
-
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> finished,
-                         TrellisFileReader::Open(trellis_path));
-  report.columns = finished->column_count();
-  report.neighbours = finished->neighbour_count();
-  report.mean_k = report.columns ? static_cast<double>(report.neighbours) / report.columns : 0;
   return report;
+}
+
+Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::string& trellis_path,
+                                   const TrellisOptions& options) {
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
+                         FrameFileReader::OpenVersion(archive_path, options.archive_version));
+  return BuildTrellis(*reader, trellis_path, options);
 }
 
 }  // namespace motif

@@ -22,6 +22,7 @@
 
 #include "common/rank_group.h"
 #include "common/status.h"
+#include "common/writable_file.h"
 #include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/neighbour_search.h"
 #include "engine/distance/pose_features.h"
@@ -52,33 +53,43 @@ struct TrellisOptions {
   double eps_joint_angle_degrees = kDefaultJointAngleDegrees;
   uint64_t eps_sample_pairs = 200000;
   uint32_t k_max = NeighbourRules{}.k_max;  // 256
-  // Trivial-match exclusion radius in frames; 0: half the minimum motif length (min_length_s).
+  // Trivial-match exclusion radius in frames; 0: half the default minimum motif length (0.5 s)
+  // at the archive's rate. A run resolves it from its own λ (engine/pipeline/stage_options.h).
   uint32_t exclusion_frames = 0;
-  double min_length_seconds = 0.5;  // lambda: 60 frames at 120 fps
   TrellisSearchMode search = TrellisSearchMode::kAuto;
   uint64_t auto_exact_max_frames = kAutoExactMaxFrames;  // kAuto: exact when N < this
   bool exact = false;  // the same as search = kExact (kept for existing callers)
   int threads = 0;     // 0: all cores
   uint64_t seed = 1;
-  FrameFileVersion archive_version;  // the archive's version to read; default: the newest
+  FrameFileVersion archive_version;  // BuildTrellis by path: the version to read (the newest)
   std::string weights_path;          // per-joint weights file; empty: the skeleton's defaults
   LshOptions lsh;                    // lsh.seed and lsh.threads are set from seed and threads
   uint32_t block_columns = 4096;
   // Testing: stop with IOError after writing this many blocks (0: never), leaving the partial
   // file as an interruption would.
   uint64_t stop_after_blocks = 0;
+  // Non-empty: once every column is written, the features and the LSH tables of this build are
+  // written there (search_cache.h), for an incremental update later (motifmine reindex). Not
+  // when a finished trellis is reused. A cache: a failure to write it is a note, not an error.
+  std::string search_cache_path;
+  FileSystem* file_system = PosixFileSystem();  // the search cache's writes
   // Stages: "features", "eps", "index", "trellis"; (done, total) in frames / pairs / columns.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;
   std::function<void(const std::string&)> note;
-  // Called once a build has written every column, with the features and the search it used
-  // (not when a finished trellis is reused): a caller may keep them (motifmine reindex saves
-  // them for its next, incremental run).
-  std::function<void(const PoseFeatures&, const NeighbourSearch&)> on_search_done;
   // A distributed run (motifmine-mpi, docs/design/distributed.md): every rank calls BuildTrellis
   // with the group. The ranks share the work of the features, the LSH index and the columns
   // (distributed_columns.h); rank 0 alone reads and writes trellis_path, and its report is the
   // one a single process gives (the others' is partial). null: one process.
   RankGroup* ranks = nullptr;
+};
+
+// What an incremental update did (trellis_update.h), for the reindex manifest.
+struct TrellisUpdateCounts {
+  uint64_t old_columns = 0;
+  uint64_t new_columns = 0;
+  uint64_t changed_columns = 0;  // old columns that gained a new neighbour
+  uint64_t copied_blocks = 0;
+  uint64_t rewritten_blocks = 0;
 };
 
 struct TrellisReport {
@@ -110,6 +121,8 @@ struct TrellisReport {
   double receive_wait_seconds = 0;
   std::vector<uint64_t> rank_bytes_sent;
   std::vector<double> rank_search_seconds;  // each rank's time searching its blocks
+  bool updated = false;                     // made by an incremental update, not a build
+  TrellisUpdateCounts update;               // when updated
 };
 
 // The trellis file's weights_hash of per-joint distance weights (XXH3-64 of the floats).
@@ -118,7 +131,13 @@ uint64_t WeightsHash(const std::vector<float>& weights);
 // "<archive without .mfs>.mtr": where `motifmine trellis` writes an archive's trellis.
 std::string DefaultTrellisPath(const std::string& archive_path);
 
-// Builds (or reuses, or resumes) the trellis of `archive_path` at `trellis_path`.
+// Builds (or reuses, or resumes) the trellis of the archive version `archive` reads at
+// `trellis_path`. InvalidOption for an impossible option (naming it: "kmax", "eps", "search");
+// NotSupported for 2^32 frames or more; the errors of the reader, the weights file, the search
+// and the writer pass through.
+Result<TrellisReport> BuildTrellis(const FrameFileReader& archive, const std::string& trellis_path,
+                                   const TrellisOptions& options);
+// The same for the archive at `archive_path` (options.archive_version), opened here.
 Result<TrellisReport> BuildTrellis(const std::string& archive_path, const std::string& trellis_path,
                                    const TrellisOptions& options);
 

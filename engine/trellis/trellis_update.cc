@@ -205,6 +205,382 @@ struct OutputBlock {
   uint64_t recomputed = 0;
 };
 
+// One update, step by step (UpdateTrellis): the checks, the old columns' thresholds, the new
+// columns' search, then the output blocks written in order.
+class TrellisUpdater {
+ public:
+  TrellisUpdater(const TrellisFileReader& previous, const PoseFeatures& features,
+                 const NeighbourRules& rules, const NeighbourSearch& search,
+                 const TrellisParams& params, const std::string& out_path,
+                 const TrellisUpdateOptions& options)
+      : previous_(previous),
+        features_(features),
+        rules_(rules),
+        search_(search),
+        params_(params),
+        out_path_(out_path),
+        options_(options),
+        old_columns_(previous.column_count()),
+        frame_count_(features.frame_count()),
+        arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {}
+
+  Result<TrellisUpdateReport> Run();
+
+ private:
+  Status Check() const;
+  Status OpenWriter();
+  Status PrepareThresholds();
+  Status SearchNewColumns();
+  void KeepNewBlock(uint64_t first, Columns* columns, trellis_file::BlockEncoder* encoder,
+                    Status* status);
+  void SetThresholds(uint64_t first_column, const Columns& columns);
+  void PrepareBlock(OutputBlock* out);
+  void CopyBlock(OutputBlock* out, uint64_t first_column, uint64_t end_column);
+  void MergeBlock(OutputBlock* out, uint64_t first_column, uint64_t end_column, bool copied);
+  Status WriteBlocks();
+  void AppendBlock(OutputBlock* out);
+  void Progress(const std::string& stage, uint64_t done, uint64_t total) const {
+    if (options_.progress) options_.progress(stage, done, total);
+  }
+
+  const TrellisFileReader& previous_;
+  const PoseFeatures& features_;
+  const NeighbourRules& rules_;
+  const NeighbourSearch& search_;
+  const TrellisParams& params_;
+  const std::string& out_path_;
+  const TrellisUpdateOptions& options_;
+  const uint64_t old_columns_;
+  const uint64_t frame_count_;
+  tbb::task_arena arena_;
+  TrellisUpdateReport report_;
+  std::unique_ptr<TrellisFileWriter> writer_;
+  uint64_t block_columns_ = 0;
+  uint64_t first_out_block_ = 0;
+  uint64_t out_blocks_ = 0;
+  // Blocks [0, mixed_block_) hold old columns only; from mixed_block_ on they hold new columns
+  // (mixed_block_ itself also the last old ones when old_columns_ is not a multiple of B).
+  uint64_t mixed_block_ = 0;
+  bool old_blocks_left_ = false;
+  std::vector<float> computed_thresholds_;
+  const std::vector<float>* thresholds_ = nullptr;
+  std::vector<float>* next_thresholds_ = nullptr;
+  std::vector<ReversePair> pairs_;
+  Columns mixed_new_columns_;  // [old_columns_, the mixed end)
+  std::vector<std::unique_ptr<std::string>> new_block_bytes_;
+  std::vector<std::unique_ptr<Columns>> new_block_columns_;
+  tbb::enumerable_thread_specific<std::unique_ptr<trellis_file::BlockEncoder>> encoders_{
+      [] { return std::make_unique<trellis_file::BlockEncoder>(kZstdLevel); }};
+  tbb::enumerable_thread_specific<TrellisBlock> blocks_;
+  tbb::enumerable_thread_specific<MergeScratch> merge_scratch_;
+  BufferPool<Columns> column_pool_;
+  BufferPool<std::string> byte_pool_;
+  Status failure_;
+};
+
+Status TrellisUpdater::Check() const {
+  const TrellisParams& old_params = previous_.params();
+  auto invalid = [&](const std::string& what) {
+    return Status::InvalidArgument("trellis update of " + previous_.path() + ": " + what);
+  };
+  if (old_params.eps != params_.eps || old_params.k_max != params_.k_max ||
+      old_params.exclusion_frames != params_.exclusion_frames ||
+      old_params.weights_hash != params_.weights_hash) {
+    return invalid("eps, k_max, exclusion or joint weights differ from the new trellis's");
+  }
+  if (params_.eps != rules_.eps || params_.k_max != rules_.k_max ||
+      params_.exclusion_frames != rules_.exclusion_frames) {
+    return invalid("the search's rules differ from the new trellis's parameters");
+  }
+  if (params_.frame_count != frame_count_ || old_columns_ > frame_count_) {
+    return invalid("the old trellis has " + std::to_string(old_columns_) +
+                   " columns, the archive " + std::to_string(frame_count_) +
+                   " frames, the new parameters " + std::to_string(params_.frame_count));
+  }
+  return Status::Ok();
+}
+
+Status TrellisUpdater::OpenWriter() {
+  TrellisFileWriterOptions writer_options;
+  writer_options.block_columns = previous_.block_columns();
+  writer_options.zstd_level = kZstdLevel;
+  writer_options.file_system = options_.file_system;
+  // Blocks come faster than a disk syncs them; Finish syncs the file before its rename.
+  writer_options.sync_each_block = false;
+  MOTIF_ASSIGN_OR_RETURN(writer_,
+                         TrellisFileWriter::OpenOrResume(out_path_, params_, writer_options));
+  block_columns_ = writer_->block_columns();
+  // next_column is a multiple of B, or N when every block was written (an update interrupted
+  // while finishing).
+  first_out_block_ = (writer_->next_column() + block_columns_ - 1) / block_columns_;
+  out_blocks_ = (frame_count_ + block_columns_ - 1) / block_columns_;
+  report_.resumed_from_column = writer_->next_column();
+  mixed_block_ = old_columns_ / block_columns_;
+  old_blocks_left_ = first_out_block_ * block_columns_ < old_columns_;
+  return Status::Ok();
+}
+
+// 1. Thresholds of the old columns still to write: saved by the previous update, or decoded.
+Status TrellisUpdater::PrepareThresholds() {
+  const Clock::time_point start = Clock::now();
+  if (old_blocks_left_) {
+    if (options_.thresholds != nullptr && options_.thresholds->size() == old_columns_) {
+      thresholds_ = options_.thresholds;
+    } else {
+      Progress("thresholds", 0, previous_.block_count() - first_out_block_);
+      MOTIF_RETURN_IF_ERROR(ComputeThresholds(
+          previous_, first_out_block_, arena_,
+          [&](uint64_t done, uint64_t total) { Progress("thresholds", done, total); },
+          &computed_thresholds_));
+      thresholds_ = &computed_thresholds_;
+    }
+  }
+  // The new trellis's thresholds, when every block goes through this update.
+  next_thresholds_ = report_.resumed_from_column == 0 ? options_.next_thresholds : nullptr;
+  if (options_.next_thresholds) options_.next_thresholds->clear();
+  if (next_thresholds_) next_thresholds_->assign(frame_count_, params_.eps);
+  report_.thresholds_seconds = SecondsSince(start);
+  return Status::Ok();
+}
+
+void TrellisUpdater::SetThresholds(uint64_t first_column, const Columns& columns) {
+  if (next_thresholds_ == nullptr) return;
+  for (size_t idx = 0; idx < columns.size(); ++idx) {
+    (*next_thresholds_)[first_column + idx] =
+        ColumnThreshold(columns[idx].data(), columns[idx].size(), params_.eps, params_.k_max);
+  }
+}
+
+// A whole new block: encoded at once, and its columns kept for the block sink.
+void TrellisUpdater::KeepNewBlock(uint64_t first, Columns* columns,
+                                  trellis_file::BlockEncoder* encoder, Status* status) {
+  const uint64_t block_idx = first / block_columns_;
+  trellis_file::BlockHandle handle;
+  new_block_bytes_[block_idx] = std::make_unique<std::string>();
+  *status =
+      encoder->Encode(first, *columns, params_.eps, new_block_bytes_[block_idx].get(), &handle);
+  SetThresholds(first, *columns);
+  if (options_.on_block) {
+    new_block_columns_[block_idx] = std::make_unique<Columns>(std::move(*columns));
+    *columns = {};
+  }
+}
+
+// 2. The new columns, block by block of the output: whole new blocks are encoded at once, the
+// new columns of the mixed block are kept for the merge. With old blocks still to write, the
+// queries also report the old columns they enter.
+Status TrellisUpdater::SearchNewColumns() {
+  const Clock::time_point start = Clock::now();
+  const uint64_t search_first =
+      old_blocks_left_ ? old_columns_ : std::max(old_columns_, writer_->next_column());
+  new_block_bytes_.resize(out_blocks_);
+  new_block_columns_.resize(out_blocks_);
+  trellis_file::BlockEncoder encoder(kZstdLevel);
+  ReverseQuery query;
+  query.frame_limit = old_columns_;
+  query.thresholds = thresholds_ ? thresholds_->data() : nullptr;
+  Columns columns;
+  Columns reverse;
+  Progress("new columns", 0, frame_count_ - search_first);
+  for (uint64_t first = search_first; first < frame_count_;) {
+    const uint64_t block_idx = first / block_columns_;
+    const uint64_t end = std::min(frame_count_, (block_idx + 1) * block_columns_);
+    columns.clear();
+    if (old_blocks_left_) {
+      MOTIF_RETURN_IF_ERROR(search_.SearchColumnsAndReverse(first, end - first, query, &columns,
+                                                            &reverse, &report_.search_stats));
+      for (uint64_t idx = 0; idx < end - first; ++idx) {
+        for (const Neighbour& found : reverse[idx]) {
+          pairs_.push_back({found.frame, static_cast<uint32_t>(first + idx), found.distance});
+        }
+      }
+    } else {
+      MOTIF_RETURN_IF_ERROR(
+          search_.SearchColumns(first, end - first, &columns, &report_.search_stats));
+    }
+    if (first % block_columns_ != 0) {
+      mixed_new_columns_ = std::move(columns);  // the mixed block's new columns
+      columns = {};
+    } else if (block_idx >= first_out_block_) {
+      Status encoded;
+      KeepNewBlock(first, &columns, &encoder, &encoded);
+      MOTIF_RETURN_IF_ERROR(encoded);
+    }
+    Progress("new columns", end - search_first, frame_count_ - search_first);
+    first = end;
+  }
+  std::sort(pairs_.begin(), pairs_.end(), [](const ReversePair& a, const ReversePair& b) {
+    return a.old_frame != b.old_frame ? a.old_frame < b.old_frame : a.new_frame < b.new_frame;
+  });
+  report_.reverse_candidates = pairs_.size();
+  report_.search_seconds = SecondsSince(start);
+  return Status::Ok();
+}
+
+// An old block no new frame enters, as the old file's bytes.
+void TrellisUpdater::CopyBlock(OutputBlock* out, uint64_t first_column, uint64_t end_column) {
+  out->status = previous_.ReadEncodedBlock(out->block_idx, &out->bytes, &out->size);
+  out->copied = true;
+  if (next_thresholds_) {
+    std::copy(thresholds_->begin() + first_column, thresholds_->begin() + end_column,
+              next_thresholds_->begin() + first_column);
+  }
+}
+
+// An old block merged with its candidates (and the mixed block's new columns), encoded again;
+// or, when `copied`, only decoded for the sink.
+void TrellisUpdater::MergeBlock(OutputBlock* out, uint64_t first_column, uint64_t end_column,
+                                bool copied) {
+  TrellisBlock& block = blocks_.local();
+  out->status = previous_.ReadBlock(out->block_idx, &block, /*decode_distances=*/true);
+  if (!out->status.ok()) return;
+  out->columns = column_pool_.Take();
+  Columns& columns = *out->columns;
+  columns.resize(end_column - first_column);
+  const auto by_old_frame = [](const ReversePair& pair, uint64_t column) {
+    return pair.old_frame < column;
+  };
+  auto pair = std::lower_bound(pairs_.begin(), pairs_.end(), first_column, by_old_frame);
+  const auto pairs_end = std::lower_bound(pair, pairs_.end(), end_column, by_old_frame);
+  for (uint32_t column_idx = 0; column_idx < block.column_count; ++column_idx) {
+    const uint64_t column = first_column + column_idx;
+    const auto column_pairs_begin = pair;
+    while (pair != pairs_end && pair->old_frame == column) ++pair;
+    const uint32_t begin = block.offsets[column_idx];
+    const uint32_t end = block.offsets[column_idx + 1];
+    if (MergeColumn(features_, column, params_.eps, params_.k_max, block.neighbours.data() + begin,
+                    end - begin, pairs_.data() + (column_pairs_begin - pairs_.begin()),
+                    static_cast<size_t>(pair - column_pairs_begin), &columns[column_idx],
+                    &out->recomputed, &merge_scratch_.local())) {
+      ++out->changed_columns;
+    }
+  }
+  if (copied) return;  // decoded for the sink only
+  for (uint64_t column = old_columns_; column < end_column; ++column) {
+    columns[column - first_column] = std::move(mixed_new_columns_[column - old_columns_]);
+  }
+  if (first_column < old_columns_ || end_column > old_columns_) {
+    SetThresholds(first_column, columns);
+  }
+  trellis_file::BlockHandle handle;
+  out->owned = byte_pool_.Take();
+  out->status =
+      encoders_.local()->Encode(first_column, columns, params_.eps, out->owned.get(), &handle);
+  out->bytes = reinterpret_cast<const uint8_t*>(out->owned->data());
+  out->size = out->owned->size();
+  out->rewritten = true;
+}
+
+// Runs on many threads: a block's bytes (and columns for the sink), from whichever source.
+void TrellisUpdater::PrepareBlock(OutputBlock* out) {
+  const uint64_t first_column = out->block_idx * block_columns_;
+  const uint64_t end_column = std::min(frame_count_, first_column + block_columns_);
+  if (first_column >= old_columns_) {  // a whole new block
+    out->owned = std::move(new_block_bytes_[out->block_idx]);
+    out->columns = std::move(new_block_columns_[out->block_idx]);
+    out->bytes = reinterpret_cast<const uint8_t*>(out->owned->data());
+    out->size = out->owned->size();
+    return;
+  }
+  const auto by_old_frame = [](const ReversePair& pair, uint64_t column) {
+    return pair.old_frame < column;
+  };
+  const auto pairs_begin =
+      std::lower_bound(pairs_.begin(), pairs_.end(), first_column, by_old_frame);
+  const auto pairs_end = std::lower_bound(pairs_begin, pairs_.end(), end_column, by_old_frame);
+  const bool copy = pairs_begin == pairs_end && end_column <= old_columns_;
+  if (copy) {
+    CopyBlock(out, first_column, end_column);
+    if (!options_.on_block || !out->status.ok()) return;
+  }
+  MergeBlock(out, first_column, end_column, copy);
+}
+
+// Runs in block order: the block appended, given to the sink, counted.
+void TrellisUpdater::AppendBlock(OutputBlock* out) {
+  if (!failure_.ok()) return;
+  Status status = out->status;
+  if (status.ok()) status = writer_->AppendEncodedBlock(out->bytes, out->size);
+  const uint64_t first_column = out->block_idx * block_columns_;
+  if (status.ok() && options_.on_block && out->columns) {
+    status = options_.on_block(first_column, *out->columns);
+  }
+  if (!status.ok()) {
+    failure_ = status;
+    return;
+  }
+  if (out->block_idx < previous_.block_count()) {
+    // A memory hint; it fails only for a block out of range (checked above).
+    (void)previous_.ReleaseBlocks(out->block_idx, out->block_idx + 1);
+  }
+  if (first_column >= old_columns_ || out->block_idx == mixed_block_) ++report_.new_blocks;
+  if (out->copied) ++report_.copied_blocks;
+  if (out->rewritten && first_column + block_columns_ <= old_columns_) {
+    ++report_.rewritten_blocks;
+  }
+  report_.changed_columns += out->changed_columns;
+  report_.exact_recomputations += out->recomputed;
+  if (first_column < old_columns_) {
+    column_pool_.Give(std::move(out->columns));
+    byte_pool_.Give(std::move(out->owned));
+  }
+  Progress("merge", out->block_idx + 1 - first_out_block_, out_blocks_ - first_out_block_);
+}
+
+// 3. The output blocks in order: old blocks copied or merged, the mixed block, the new blocks.
+// Blocks are prepared in parallel and appended (and given to the sink) in order.
+Status TrellisUpdater::WriteBlocks() {
+  const Clock::time_point start = Clock::now();
+  uint64_t next_block = first_out_block_;
+  Progress("merge", 0, out_blocks_ - first_out_block_);
+  arena_.execute([&] {
+    tbb::parallel_pipeline(
+        2 * static_cast<size_t>(arena_.max_concurrency()),
+        tbb::make_filter<void, std::shared_ptr<OutputBlock>>(
+            tbb::filter_mode::serial_in_order,
+            [&](tbb::flow_control& control) -> std::shared_ptr<OutputBlock> {
+              if (next_block >= out_blocks_ || !failure_.ok()) {
+                control.stop();
+                return nullptr;
+              }
+              auto out = std::make_shared<OutputBlock>();
+              out->block_idx = next_block++;
+              return out;
+            }) &
+            tbb::make_filter<std::shared_ptr<OutputBlock>, std::shared_ptr<OutputBlock>>(
+                tbb::filter_mode::parallel,
+                [&](std::shared_ptr<OutputBlock> out) {
+                  try {
+                    PrepareBlock(out.get());
+                  } catch (const std::bad_alloc&) {
+                    out->status = Status::ResourceExhausted("trellis update: out of memory");
+                  }
+                  return out;
+                }) &
+            tbb::make_filter<std::shared_ptr<OutputBlock>, void>(
+                tbb::filter_mode::serial_in_order,
+                [&](std::shared_ptr<OutputBlock> out) { AppendBlock(out.get()); }));
+  });
+  MOTIF_RETURN_IF_ERROR(failure_);
+  MOTIF_RETURN_IF_ERROR(writer_->Finish());
+  report_.merge_seconds = SecondsSince(start);
+  return Status::Ok();
+}
+
+Result<TrellisUpdateReport> TrellisUpdater::Run() {
+  MOTIF_RETURN_IF_ERROR(Check());
+  report_.old_columns = old_columns_;
+  report_.new_columns = frame_count_ - old_columns_;
+  MOTIF_RETURN_IF_ERROR(OpenWriter());
+  MOTIF_RETURN_IF_ERROR(PrepareThresholds());
+  MOTIF_RETURN_IF_ERROR(SearchNewColumns());
+  MOTIF_RETURN_IF_ERROR(WriteBlocks());
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> finished,
+                         TrellisFileReader::Open(out_path_));
+  report_.neighbours = finished->neighbour_count();
+  return report_;
+}
+
 }  // namespace
 
 float ColumnThreshold(const Neighbour* entries, size_t count, float eps, uint32_t k_max) {
@@ -221,280 +597,7 @@ Result<TrellisUpdateReport> UpdateTrellis(const TrellisFileReader& previous,
                                           const NeighbourSearch& search,
                                           const TrellisParams& params, const std::string& out_path,
                                           const TrellisUpdateOptions& options) {
-  const TrellisParams& old_params = previous.params();
-  const uint64_t old_columns = previous.column_count();
-  const uint64_t frame_count = features.frame_count();
-  auto invalid = [&](const std::string& what) {
-    return Status::InvalidArgument("trellis update of " + previous.path() + ": " + what);
-  };
-  if (old_params.eps != params.eps || old_params.k_max != params.k_max ||
-      old_params.exclusion_frames != params.exclusion_frames ||
-      old_params.weights_hash != params.weights_hash) {
-    return invalid("eps, k_max, exclusion or joint weights differ from the new trellis's");
-  }
-  if (params.eps != rules.eps || params.k_max != rules.k_max ||
-      params.exclusion_frames != rules.exclusion_frames) {
-    return invalid("the search's rules differ from the new trellis's parameters");
-  }
-  if (params.frame_count != frame_count || old_columns > frame_count) {
-    return invalid("the old trellis has " + std::to_string(old_columns) + " columns, the archive " +
-                   std::to_string(frame_count) + " frames, the new parameters " +
-                   std::to_string(params.frame_count));
-  }
-  auto progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-    if (options.progress) options.progress(stage, done, total);
-  };
-
-  TrellisUpdateReport report;
-  report.old_columns = old_columns;
-  report.new_columns = frame_count - old_columns;
-  TrellisFileWriterOptions writer_options;
-  writer_options.block_columns = previous.block_columns();
-  writer_options.zstd_level = kZstdLevel;
-  writer_options.file_system = options.file_system;
-  // Blocks come faster than a disk syncs them; Finish syncs the file before its rename.
-  writer_options.sync_each_block = false;
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileWriter> writer,
-                         TrellisFileWriter::OpenOrResume(out_path, params, writer_options));
-  const uint64_t block_columns = writer->block_columns();
-  // next_column is a multiple of B, or N when every block was written (an update interrupted
-  // while finishing).
-  const uint64_t first_out_block = (writer->next_column() + block_columns - 1) / block_columns;
-  const uint64_t out_blocks = (frame_count + block_columns - 1) / block_columns;
-  report.resumed_from_column = writer->next_column();
-  // Blocks [0, mixed_block) hold old columns only; from mixed_block on they hold new columns
-  // (mixed_block itself also the last old ones when old_columns is not a multiple of B).
-  const uint64_t mixed_block = old_columns / block_columns;
-  const bool old_blocks_left = first_out_block * block_columns < old_columns;
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-
-  // 1. Thresholds of the old columns still to write: saved by the previous update, or decoded.
-  Clock::time_point start = Clock::now();
-  std::vector<float> computed_thresholds;
-  const std::vector<float>* thresholds = nullptr;
-  if (old_blocks_left) {
-    if (options.thresholds != nullptr && options.thresholds->size() == old_columns) {
-      thresholds = options.thresholds;
-    } else {
-      progress("thresholds", 0, previous.block_count() - first_out_block);
-      MOTIF_RETURN_IF_ERROR(ComputeThresholds(
-          previous, first_out_block, arena,
-          [&](uint64_t done, uint64_t total) { progress("thresholds", done, total); },
-          &computed_thresholds));
-      thresholds = &computed_thresholds;
-    }
-  }
-  // The new trellis's thresholds, when every block goes through this update.
-  std::vector<float>* next_thresholds =
-      report.resumed_from_column == 0 ? options.next_thresholds : nullptr;
-  if (options.next_thresholds) options.next_thresholds->clear();
-  if (next_thresholds) next_thresholds->assign(frame_count, params.eps);
-  auto set_thresholds = [&](uint64_t first_column, const Columns& columns) {
-    if (next_thresholds == nullptr) return;
-    for (size_t idx = 0; idx < columns.size(); ++idx) {
-      (*next_thresholds)[first_column + idx] =
-          ColumnThreshold(columns[idx].data(), columns[idx].size(), params.eps, params.k_max);
-    }
-  };
-  report.thresholds_seconds = SecondsSince(start);
-
-  // 2. The new columns, block by block of the output: whole new blocks are encoded at once
-  // (and kept for the block sink), the new columns of the mixed block are kept for the merge.
-  // With old blocks still to write, the queries also report the old columns they enter.
-  start = Clock::now();
-  const uint64_t search_first =
-      old_blocks_left ? old_columns : std::max(old_columns, writer->next_column());
-  std::vector<ReversePair> pairs;
-  Columns mixed_new_columns;  // [old_columns, the mixed end)
-  std::vector<std::unique_ptr<std::string>> new_block_bytes(out_blocks);
-  std::vector<std::unique_ptr<Columns>> new_block_columns(out_blocks);
-  {
-    trellis_file::BlockEncoder encoder(kZstdLevel);
-    ReverseQuery query;
-    query.frame_limit = old_columns;
-    query.thresholds = thresholds ? thresholds->data() : nullptr;
-    Columns columns;
-    Columns reverse;
-    progress("new columns", 0, frame_count - search_first);
-    for (uint64_t first = search_first; first < frame_count;) {
-      const uint64_t block_idx = first / block_columns;
-      const uint64_t end = std::min(frame_count, (block_idx + 1) * block_columns);
-      columns.clear();
-      if (old_blocks_left) {
-        MOTIF_RETURN_IF_ERROR(search.SearchColumnsAndReverse(first, end - first, query, &columns,
-                                                             &reverse, &report.search_stats));
-        for (uint64_t idx = 0; idx < end - first; ++idx) {
-          for (const Neighbour& found : reverse[idx]) {
-            pairs.push_back({found.frame, static_cast<uint32_t>(first + idx), found.distance});
-          }
-        }
-      } else {
-        MOTIF_RETURN_IF_ERROR(
-            search.SearchColumns(first, end - first, &columns, &report.search_stats));
-      }
-      if (first % block_columns != 0) {
-        mixed_new_columns = std::move(columns);  // the mixed block's new columns
-        columns = {};
-      } else if (block_idx >= first_out_block) {
-        trellis_file::BlockHandle handle;
-        new_block_bytes[block_idx] = std::make_unique<std::string>();
-        MOTIF_RETURN_IF_ERROR(
-            encoder.Encode(first, columns, params.eps, new_block_bytes[block_idx].get(), &handle));
-        set_thresholds(first, columns);
-        if (options.on_block) {
-          new_block_columns[block_idx] = std::make_unique<Columns>(std::move(columns));
-          columns = {};
-        }
-      }
-      progress("new columns", end - search_first, frame_count - search_first);
-      first = end;
-    }
-  }
-  std::sort(pairs.begin(), pairs.end(), [](const ReversePair& a, const ReversePair& b) {
-    return a.old_frame != b.old_frame ? a.old_frame < b.old_frame : a.new_frame < b.new_frame;
-  });
-  report.reverse_candidates = pairs.size();
-  report.search_seconds = SecondsSince(start);
-
-  // 3. The output blocks in order: old blocks copied or merged, the mixed block, the new blocks.
-  // Blocks are prepared in parallel and appended (and given to the sink) in order.
-  start = Clock::now();
-  tbb::enumerable_thread_specific<std::unique_ptr<trellis_file::BlockEncoder>> encoders(
-      [] { return std::make_unique<trellis_file::BlockEncoder>(kZstdLevel); });
-  tbb::enumerable_thread_specific<TrellisBlock> blocks;
-  tbb::enumerable_thread_specific<MergeScratch> merge_scratch;
-  BufferPool<Columns> column_pool;
-  BufferPool<std::string> byte_pool;
-  auto prepare = [&](OutputBlock* out) {
-    const uint64_t block_idx = out->block_idx;
-    const uint64_t first_column = block_idx * block_columns;
-    const uint64_t end_column = std::min(frame_count, first_column + block_columns);
-    if (first_column >= old_columns) {  // a whole new block
-      out->owned = std::move(new_block_bytes[block_idx]);
-      out->columns = std::move(new_block_columns[block_idx]);
-      out->bytes = reinterpret_cast<const uint8_t*>(out->owned->data());
-      out->size = out->owned->size();
-      return;
-    }
-    const auto pairs_begin = std::lower_bound(
-        pairs.begin(), pairs.end(), first_column,
-        [](const ReversePair& pair, uint64_t column) { return pair.old_frame < column; });
-    const auto pairs_end = std::lower_bound(
-        pairs_begin, pairs.end(), end_column,
-        [](const ReversePair& pair, uint64_t column) { return pair.old_frame < column; });
-    const bool copy = pairs_begin == pairs_end && end_column <= old_columns;
-    if (copy) {
-      out->status = previous.ReadEncodedBlock(block_idx, &out->bytes, &out->size);
-      out->copied = true;
-      if (next_thresholds) {
-        std::copy(thresholds->begin() + first_column, thresholds->begin() + end_column,
-                  next_thresholds->begin() + first_column);
-      }
-      if (!options.on_block || !out->status.ok()) return;
-    }
-    TrellisBlock& block = blocks.local();
-    out->status = previous.ReadBlock(block_idx, &block, /*decode_distances=*/true);
-    if (!out->status.ok()) return;
-    out->columns = column_pool.Take();
-    Columns& columns = *out->columns;
-    columns.resize(end_column - first_column);
-    auto pair = pairs_begin;
-    for (uint32_t column_idx = 0; column_idx < block.column_count; ++column_idx) {
-      const uint64_t column = first_column + column_idx;
-      const auto column_pairs_begin = pair;
-      while (pair != pairs_end && pair->old_frame == column) ++pair;
-      const uint32_t begin = block.offsets[column_idx];
-      const uint32_t end = block.offsets[column_idx + 1];
-      if (MergeColumn(features, column, params.eps, params.k_max, block.neighbours.data() + begin,
-                      end - begin, pairs.data() + (column_pairs_begin - pairs.begin()),
-                      static_cast<size_t>(pair - column_pairs_begin), &columns[column_idx],
-                      &out->recomputed, &merge_scratch.local())) {
-        ++out->changed_columns;
-      }
-    }
-    if (copy) return;  // decoded for the sink only
-    for (uint64_t column = old_columns; column < end_column; ++column) {
-      columns[column - first_column] = std::move(mixed_new_columns[column - old_columns]);
-    }
-    if (first_column < old_columns || end_column > old_columns)
-      set_thresholds(first_column, columns);
-    trellis_file::BlockHandle handle;
-    out->owned = byte_pool.Take();
-    out->status =
-        encoders.local()->Encode(first_column, columns, params.eps, out->owned.get(), &handle);
-    out->bytes = reinterpret_cast<const uint8_t*>(out->owned->data());
-    out->size = out->owned->size();
-    out->rewritten = true;
-  };
-
-  Status failure;
-  uint64_t next_block = first_out_block;
-  progress("merge", 0, out_blocks - first_out_block);
-  arena.execute([&] {
-    tbb::parallel_pipeline(
-        2 * static_cast<size_t>(arena.max_concurrency()),
-        tbb::make_filter<void, std::shared_ptr<OutputBlock>>(
-            tbb::filter_mode::serial_in_order,
-            [&](tbb::flow_control& control) -> std::shared_ptr<OutputBlock> {
-              if (next_block >= out_blocks || !failure.ok()) {
-                control.stop();
-                return nullptr;
-              }
-              auto out = std::make_shared<OutputBlock>();
-              out->block_idx = next_block++;
-              return out;
-            }) &
-            tbb::make_filter<std::shared_ptr<OutputBlock>, std::shared_ptr<OutputBlock>>(
-                tbb::filter_mode::parallel,
-                [&](std::shared_ptr<OutputBlock> out) {
-                  try {
-                    prepare(out.get());
-                  } catch (const std::bad_alloc&) {
-                    out->status = Status::ResourceExhausted("trellis update: out of memory");
-                  }
-                  return out;
-                }) &
-            tbb::make_filter<std::shared_ptr<OutputBlock>, void>(
-                tbb::filter_mode::serial_in_order, [&](std::shared_ptr<OutputBlock> out) {
-                  if (!failure.ok()) return;
-                  Status status = out->status;
-                  if (status.ok()) status = writer->AppendEncodedBlock(out->bytes, out->size);
-                  const uint64_t first_column = out->block_idx * block_columns;
-                  if (status.ok() && options.on_block && out->columns) {
-                    status = options.on_block(first_column, *out->columns);
-                  }
-                  if (!status.ok()) {
-                    failure = status;
-                    return;
-                  }
-                  if (out->block_idx < previous.block_count()) {
-                    // A memory hint; it fails only for a block out of range (checked above).
-                    (void)previous.ReleaseBlocks(out->block_idx, out->block_idx + 1);
-                  }
-                  if (first_column >= old_columns || out->block_idx == mixed_block) {
-                    ++report.new_blocks;
-                  }
-                  if (out->copied) ++report.copied_blocks;
-                  if (out->rewritten && first_column + block_columns <= old_columns) {
-                    ++report.rewritten_blocks;
-                  }
-                  report.changed_columns += out->changed_columns;
-                  report.exact_recomputations += out->recomputed;
-                  if (first_column < old_columns) {
-                    column_pool.Give(std::move(out->columns));
-                    byte_pool.Give(std::move(out->owned));
-                  }
-                  progress("merge", out->block_idx + 1 - first_out_block,
-                           out_blocks - first_out_block);
-                }));
-  });
-  MOTIF_RETURN_IF_ERROR(failure);
-  MOTIF_RETURN_IF_ERROR(writer->Finish());
-  report.merge_seconds = SecondsSince(start);
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> finished,
-                         TrellisFileReader::Open(out_path));
-  report.neighbours = finished->neighbour_count();
-  return report;
+  return TrellisUpdater(previous, features, rules, search, params, out_path, options).Run();
 }
 
 }  // namespace motif

@@ -17,9 +17,9 @@ Result<TakeClassification> ClassifyTakes(Eigen::MatrixXd distances,
     return Status::InvalidArgument("classify: a distance matrix of another size than the takes");
   }
   if (n < 2) return Status::InvalidArgument("classify: at least 2 takes are needed");
-  if (options.knn == 0 || options.top == 0 || options.dims == 0) {
-    return Status::InvalidArgument("classify: --knn, --top and --dims must be at least 1");
-  }
+  if (options.knn == 0) return Status::InvalidOption("knn", "must be at least 1");
+  if (options.top == 0) return Status::InvalidOption("top", "must be at least 1");
+  if (options.dims == 0) return Status::InvalidOption("dims", "must be at least 1");
   TakeClassification result;
   result.distances = std::move(distances);
   std::set<std::string> names;

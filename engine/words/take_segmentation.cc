@@ -22,9 +22,9 @@ struct Window {
 
 Status CheckOptions(const FrameFileReader& reader, const std::vector<uint32_t>& clips,
                     const SegmentOptions& options) {
-  if (options.window == 0 || options.knn == 0 || options.dtw_step == 0) {
-    return Status::InvalidArgument("segment: --window, --knn and --dtw-step must be at least 1");
-  }
+  if (options.window == 0) return Status::InvalidOption("window", "must be at least 1");
+  if (options.knn == 0) return Status::InvalidOption("knn", "must be at least 1");
+  if (options.dtw_step == 0) return Status::InvalidOption("dtw-step", "must be at least 1");
   for (uint32_t clip : clips) {
     if (clip >= reader.clips().size()) {
       return Status::InvalidArgument("segment: clip index " + std::to_string(clip) +

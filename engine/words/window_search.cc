@@ -83,7 +83,7 @@ Result<SearchResult> SlidingWindowSearch(const FrameFileReader& reader, const Lo
                                          const WindowQuery& query, uint32_t top, int threads) {
   const uint32_t k = words.motifs.motif_count();
   if (query.motifs.empty()) return Status::InvalidArgument("search: the query has no word");
-  if (top == 0) return Status::InvalidArgument("search: --top must be at least 1");
+  if (top == 0) return Status::InvalidOption("top", "must be at least 1");
   MOTIF_ASSIGN_OR_RETURN(std::vector<double> query_signature,
                          words.tf_idf->Signature(query.motifs));
   const uint64_t q = query.motifs.size();
@@ -155,7 +155,7 @@ Result<SearchResult> WholeTakeSearch(const FrameFileReader& reader, const Loaded
         (query_clip < clips ? reader.clips()[query_clip].name : std::to_string(query_clip)) +
         " has no motion word (shorter than one word)");
   }
-  if (top == 0) return Status::InvalidArgument("search: --top must be at least 1");
+  if (top == 0) return Status::InvalidOption("top", "must be at least 1");
   const std::vector<double> query = words.ClipSignature(query_clip, false);
   std::vector<TakeBest> best(clips);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);

@@ -215,7 +215,8 @@ Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths
   if (report.words < options.motifs) {
     return Status::InvalidArgument(archive_path + ": " + std::to_string(report.words) +
                                    " words, fewer than the " + std::to_string(options.motifs) +
-                                   " motifs asked for (--motifs)");
+                                   " asked for (motifs)")
+        .WithOption("motifs");
   }
 
   // Stage 1: the embedding.

@@ -52,10 +52,11 @@ class AsfFinder {
       cached = folders_.emplace(folder, std::move(asf_files)).first;
     }
     const std::vector<std::string>& asf_files = cached->second;
-    const std::string hint = "; name the skeleton with --asf <file.asf>";
+    const std::string hint = "; name the skeleton file (asf)";
     if (asf_files.empty()) {
       return Status::InvalidArgument(amc_path + ": no .asf skeleton in its folder to pair it with" +
-                                     hint);
+                                     hint)
+          .WithOption("asf");
     }
     if (asf_files.size() == 1) return asf_files[0];
     // Several skeletons: match the AMC's subject prefix, and its "-suffix" if it has one.
@@ -90,7 +91,8 @@ class AsfFinder {
     return Status::InvalidArgument(amc_path +
                                    ": cannot tell which skeleton goes with it: its folder has " +
                                    std::to_string(asf_files.size()) + " .asf files (" + names +
-                                   "), none named " + expected + hint);
+                                   "), none named " + expected + hint)
+        .WithOption("asf");
   }
 
  private:
@@ -121,9 +123,10 @@ class TakeCollector {
       }
     } else {
       return Status::InvalidArgument(
-          source.path +
-          ": not a .bvh or .amc file (an .asf skeleton is paired with the AMC "
-          "files of its folder, or named with --asf)");
+                 source.path +
+                 ": not a .bvh or .amc file (an .asf skeleton is paired with the AMC "
+                 "files of its folder, or named by asf)")
+          .WithOption("asf");
     }
     sources_.push_back(std::move(source));
     return Status::Ok();
@@ -160,7 +163,8 @@ Result<std::vector<TakeSource>> DiscoverTakesImpl(const std::vector<std::string>
   if (!options.asf_path.empty()) {
     std::error_code error;
     if (!fs::is_regular_file(options.asf_path, error)) {
-      return Status::NotFound(options.asf_path + ": no such ASF skeleton file (--asf)");
+      return Status::NotFound(options.asf_path + ": no such ASF skeleton file (asf)")
+          .WithOption("asf");
     }
   }
   TakeCollector collector(options);
@@ -208,11 +212,12 @@ Result<Take> ImportTakeImpl(const TakeSource& source, const ImportOptions& optio
   } else {
     const std::string& asf_path = source.asf_path.empty() ? options.asf_path : source.asf_path;
     if (asf_path.empty() && !source.unpaired_reason.empty()) {
-      return Status::InvalidArgument(source.unpaired_reason);
+      return Status::InvalidArgument(source.unpaired_reason).WithOption("asf");
     }
     if (asf_path.empty()) {
       return Status::InvalidArgument(source.path +
-                                     ": no ASF skeleton given for this AMC file (--asf)");
+                                     ": no ASF skeleton given for this AMC file (asf)")
+          .WithOption("asf");
     }
     MOTIF_ASSIGN_OR_RETURN(std::string asf_text, ReadTakeFile(asf_path));
     MOTIF_ASSIGN_OR_RETURN(AsfSkeleton asf, ParseAsf(asf_text, asf_path));

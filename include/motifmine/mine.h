@@ -10,36 +10,10 @@
 
 #include "motifmine/archive.h"  // Clip
 #include "motifmine/export.h"
+#include "motifmine/options.h"  // MineOptions
 #include "motifmine/status.h"
 
 namespace motifmine {
-
-// Every option of a run; a default-constructed MineOptions holds the defaults of `motifmine
-// mine` (they are defined once, in the engine).
-struct MineOptions {
-  MOTIFMINE_API MineOptions();
-
-  std::string out_dir;  // required: archive.mfs (imported takes), trellis, paths, motifs.json
-  // The radius ε: > 0 explicit; 0 from the rule: "joint-angle" (eps_angle_degrees of rotation on
-  // each weighted joint) or "paper" (μ − 2σ of sampled pair distances).
-  double eps;
-  std::string eps_rule;
-  double eps_angle_degrees;
-  uint32_t k_max;              // neighbours kept per frame
-  uint32_t branch;             // branching factor B of the path grower
-  double min_length_seconds;   // λ, used when min_length_frames is 0
-  uint64_t min_length_frames;  // λ in frames; 0: from min_length_seconds
-  uint32_t groups;             // number of motifs; 0: automatic
-  uint64_t seed;               // every random choice
-  int threads;                 // 0: all cores
-  bool skip_bad;               // import: pass over takes that fail, and mine the others
-  bool write_report;           // OUT/report.html
-  uint64_t synth_frames;       // no inputs: frames of the built-in synthetic archive
-  uint32_t synth_motifs;       // no inputs: motifs planted in it
-  // Called as the run goes: the stage ("import", "synth", "trellis features", "trellis eps",
-  // "trellis", "grow", "cluster"), how much of it is done, of how much.
-  std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;
-};
 
 struct Instance {
   std::string clip;

@@ -154,7 +154,7 @@ def test_errors_raise_with_message_and_code(tmp_path):
     with pytest.raises(motifmine.Error) as bad:
         motifmine.mine(out_dir=str(tmp_path / "out"), k_max=0)
     assert bad.value.code == 13
-    assert "--kmax must be > 0" in str(bad.value)
+    assert "kmax must be a whole number in [1, 65535], not '0'" in str(bad.value)
     with pytest.raises(TypeError):
         motifmine.mine(out_dir=str(tmp_path / "out"), no_such_option=1)
     with pytest.raises(ValueError):

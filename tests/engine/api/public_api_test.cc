@@ -95,7 +95,9 @@ TEST(PublicApi, AFailedCallCarriesTheCodeAndTheMessage) {
   options.k_max = 0;
   motifmine::Status status = motifmine::Mine({}, options, &result);
   EXPECT_EQ(status.code(), motifmine::Status::Code::kInvalidArgument);
-  EXPECT_EQ(status.ToString(), "InvalidArgument: --kmax must be > 0");
+  // The library names the option as the option table does, not as a flag.
+  EXPECT_EQ(status.ToString(),
+            "InvalidArgument: kmax must be a whole number in [1, 65535], not '0'");
 
   options = motifmine::MineOptions();
   options.out_dir = dir.File("out");

@@ -77,9 +77,14 @@ TEST(MotifmineGrow, SynthTrellisGrowThenReuse) {
   EXPECT_TRUE((*all_paths)->params().all_branches);
   EXPECT_GT((*all_paths)->candidates().size(), (*paths)->candidates().size());
 
-  EXPECT_EQ(RunTool("grow " + archive + " --min-length abc").exit_code, 13);
-  EXPECT_EQ(RunTool("grow " + archive + " --min-length 2.5").exit_code, 13);
-  EXPECT_EQ(RunTool("grow " + archive + " --branch 0 --quiet").exit_code, 13);
+  // Impossible values are usage errors naming the flag (the option table's ranges).
+  EXPECT_EQ(RunTool("grow " + archive + " --min-length abc").exit_code, 2);
+  EXPECT_EQ(RunTool("grow " + archive + " --min-length 2.5").exit_code, 2);
+  const RunResult branch = RunTool("grow " + archive + " --branch 0 --quiet");
+  EXPECT_EQ(branch.exit_code, 2);
+  EXPECT_NE(branch.output.find("--branch must be a whole number in [1, 1000], not '0'"),
+            std::string::npos)
+      << branch.output;
   EXPECT_EQ(RunTool("grow").exit_code, 2);
   RunResult help = RunTool("grow --help");
   EXPECT_EQ(help.exit_code, 0);

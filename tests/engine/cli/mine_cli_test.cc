@@ -101,11 +101,17 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
 TEST(MotifmineMine, RefusesBadParametersBeforeAnyWork) {
   testing::TempDir dir;
   const std::string out = dir.File("out");
+  // Usage errors (exit 2) naming the flag: the option table's values.
   RunResult groups = RunTool("mine --out " + out + " --groups many --quiet");
-  EXPECT_EQ(groups.exit_code, 13) << groups.output;
-  EXPECT_NE(groups.output.find("--groups"), std::string::npos) << groups.output;
+  EXPECT_EQ(groups.exit_code, 2) << groups.output;
+  EXPECT_NE(groups.output.find("--groups must be auto or a number of motifs >= 1, not 'many'"),
+            std::string::npos)
+      << groups.output;
   RunResult length = RunTool("mine --out " + out + " --min-length 0.5 --quiet");
-  EXPECT_EQ(length.exit_code, 13) << length.output;
+  EXPECT_EQ(length.exit_code, 2) << length.output;
+  EXPECT_NE(length.output.find("--min-length must be a number of frames (60) or of seconds"),
+            std::string::npos)
+      << length.output;
   EXPECT_FALSE(std::filesystem::exists(out + "/archive.mfs"));
   RunResult no_out = RunTool("mine --quiet");
   EXPECT_EQ(no_out.exit_code, 2) << no_out.output;

@@ -168,7 +168,7 @@ TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
   };
   expect("words " + dir_->File("missing.mfs"), 11, "missing.mfs");
   expect("words " + archive_ + " --motifs 0", 13, "motifs");
-  expect("words " + archive_ + " --motifs 60000 --epochs 1", 13, "fewer than the 60000 motifs");
+  expect("words " + archive_ + " --motifs 60000 --epochs 1", 13, "fewer than the 60000 asked for (--motifs)");
   expect("words " + archive_ + " --held-out 1", 13, "held_out_fraction");
   expect("classify " + archive_ + " --prefix " + dir_->File("none"), 11, "run `motifmine words`");
   expect("classify " + archive_ + " --distance cosine", 13, "--distance must be");

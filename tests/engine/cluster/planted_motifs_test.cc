@@ -42,13 +42,12 @@ namespace {
 // search: recall 1, and faster than LSH at this size), as found instances (clip-relative ranges,
 // motif = rank).
 std::vector<FoundInstance> MineArchive(const testing::TempDir& dir, const std::string& archive) {
-  MinePipelineOptions options = DefaultMinePipelineOptions();
+  motifmine::MineOptions options;
   options.out_dir = dir.File("mined");
-  options.inputs = {archive};
-  options.trellis.search = TrellisSearchMode::kExact;
+  options.search = "exact";
   options.threads = 2;
   options.write_report = false;
-  Result<MinePipelineResult> run = MinePipeline(options).Run();
+  Result<MinePipelineResult> run = RunMine(options, {archive});
   EXPECT_TRUE(run.ok()) << run.status().ToString();
   if (!run.ok()) return {};
   std::vector<FoundInstance> found;

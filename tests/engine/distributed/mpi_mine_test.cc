@@ -147,8 +147,8 @@ TEST(MpiMine, AUsageErrorIsPrintedOnceWithItsExitCodeAndMakesNoFolder) {
   MOTIF_REQUIRE_MPIRUN();
   testing::TempDir dir;
   RunResult run = RunMpi(3, "mine --out " + dir.File("out") + " --kmax 0");
-  EXPECT_EQ(run.exit_code, 13) << run.output;  // 10 + InvalidArgument (docs/guide.md)
-  const std::string error = "motifmine mine: error: --kmax must be > 0";
+  EXPECT_EQ(run.exit_code, 2) << run.output;  // a usage error (docs/guide.md)
+  const std::string error = "motifmine mine: --kmax must be a whole number in [1, 65535], not '0'";
   const size_t first = run.output.find(error);
   ASSERT_NE(first, std::string::npos) << run.output;
   EXPECT_EQ(run.output.find(error, first + 1), std::string::npos) << run.output;

@@ -81,8 +81,8 @@ class ReindexFailureTest : public ::testing::Test {
     options.out_dir = root + "/out";
     options.min_age_seconds = 0;
     options.import.first_frame = FirstFramePolicy::kKeep;
-    options.report = false;
-    options.threads = 2;
+    options.mine.write_report = false;
+    options.mine.threads = 2;
     options.file_system = file_system;
     return options;
   }

@@ -124,7 +124,8 @@ TEST(DiscoverTakes, ExplainsWhenNoAsfMatches) {
   ASSERT_EQ(none->size(), 1u);
   EXPECT_EQ((*none)[0].asf_path, "");
   EXPECT_NE((*none)[0].unpaired_reason.find("no .asf skeleton in its folder"), std::string::npos);
-  EXPECT_NE((*none)[0].unpaired_reason.find("--asf"), std::string::npos);
+  // The option that helps, as the library names it ("(asf)"; the tool prints "(--asf)").
+  EXPECT_NE((*none)[0].unpaired_reason.find("(asf)"), std::string::npos);
   Result<Take> imported = ImportTake((*none)[0], {});
   EXPECT_TRUE(imported.status().IsInvalidArgument());
   EXPECT_EQ(imported.status().message(), (*none)[0].unpaired_reason);

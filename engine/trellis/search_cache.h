@@ -23,6 +23,9 @@
 
 namespace motif {
 
+// The cache's name in a reindex version's folder.
+inline constexpr char kSearchCacheFileName[] = "search.msc";
+
 // What a cache describes; a cache is used only when every field equals what the run needs.
 struct SearchCacheKey {
   uint64_t archive_identity = 0;  // FrameFileSummary::identity of the archive version

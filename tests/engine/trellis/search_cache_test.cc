@@ -1,8 +1,8 @@
-// The search cache of `motifmine reindex` (engine/reindex/search_cache.h) and the features it
+// The search cache of `motifmine reindex` (engine/trellis/search_cache.h) and the features it
 // extends: the pose features of an archive's earlier version extended with its appended frames
 // are the features of the whole archive; a cache written and read back holds the same features,
 // tables and thresholds; any damaged byte, a truncated file or another magic is refused.
-#include "engine/reindex/search_cache.h"
+#include "engine/trellis/search_cache.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "engine/reindex/search_cache.h"
+#include "engine/trellis/search_cache.h"
 
 #include <cstring>
 
