@@ -186,10 +186,57 @@ Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameF
 
 std::string ViewName(FigureView view) { return view == FigureView::kSide ? "side" : "front"; }
 
+// "frames": how many, how long, the clips and the skeleton.
+std::string OverviewFramesHtml(const FrameFileReader& reader) {
+  const double fps = reader.fps();
+  return HtmlCommas(reader.frame_count()) + " (" +
+         HtmlNumber("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) + " at " +
+         HtmlNumber("%g fps", fps) + "), " + HtmlCount(reader.clips().size(), "clip") +
+         ", skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
+         std::to_string(reader.skeleton().joint_count()) + " joints)";
+}
+
+// "parameters": plain names first, the papers' symbols beside them, each once.
+std::string OverviewParametersHtml(const MotifsJsonParams& params, double fps,
+                                   const std::string& parameters_text) {
+  return "match radius &epsilon; " + HtmlNumber("%.4g", params.eps) +
+         " &middot; neighbours kept per frame K<sub>max</sub> " + std::to_string(params.kmax) +
+         " &middot; frames a path may skip B " + std::to_string(params.branch) +
+         " &middot; shortest motif &lambda; " + HtmlCount(params.min_length, "frame") + " (" +
+         HtmlSeconds(params.min_length, fps) + ") &middot; motif groups " +
+         (params.groups ? std::to_string(params.groups) : std::string("automatic")) +
+         " &middot; random seed " + std::to_string(params.seed) +
+         (parameters_text.empty()
+              ? std::string()
+              : "<br><span class=\"note\">" + HtmlEscape(parameters_text) + "</span>");
+}
+
+// "timings": a row per stage and their total.
+std::string OverviewTimingsHtml(const std::vector<ReportStageTiming>& timings) {
+  std::string table = "<table class=\"t\">";
+  double total = 0;
+  for (const ReportStageTiming& timing : timings) {
+    table += "<tr><td>" + HtmlEscape(timing.stage) + "</td><td>" +
+             HtmlNumber("%.2f s", timing.seconds) + "</td></tr>";
+    total += timing.seconds;
+  }
+  table += "<tr><td><b>total</b></td><td><b>" + HtmlNumber("%.2f s", total) + "</b></td></tr>";
+  return table + "</table>";
+}
+
+// "planted motifs": the score against a synthetic archive's truth.
+std::string OverviewPlantedHtml(const PlantedMotifScore& score, const std::string& truth_path) {
+  return (truth_path.empty() ? std::string() : "<code>" + HtmlEscape(truth_path) + "</code>: ") +
+         HtmlCount(score.planted_motifs, "motif") + ", " + HtmlCount(score.planted, "instance") +
+         "; recall " + HtmlNumber("%.3f", score.recall) + " (" + HtmlCommas(score.planted_hit) +
+         " hit), precision " + HtmlNumber("%.3f", score.precision) + " (" +
+         HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
+         " found instances), adjusted Rand index " + HtmlNumber("%.3f", score.adjusted_rand_index);
+}
+
 void AppendOverview(const MotifsDocument& document, const FrameFileReader& reader,
                     const ReportInfo& info, const ReportOptions& options, uint64_t instance_count,
                     uint64_t covered_frames, std::string* html) {
-  const double fps = reader.fps();
   const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
   std::string& out = *html;
   out += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">\n";
@@ -197,36 +244,9 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
     out += HtmlRow(key, value_html);
   };
   row("archive", "<code>" + HtmlEscape(archive) + "</code>");
-  row("frames", HtmlCommas(reader.frame_count()) + " (" +
-                    HtmlNumber("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) +
-                    " at " + HtmlNumber("%g fps", fps) + "), " +
-                    HtmlCount(reader.clips().size(), "clip") + ", skeleton " +
-                    HtmlEscape(reader.skeleton().family()) + " (" +
-                    std::to_string(reader.skeleton().joint_count()) + " joints)");
-  // Plain names first, the papers' symbols beside them, each once.
-  const MotifsJsonParams& params = document.params;
-  row("parameters",
-      "match radius &epsilon; " + HtmlNumber("%.4g", params.eps) +
-          " &middot; neighbours kept per frame K<sub>max</sub> " + std::to_string(params.kmax) +
-          " &middot; frames a path may skip B " + std::to_string(params.branch) +
-          " &middot; shortest motif &lambda; " + HtmlCount(params.min_length, "frame") + " (" +
-          HtmlSeconds(params.min_length, fps) + ") &middot; motif groups " +
-          (params.groups ? std::to_string(params.groups) : std::string("automatic")) +
-          " &middot; random seed " + std::to_string(params.seed) +
-          (info.parameters_text.empty()
-               ? std::string()
-               : "<br><span class=\"note\">" + HtmlEscape(info.parameters_text) + "</span>"));
-  if (!info.timings.empty()) {
-    std::string table = "<table class=\"t\">";
-    double total = 0;
-    for (const ReportStageTiming& timing : info.timings) {
-      table += "<tr><td>" + HtmlEscape(timing.stage) + "</td><td>" +
-               HtmlNumber("%.2f s", timing.seconds) + "</td></tr>";
-      total += timing.seconds;
-    }
-    table += "<tr><td><b>total</b></td><td><b>" + HtmlNumber("%.2f s", total) + "</b></td></tr>";
-    row("timings", table + "</table>");
-  }
+  row("frames", OverviewFramesHtml(reader));
+  row("parameters", OverviewParametersHtml(document.params, reader.fps(), info.parameters_text));
+  if (!info.timings.empty()) row("timings", OverviewTimingsHtml(info.timings));
   if (info.peak_memory_bytes > 0) row("peak memory", HtmlBytes(info.peak_memory_bytes));
   row("motifs",
       HtmlCount(document.motifs.size(), "motif") + ", " + HtmlCount(instance_count, "instance"));
@@ -237,16 +257,7 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
                                                     : 0.0) +
           " of the archive)");
   if (info.planted_score) {
-    const PlantedMotifScore& score = *info.planted_score;
-    row("planted motifs",
-        (info.truth_path.empty() ? std::string()
-                                 : "<code>" + HtmlEscape(info.truth_path) + "</code>: ") +
-            HtmlCount(score.planted_motifs, "motif") + ", " + HtmlCount(score.planted, "instance") +
-            "; recall " + HtmlNumber("%.3f", score.recall) + " (" + HtmlCommas(score.planted_hit) +
-            " hit), precision " + HtmlNumber("%.3f", score.precision) + " (" +
-            HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
-            " found instances), adjusted Rand index " +
-            HtmlNumber("%.3f", score.adjusted_rand_index));
+    row("planted motifs", OverviewPlantedHtml(*info.planted_score, info.truth_path));
   }
   row("figures", ViewName(options.view) + " view, heading removed; " +
                      std::to_string(options.keyframes) +
@@ -285,15 +296,47 @@ void AppendTimeAxis(uint64_t longest, double fps, std::string* html) {
   out += "</div></span></div>\n";
 }
 
+// An instance on the timeline.
+struct TimelineMark {
+  uint64_t start = 0;
+  uint64_t end = 0;
+  uint32_t motif_id = 0;
+};
+
+// One clip's bar, `longest` frames to the full width: a rectangle per instance.
+void AppendTimelineBar(const ClipInfo& clip, std::vector<TimelineMark>* clip_marks,
+                       uint64_t longest, double fps, std::string* html) {
+  std::string& out = *html;
+  std::sort(clip_marks->begin(), clip_marks->end(),
+            [](const TimelineMark& a, const TimelineMark& b) { return a.start < b.start; });
+  const std::string name = HtmlEscape(clip.name);
+  const double width_percent =
+      std::max(2.0, 100.0 * static_cast<double>(clip.frame_count) / longest);
+  // The take's description, when the import was given one, after its name.
+  const std::string described =
+      clip.description.empty() ? std::string() : " \u2014 " + HtmlEscape(clip.description);
+  out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + described + " (" +
+         HtmlCount(clip.frame_count, "frame") + ")\">" + name +
+         (described.empty() ? "" : "<small>" + described + "</small>") +
+         "</span><span class=\"w\"><svg " +
+         "class=\"tl\" style=\"width:" + HtmlNumber("%.1f", width_percent) + "%\" viewBox=\"0 0 " +
+         std::to_string(clip.frame_count) + " 1\" preserveAspectRatio=\"none\">";
+  for (const TimelineMark& mark : *clip_marks) {
+    const std::string id = std::to_string(mark.motif_id);
+    // The colour comes from the motif's class; a click is handled by the page's script. Both
+    // keep the thousands of rectangles of a large archive short.
+    out += "<rect class=\"c" + id + "\" x=\"" + std::to_string(mark.start) + "\" width=\"" +
+           std::to_string(mark.end - mark.start) + "\" height=\"1\"><title>motif " + id +
+           ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) + " (" +
+           HtmlSeconds(mark.end - mark.start, fps) + ")</title></rect>";
+  }
+  out += "</svg></span></div>\n";
+}
+
 void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reader,
                     std::string* html) {
   const double fps = reader.fps();
-  struct Mark {
-    uint64_t start = 0;
-    uint64_t end = 0;
-    uint32_t motif_id = 0;
-  };
-  std::unordered_map<std::string, std::vector<Mark>> marks;
+  std::unordered_map<std::string, std::vector<TimelineMark>> marks;
   for (const MotifsJsonMotif& motif : document.motifs) {
     for (const MotifsJsonInstance& instance : motif.instances) {
       marks[instance.clip].push_back({instance.start, instance.end, motif.id});
@@ -314,32 +357,7 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
       empty_clips.push_back(&clip);
       continue;
     }
-    std::vector<Mark>& clip_marks = found->second;
-    std::sort(clip_marks.begin(), clip_marks.end(),
-              [](const Mark& a, const Mark& b) { return a.start < b.start; });
-    const std::string name = HtmlEscape(clip.name);
-    const double width_percent =
-        std::max(2.0, 100.0 * static_cast<double>(clip.frame_count) / longest);
-    // The take's description, when the import was given one, after its name.
-    const std::string described =
-        clip.description.empty() ? std::string() : " \u2014 " + HtmlEscape(clip.description);
-    out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + described + " (" +
-           HtmlCount(clip.frame_count, "frame") + ")\">" + name +
-           (described.empty() ? "" : "<small>" + described + "</small>") +
-           "</span><span class=\"w\"><svg " +
-           "class=\"tl\" style=\"width:" + HtmlNumber("%.1f", width_percent) +
-           "%\" viewBox=\"0 0 " + std::to_string(clip.frame_count) +
-           " 1\" preserveAspectRatio=\"none\">";
-    for (const Mark& mark : clip_marks) {
-      const std::string id = std::to_string(mark.motif_id);
-      // The colour comes from the motif's class; a click is handled by the page's script. Both
-      // keep the thousands of rectangles of a large archive short.
-      out += "<rect class=\"c" + id + "\" x=\"" + std::to_string(mark.start) + "\" width=\"" +
-             std::to_string(mark.end - mark.start) + "\" height=\"1\"><title>motif " + id +
-             ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) + " (" +
-             HtmlSeconds(mark.end - mark.start, fps) + ")</title></rect>";
-    }
-    out += "</svg></span></div>\n";
+    AppendTimelineBar(clip, &found->second, longest, fps, &out);
   }
   if (!empty_clips.empty()) {
     out += "<details><summary>" + HtmlCount(empty_clips.size(), "clip") +

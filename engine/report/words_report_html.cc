@@ -33,6 +33,54 @@ std::string Shade(double value, double lo, double hi) {
          std::to_string(std::min(255, level + 20)) + ")";
 }
 
+// The query's table, and its keyframes: from the archive, or the query file fitted to it.
+Status AppendSearchQuery(const SearchResult& result, const FrameFileReader& reader,
+                         const SearchPageInfo& info, KeyframeFigures* figures, std::string* html) {
+  *html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
+  *html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
+                                  HtmlCommas(reader.clips().size()) + " clips)");
+  *html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
+                                (info.query_words == 1 ? " word" : " words"));
+  *html += HtmlRow("search", result.whole_take
+                                 ? "whole takes: the EMD between take signatures over " +
+                                       std::to_string(info.motifs) + " motifs"
+                                 : "a window of " + HtmlCommas(info.query_words) +
+                                       " words slid along every take, one word at a time (" +
+                                       HtmlCommas(result.windows) + " windows); EMD over " +
+                                       std::to_string(info.motifs) + " motifs");
+  *html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
+  *html += "</table>\n";
+  if (info.query_in_archive) {
+    const ClipInfo& clip = reader.clips()[info.query_clip];
+    MOTIF_ASSIGN_OR_RETURN(std::string svg, figures->Svg(clip, info.query_start, info.query_end));
+    *html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(clip.name) + " " +
+             std::to_string(info.query_start) + "\u2013" + std::to_string(info.query_end) +
+             "</div><div class=\"figs\">" + svg + "</div></div>\n";
+  } else if (info.query_take != nullptr && info.query_take->frame_count() > 0) {
+    const std::string svg = figures->TakeSvg(*info.query_take);
+    *html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(info.query_text) + ", " +
+             HtmlCount(info.query_take->frame_count(), "frame") + " at the archive's rate" +
+             "</div><div class=\"figs\">" + svg + "</div></div>\n";
+  }
+  return Status::Ok();
+}
+
+// The strip of the EMD of every window along a match's take, darker where closer (shaded
+// between lo and hi); the box marks the match's window.
+void AppendWindowProfile(const std::vector<float>& profile, uint64_t best_window, double lo,
+                         double hi, std::string* html) {
+  *html += "<svg class=\"heat\" viewBox=\"0 0 " + std::to_string(profile.size()) +
+           " 1\" preserveAspectRatio=\"none\">";
+  for (size_t window = 0; window < profile.size(); ++window) {
+    if (std::isnan(profile[window])) continue;
+    *html += "<rect x=\"" + std::to_string(window) + "\" width=\"1\" height=\"1\" fill=\"" +
+             Shade(profile[window], lo, hi) + "\"><title>window at word " + std::to_string(window) +
+             ": EMD " + HtmlNumber("%.4f", profile[window]) + "</title></rect>";
+  }
+  *html += "<rect class=\"best\" x=\"" + std::to_string(best_window) +
+           "\" width=\"1\" height=\"1\"/></svg>";
+}
+
 }  // namespace
 
 Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileReader& reader,
@@ -40,38 +88,14 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
   const double fps = reader.fps();
   KeyframeFigures figures(reader, FigureView::kSide, 5);
   std::string html = HtmlPageStart("motifmine search: " + info.archive, kWordsCss);
-  html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
-  html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
-                                 HtmlCommas(reader.clips().size()) + " clips)");
-  html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
-                               (info.query_words == 1 ? " word" : " words"));
-  html += HtmlRow("search", result.whole_take
-                                ? "whole takes: the EMD between take signatures over " +
-                                      std::to_string(info.motifs) + " motifs"
-                                : "a window of " + HtmlCommas(info.query_words) +
-                                      " words slid along every take, one word at a time (" +
-                                      HtmlCommas(result.windows) + " windows); EMD over " +
-                                      std::to_string(info.motifs) + " motifs");
-  html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
-  html += "</table>\n";
-  if (info.query_in_archive) {
-    const ClipInfo& clip = reader.clips()[info.query_clip];
-    MOTIF_ASSIGN_OR_RETURN(std::string svg, figures.Svg(clip, info.query_start, info.query_end));
-    html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(clip.name) + " " +
-            std::to_string(info.query_start) + "\u2013" + std::to_string(info.query_end) +
-            "</div><div class=\"figs\">" + svg + "</div></div>\n";
-  } else if (info.query_take != nullptr && info.query_take->frame_count() > 0) {
-    const std::string svg = figures.TakeSvg(*info.query_take);
-    html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(info.query_text) + ", " +
-            HtmlCount(info.query_take->frame_count(), "frame") + " at the archive's rate" +
-            "</div><div class=\"figs\">" + svg + "</div></div>\n";
-  }
+  MOTIF_RETURN_IF_ERROR(AppendSearchQuery(result, reader, info, &figures, &html));
   html +=
       "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "
       "one per take (its best window). The strip under each match shows the EMD of every "
       "window along its take, darker where closer; the box marks the match. Frames are "
       "0-based within the clip, the end excluded.</p>\n";
   if (result.matches.empty()) html += "<p>No take holds enough words for the query.</p>\n";
+  // One shade scale for every profile on the page.
   double lo = std::numeric_limits<double>::infinity();
   double hi = 0;
   for (const std::vector<float>& profile : result.profiles) {
@@ -92,17 +116,7 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
             "</span></h3><div class=\"figs\">" + svg + "</div>";
     const std::vector<float>& profile = result.profiles[rank];
     if (!result.whole_take && !profile.empty()) {
-      html += "<svg class=\"heat\" viewBox=\"0 0 " + std::to_string(profile.size()) +
-              " 1\" preserveAspectRatio=\"none\">";
-      for (size_t window = 0; window < profile.size(); ++window) {
-        if (std::isnan(profile[window])) continue;
-        html += "<rect x=\"" + std::to_string(window) + "\" width=\"1\" height=\"1\" fill=\"" +
-                Shade(profile[window], lo, hi) + "\"><title>window at word " +
-                std::to_string(window) + ": EMD " + HtmlNumber("%.4f", profile[window]) +
-                "</title></rect>";
-      }
-      html += "<rect class=\"best\" x=\"" + std::to_string(match.first_word) +
-              "\" width=\"1\" height=\"1\"/></svg>";
+      AppendWindowProfile(profile, match.first_word, lo, hi, &html);
     }
     html += "</div>\n";
   }
