@@ -168,86 +168,108 @@ Result<std::unique_ptr<TakeResequencer>> TakeResequencer::Create(const SynthOpti
   return std::unique_ptr<TakeResequencer>(new TakeResequencer(options, std::move(sources), plan));
 }
 
+namespace {
+
+// The root's heading at every frame of `take`, unwrapped (continuous across +-pi).
+std::vector<double> UnwrappedHeadings(const Take& take) {
+  std::vector<double> headings(take.frame_count());
+  for (size_t frame_idx = 0; frame_idx < take.frame_count(); ++frame_idx) {
+    const double heading = HeadingOf(take.rotation(frame_idx, 0).normalized());
+    headings[frame_idx] =
+        frame_idx == 0 ? heading
+                       : headings[frame_idx - 1] + WrapAngle(heading - headings[frame_idx - 1]);
+  }
+  return headings;
+}
+
+// Capture glitches of `take` (a joint turning by more than kGlitchDegrees between two frames,
+// e.g. the 180-degree flips of some converted BVH takes) as source frame ranges [f - 1, f].
+std::vector<std::pair<double, double>> GlitchRanges(const Take& take) {
+  std::vector<std::pair<double, double>> ranges;
+  const double glitch_cos = std::cos(DegreesToRadians(kGlitchDegrees) / 2);
+  for (size_t frame_idx = 1; frame_idx < take.frame_count(); ++frame_idx) {
+    for (size_t joint_idx = 0; joint_idx < take.joint_count(); ++joint_idx) {
+      const double dot = std::abs(take.rotation(frame_idx, joint_idx)
+                                      .normalized()
+                                      .dot(take.rotation(frame_idx - 1, joint_idx).normalized()));
+      if (dot < glitch_cos) {
+        const double frame = static_cast<double>(frame_idx);
+        ranges.emplace_back(frame - 1, frame);
+        break;
+      }
+    }
+  }
+  return ranges;
+}
+
+}  // namespace
+
 TakeResequencer::TakeResequencer(const SynthOptions& options, std::vector<Take> sources,
                                  const SynthPlan& plan)
     : options_(options), plan_(plan), sources_(std::move(sources)) {
   uint64_t total = 0;
   for (const Take& take : sources_) {
-    std::vector<double> headings(take.frame_count());
-    for (size_t frame_idx = 0; frame_idx < take.frame_count(); ++frame_idx) {
-      const double heading = HeadingOf(take.rotation(frame_idx, 0).normalized());
-      headings[frame_idx] =
-          frame_idx == 0 ? heading
-                         : headings[frame_idx - 1] + WrapAngle(heading - headings[frame_idx - 1]);
-    }
-    headings_.push_back(std::move(headings));
+    headings_.push_back(UnwrappedHeadings(take));
     total += take.frame_count();
     cumulative_frames_.push_back(total);
   }
-  // Capture glitches (a joint turning by more than kGlitchDegrees between two frames, e.g. the
-  // 180-degree flips of some converted BVH takes) are kept out of every piece drawn.
+  // Capture glitches are kept out of every piece drawn.
   reserved_.resize(sources_.size());
-  const double glitch_cos = std::cos(DegreesToRadians(kGlitchDegrees) / 2);
   for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
-    const Take& take = sources_[take_idx];
-    for (size_t frame_idx = 1; frame_idx < take.frame_count(); ++frame_idx) {
-      for (size_t joint_idx = 0; joint_idx < take.joint_count(); ++joint_idx) {
-        const double dot = std::abs(take.rotation(frame_idx, joint_idx)
-                                        .normalized()
-                                        .dot(take.rotation(frame_idx - 1, joint_idx).normalized()));
-        if (dot < glitch_cos) {
-          const double frame = static_cast<double>(frame_idx);
-          reserved_[take_idx].emplace_back(frame - 1, frame);
-          break;
-        }
-      }
-    }
+    reserved_[take_idx] = GlitchRanges(sources_[take_idx]);
   }
   // Each motif is a piece of a source, with room around it for the blend ramps when possible,
   // clear of glitches and of the other motifs' pieces.
   const double margin = 2.5 * static_cast<double>(plan.crossfade_frames()) + 2;
   for (size_t motif_idx = 0; motif_idx < plan.motif_frames().size(); ++motif_idx) {
-    SynthRandom random(DeriveSeed(options.seed, SeedStream::kResequenceMotif, motif_idx));
+    const MotifSource source = DrawMotifSource(motif_idx, margin);
     const double motif_frames = static_cast<double>(plan.motif_frames()[motif_idx]);
-    // Takes with room for the motif and its margins, drawn in proportion to that room.
-    std::vector<double> room(sources_.size());
-    double total_room = 0;
-    for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
-      const double frames = static_cast<double>(sources_[take_idx].frame_count());
-      room[take_idx] = std::max(0.0, frames - motif_frames - 2 * margin);
-      total_room += room[take_idx];
-    }
-    MotifSource source;
-    if (total_room > 0) {
-      for (int attempt = 0; attempt < kDrawAttempts; ++attempt) {
-        double target = random.Uniform(0, total_room);
-        source.take_idx = 0;
-        while (source.take_idx + 1 < sources_.size() && target >= room[source.take_idx]) {
-          target -= room[source.take_idx++];
-        }
-        while (room[source.take_idx] == 0) --source.take_idx;  // rounding at the end
-        source.start = std::floor(margin + random.Uniform(0, room[source.take_idx]));
-        if (!OverlapsReserved(source.take_idx, source.start - margin,
-                              source.start + motif_frames + margin)) {
-          break;
-        }
-      }
-    } else {
-      // No take has room for the margins: the longest take, the ramps hold at its ends.
-      for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
-        if (sources_[take_idx].frame_count() > sources_[source.take_idx].frame_count()) {
-          source.take_idx = take_idx;
-        }
-      }
-      const double frames = static_cast<double>(sources_[source.take_idx].frame_count());
-      source.start = std::floor(random.Uniform(0, std::max(0.0, frames - motif_frames) + 1));
-    }
     motif_sources_.push_back(source);
     reserved_[source.take_idx].emplace_back(source.start - margin,
                                             source.start + motif_frames + margin);
     std::sort(reserved_[source.take_idx].begin(), reserved_[source.take_idx].end());
   }
   for (auto& ranges : reserved_) std::sort(ranges.begin(), ranges.end());
+}
+
+TakeResequencer::MotifSource TakeResequencer::DrawMotifSource(size_t motif_idx,
+                                                              double margin) const {
+  SynthRandom random(DeriveSeed(options_.seed, SeedStream::kResequenceMotif, motif_idx));
+  const double motif_frames = static_cast<double>(plan_.motif_frames()[motif_idx]);
+  // Takes with room for the motif and its margins, drawn in proportion to that room.
+  std::vector<double> room(sources_.size());
+  double total_room = 0;
+  for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
+    const double frames = static_cast<double>(sources_[take_idx].frame_count());
+    room[take_idx] = std::max(0.0, frames - motif_frames - 2 * margin);
+    total_room += room[take_idx];
+  }
+  MotifSource source;
+  if (total_room > 0) {
+    for (int attempt = 0; attempt < kDrawAttempts; ++attempt) {
+      double target = random.Uniform(0, total_room);
+      source.take_idx = 0;
+      while (source.take_idx + 1 < sources_.size() && target >= room[source.take_idx]) {
+        target -= room[source.take_idx++];
+      }
+      while (room[source.take_idx] == 0) --source.take_idx;  // rounding at the end
+      source.start = std::floor(margin + random.Uniform(0, room[source.take_idx]));
+      if (!OverlapsReserved(source.take_idx, source.start - margin,
+                            source.start + motif_frames + margin)) {
+        break;
+      }
+    }
+    return source;
+  }
+  // No take has room for the margins: the longest take, the ramps hold at its ends.
+  for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
+    if (sources_[take_idx].frame_count() > sources_[source.take_idx].frame_count()) {
+      source.take_idx = take_idx;
+    }
+  }
+  const double frames = static_cast<double>(sources_[source.take_idx].frame_count());
+  source.start = std::floor(random.Uniform(0, std::max(0.0, frames - motif_frames) + 1));
+  return source;
 }
 
 bool TakeResequencer::OverlapsReserved(size_t take_idx, double first, double last) const {
