@@ -20,8 +20,23 @@ namespace motif::cli {
 
 namespace po = boost::program_options;
 
-int RunClassify(const std::vector<std::string>& args) {
-  CommandSpec spec;
+namespace {
+
+// The command line of `classify`, read back and checked.
+struct ClassifyCommandOptions {
+  std::string archive;
+  std::string distance_name;  // emd, emd-tf or dtw
+  std::string labels_path;    // empty: no labels
+  std::string weights_path;   // dtw's per-joint weights ("": the skeleton's)
+  uint32_t dtw_step = 1;
+  ClassifyOptions classify;
+  WordsReaderOutput output;
+  ProgressMode progress_mode = ProgressMode::kAuto;
+
+  bool dtw() const { return distance_name == "dtw"; }
+};
+
+void AddClassifyOptions(CommandSpec& spec) {
   spec.name = "classify";
   spec.usage =
       "motifmine classify ARCHIVE [--labels FILE.tsv] [--distance emd|emd-tf|dtw] "
@@ -53,122 +68,175 @@ int RunClassify(const std::vector<std::string>& args) {
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "classify");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  const auto fail = [](const Status& status) { return ReportError("classify", status); };
-  const std::string archive = vm["archive"].as<std::string>();
-  const std::string distance_name = vm["distance"].as<std::string>();
+}
+
+// InvalidArgument naming the flag for a bad value; IOError if the output folder cannot be made.
+Result<ClassifyCommandOptions> ReadClassifyOptions(const po::variables_map& vm) {
+  ClassifyCommandOptions options;
+  options.archive = vm["archive"].as<std::string>();
+  options.distance_name = vm["distance"].as<std::string>();
+  const std::string& distance_name = options.distance_name;
   if (distance_name != "emd" && distance_name != "emd-tf" && distance_name != "dtw") {
-    return fail(Status::InvalidArgument("--distance must be emd, emd-tf or dtw, not '" +
-                                        distance_name + "'"));
+    return Status::InvalidArgument("--distance must be emd, emd-tf or dtw, not '" + distance_name +
+                                   "'");
   }
-  ClassifyOptions options;
+  ClassifyOptions& classify = options.classify;
   const std::string groups = vm["groups"].as<std::string>();
-  if (groups != "auto") {
-    if (Status status = ParseGroups(groups, &options.groups); !status.ok()) return fail(status);
+  if (groups != "auto") MOTIF_RETURN_IF_ERROR(ParseGroups(groups, &classify.groups));
+  classify.dims = vm["dims"].as<uint32_t>();
+  classify.knn = vm["knn"].as<uint32_t>();
+  classify.top = vm["top"].as<uint32_t>();
+  classify.seed = vm["seed"].as<uint64_t>();
+  classify.threads = vm["threads"].as<int>();
+  options.dtw_step = vm["dtw-step"].as<uint32_t>();
+  if (classify.dims == 0 || classify.knn == 0 || classify.top == 0 || options.dtw_step == 0) {
+    return Status::InvalidArgument("--dims, --knn, --top and --dtw-step must be at least 1");
   }
-  options.dims = vm["dims"].as<uint32_t>();
-  options.knn = vm["knn"].as<uint32_t>();
-  options.top = vm["top"].as<uint32_t>();
-  options.seed = vm["seed"].as<uint64_t>();
-  options.threads = vm["threads"].as<int>();
-  const uint32_t dtw_step = vm["dtw-step"].as<uint32_t>();
-  if (options.dims == 0 || options.knn == 0 || options.top == 0 || dtw_step == 0) {
-    return fail(Status::InvalidArgument("--dims, --knn, --top and --dtw-step must be at least 1"));
-  }
-  Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, archive, "classify");
-  if (!output.ok()) return fail(output.status());
-  const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
+  MOTIF_ASSIGN_OR_RETURN(options.output, WordsReaderOutputFrom(vm, options.archive, "classify"));
+  options.labels_path = vm["labels"].as<std::string>();
+  options.weights_path = vm["weights"].as<std::string>();
+  options.progress_mode = ProgressModeFrom(vm);
+  return options;
+}
 
-  Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(archive);
-  if (!reader.ok()) return fail(reader.status());
-  TakeLabels labels;
-  const std::string labels_path = vm["labels"].as<std::string>();
-  if (!labels_path.empty()) {
-    Result<TakeLabels> read = ReadTakeLabels(labels_path);
-    if (!read.ok()) return fail(read.status());
-    labels = std::move(read.value());
-  }
-  // The takes: clips with at least one word. DTW needs no words file: without one, the takes are
-  // those long enough for one word of the default geometry, the takes signatures would see.
-  Result<LoadedWords> words = LoadWords(**reader, paths, /*with_embedding=*/false);
-  const bool dtw = distance_name == "dtw";
-  if (!words.ok() && !(dtw && words.status().IsNotFound())) return fail(words.status());
-  const WordOptions geometry = words.ok() ? words->signatures.words : WordOptions{};
-  TakeClassification named;
-  std::vector<std::string> take_labels;
-  const std::vector<ClipInfo>& clips = (*reader)->clips();
+// The takes to classify: the clips with at least one word, with their labels ("": unlabelled),
+// and how many labelled clips are not among them.
+struct ClassifiedTakes {
+  std::vector<uint32_t> clips;
+  std::vector<std::string> names;
+  std::vector<std::string> labels;
+  uint64_t unknown_labels = 0;
+};
+
+ClassifiedTakes SelectClassifiedTakes(const FrameFileReader& reader, const WordOptions& geometry,
+                                      const TakeLabels& labels) {
+  ClassifiedTakes takes;
+  const std::vector<ClipInfo>& clips = reader.clips();
   for (size_t clip = 0; clip < clips.size(); ++clip) {
-    if (ClipWordGrid(**reader, clip, geometry).word_count() == 0) continue;
-    named.clips.push_back(static_cast<uint32_t>(clip));
-    named.names.push_back(clips[clip].name);
+    if (ClipWordGrid(reader, clip, geometry).word_count() == 0) continue;
+    takes.clips.push_back(static_cast<uint32_t>(clip));
+    takes.names.push_back(clips[clip].name);
     const auto label = labels.by_clip.find(clips[clip].name);
-    take_labels.push_back(label == labels.by_clip.end() ? "" : label->second);
+    takes.labels.push_back(label == labels.by_clip.end() ? "" : label->second);
   }
-  uint64_t unknown = 0;
   for (const auto& [clip, label] : labels.by_clip) {
-    unknown += std::find(named.names.begin(), named.names.end(), clip) == named.names.end();
+    takes.unknown_labels +=
+        std::find(takes.names.begin(), takes.names.end(), clip) == takes.names.end();
   }
+  return takes;
+}
 
-  ProgressReporter progress(ProgressModeFrom(vm));
+// The takes' distance matrix: DTW over their frames, or the EMD between their signatures
+// (`words`, null only for dtw). The progress stage opens with the first report of the engine.
+Result<Eigen::MatrixXd> ClassifyDistances(const ClassifyCommandOptions& options,
+                                          const FrameFileReader& reader, const LoadedWords* words,
+                                          const std::vector<uint32_t>& take_clips,
+                                          ProgressReporter& progress) {
   bool began = false;
   auto on_progress = [&](uint64_t done, uint64_t total) {
-    if (!began) progress.BeginStage(distance_name == "dtw" ? "dtw" : "emd", total, "takes");
+    if (!began) progress.BeginStage(options.dtw() ? "dtw" : "emd", total, "takes");
     began = true;
     progress.Update(done);
   };
-  if (unknown > 0) {
-    progress.Note(std::to_string(unknown) + " labelled clips of " + labels_path +
+  const int threads = options.classify.threads;
+  Result<Eigen::MatrixXd> distances = Status::InvalidArgument("no distance");
+  if (options.dtw()) {
+    MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
+                           LoadDistanceWeights(reader.skeleton(), options.weights_path));
+    MOTIF_ASSIGN_OR_RETURN(PoseFeatures features, PoseFeatures::FromArchive(reader, weights));
+    const std::vector<ClipInfo>& clips = reader.clips();
+    std::vector<TakeFrames> takes;
+    for (uint32_t clip : take_clips) {
+      takes.push_back({clips[clip].first_frame, clips[clip].first_frame + clips[clip].frame_count});
+    }
+    distances = TakeDtwMatrix(features, takes, options.dtw_step, threads, on_progress);
+  } else {
+    std::vector<std::vector<double>> signatures;
+    for (uint32_t clip : take_clips) {
+      signatures.push_back(words->ClipSignature(clip, options.distance_name == "emd-tf"));
+    }
+    distances = SignatureDistanceMatrix(signatures, words->ground, threads, on_progress);
+  }
+  if (began) progress.EndStage();
+  return distances;
+}
+
+// What the summary prints besides the classification's own figures.
+struct ClassifyOutcome {
+  TakeClassification result;
+  uint32_t motif_count = 0;  // of the words files; 0 when dtw ran without them
+  double seconds_distances = 0;
+};
+
+// Reads the archive, the labels and the words files, computes the distances and classifies.
+Result<ClassifyOutcome> ClassifyArchiveTakes(const ClassifyCommandOptions& options) {
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
+                         FrameFileReader::Open(options.archive));
+  TakeLabels labels;
+  if (!options.labels_path.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(labels, ReadTakeLabels(options.labels_path));
+  }
+  // The takes: clips with at least one word. DTW needs no words file: without one, the takes are
+  // those long enough for one word of the default geometry, the takes signatures would see.
+  const WordsPaths paths = DefaultWordsPaths(options.output.prefix_archive);
+  Result<LoadedWords> words = LoadWords(*reader, paths, /*with_embedding=*/false);
+  if (!words.ok() && !(options.dtw() && words.status().IsNotFound())) return words.status();
+  const WordOptions geometry = words.ok() ? words->signatures.words : WordOptions{};
+  ClassifiedTakes takes = SelectClassifiedTakes(*reader, geometry, labels);
+
+  ProgressReporter progress(options.progress_mode);
+  if (takes.unknown_labels > 0) {
+    progress.Note(std::to_string(takes.unknown_labels) + " labelled clips of " +
+                  options.labels_path +
                   " are not takes of the archive (absent, or shorter than one word): ignored");
   }
   const auto start = std::chrono::steady_clock::now();
-  Result<Eigen::MatrixXd> distances = Status::InvalidArgument("no distance");
-  if (distance_name == "dtw") {
-    Result<std::vector<float>> weights =
-        LoadDistanceWeights((*reader)->skeleton(), vm["weights"].as<std::string>());
-    if (!weights.ok()) return fail(weights.status());
-    Result<PoseFeatures> features = PoseFeatures::FromArchive(**reader, *weights);
-    if (!features.ok()) return fail(features.status());
-    std::vector<TakeFrames> takes;
-    for (uint32_t clip : named.clips) {
-      takes.push_back({clips[clip].first_frame, clips[clip].first_frame + clips[clip].frame_count});
-    }
-    distances = TakeDtwMatrix(*features, takes, dtw_step, options.threads, on_progress);
-  } else {
-    std::vector<std::vector<double>> signatures;
-    for (uint32_t clip : named.clips) {
-      signatures.push_back(words->ClipSignature(clip, distance_name == "emd-tf"));
-    }
-    distances = SignatureDistanceMatrix(signatures, words->ground, options.threads, on_progress);
-  }
-  if (began) progress.EndStage();
-  if (!distances.ok()) return fail(distances.status());
-  const double seconds =
+  MOTIF_ASSIGN_OR_RETURN(
+      Eigen::MatrixXd distances,
+      ClassifyDistances(options, *reader, words.ok() ? &*words : nullptr, takes.clips, progress));
+  ClassifyOutcome outcome;
+  outcome.seconds_distances =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (words.ok()) outcome.motif_count = words->motifs.motif_count();
 
-  Result<TakeClassification> result = ClassifyTakes(std::move(*distances), take_labels, options);
-  if (!result.ok()) return fail(result.status());
-  result->distance = distance_name;
-  result->names = named.names;
-  result->clips = named.clips;
-  result->seconds_distances = seconds;
+  MOTIF_ASSIGN_OR_RETURN(outcome.result,
+                         ClassifyTakes(std::move(distances), takes.labels, options.classify));
+  outcome.result.distance = options.distance_name;
+  outcome.result.names = takes.names;
+  outcome.result.clips = takes.clips;
+  outcome.result.seconds_distances = outcome.seconds_distances;
+  return outcome;
+}
 
-  const std::string& json_path = output->json_path;
-  const std::string& html_path = output->html_path;
-  if (Status status =
-          AtomicWriteFile(json_path, ClassificationJson(*result, archive).dump(2) + "\n");
-      !status.ok()) {
-    return fail(status);
-  }
-  if (Status status = WriteClassificationHtml(html_path, *result, archive); !status.ok()) {
-    return fail(status);
-  }
+Status WriteClassifyFiles(const ClassifyCommandOptions& options, const TakeClassification& result) {
+  MOTIF_RETURN_IF_ERROR(AtomicWriteFile(
+      options.output.json_path, ClassificationJson(result, options.archive).dump(2) + "\n"));
+  return WriteClassificationHtml(options.output.html_path, result, options.archive);
+}
 
-  const TakeClassification& r = *result;
+// The supervised lines: accuracy, precision and per label how many takes were classified right.
+void PrintClassifySupervised(const TakeClassification& r) {
   std::printf(
-      "motifmine classify: %s (%zu takes, distance %s%s)\n", archive.c_str(), r.names.size(),
-      distance_name.c_str(),
-      dtw ? "" : (" over " + std::to_string(words->motifs.motif_count()) + " motifs").c_str());
+      "  supervised   %u-NN leave-one-out accuracy %.3f (%s of %s labelled takes, %zu "
+      "labels)\n",
+      r.knn.k, r.knn.accuracy, WithCommas(r.knn.correct).c_str(),
+      WithCommas(r.knn.labelled).c_str(), r.label_names.size());
+  std::printf("  retrieval    precision@%u %.3f\n", r.top, r.precision_at_top);
+  for (size_t label = 0; label < r.label_names.size(); ++label) {
+    uint64_t count = 0;
+    for (uint64_t value : r.knn.confusion[label]) count += value;
+    std::printf("    %-16s %3llu takes, %llu classified right\n", r.label_names[label].c_str(),
+                static_cast<unsigned long long>(count),
+                static_cast<unsigned long long>(r.knn.confusion[label][label]));
+  }
+}
+
+void PrintClassifySummary(const ClassifyCommandOptions& options, const ClassifyOutcome& outcome) {
+  const TakeClassification& r = outcome.result;
+  std::printf(
+      "motifmine classify: %s (%zu takes, distance %s%s)\n", options.archive.c_str(),
+      r.names.size(), options.distance_name.c_str(),
+      options.dtw() ? "" : (" over " + std::to_string(outcome.motif_count) + " motifs").c_str());
   std::printf("  unsupervised MDS into %lld dimensions, k-means into %u groups",
               static_cast<long long>(r.mds.coordinates.cols()), r.group_count);
   if (!r.label_names.empty()) {
@@ -176,23 +244,28 @@ int RunClassify(const std::vector<std::string>& args) {
                 r.purity);
   }
   std::printf("\n");
-  if (!r.label_names.empty()) {
-    std::printf(
-        "  supervised   %u-NN leave-one-out accuracy %.3f (%s of %s labelled takes, %zu "
-        "labels)\n",
-        r.knn.k, r.knn.accuracy, WithCommas(r.knn.correct).c_str(),
-        WithCommas(r.knn.labelled).c_str(), r.label_names.size());
-    std::printf("  retrieval    precision@%u %.3f\n", r.top, r.precision_at_top);
-    for (size_t label = 0; label < r.label_names.size(); ++label) {
-      uint64_t count = 0;
-      for (uint64_t value : r.knn.confusion[label]) count += value;
-      std::printf("    %-16s %3llu takes, %llu classified right\n", r.label_names[label].c_str(),
-                  static_cast<unsigned long long>(count),
-                  static_cast<unsigned long long>(r.knn.confusion[label][label]));
-    }
+  if (!r.label_names.empty()) PrintClassifySupervised(r);
+  std::printf("  time         distances %.2fs\n", outcome.seconds_distances);
+  std::printf("  wrote        %s, %s\n", options.output.json_path.c_str(),
+              options.output.html_path.c_str());
+}
+
+}  // namespace
+
+int RunClassify(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddClassifyOptions(spec);
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const auto fail = [](const Status& status) { return ReportError("classify", status); };
+  Result<ClassifyCommandOptions> options = ReadClassifyOptions(vm);
+  if (!options.ok()) return fail(options.status());
+  Result<ClassifyOutcome> outcome = ClassifyArchiveTakes(*options);
+  if (!outcome.ok()) return fail(outcome.status());
+  if (Status status = WriteClassifyFiles(*options, outcome->result); !status.ok()) {
+    return fail(status);
   }
-  std::printf("  time         distances %.2fs\n", seconds);
-  std::printf("  wrote        %s, %s\n", json_path.c_str(), html_path.c_str());
+  PrintClassifySummary(*options, *outcome);
   return kExitOk;
 }
 

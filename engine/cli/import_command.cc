@@ -9,8 +9,9 @@ namespace motif::cli {
 
 namespace po = boost::program_options;
 
-int RunImport(const std::vector<std::string>& args) {
-  CommandSpec spec;
+namespace {
+
+void AddImportOptions(CommandSpec& spec) {
   spec.name = "import";
   spec.usage = "motifmine import ARCHIVE PATH... [options]";
   spec.summary =
@@ -39,15 +40,26 @@ int RunImport(const std::vector<std::string>& args) {
                                            "parser threads (0: all cores)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}, {"paths", -1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+}
+
+// The command line of `import`, read back and checked (the progress callbacks are not set).
+struct ImportCommandOptions {
+  std::string archive;
+  std::vector<std::string> paths;
+  ArchiveImportOptions import;
+  ProgressMode progress_mode = ProgressMode::kAuto;
+};
+
+// Fills *command; returns -1 to go on, or the exit code after printing the usage error (no
+// PATH) or the error (a bad value, a descriptions index that cannot be read).
+int ReadImportOptions(const CommandSpec& spec, const po::variables_map& vm,
+                      ImportCommandOptions* command) {
   if (!vm.count("paths")) {
     std::fprintf(stderr, "motifmine import: give at least one PATH to import\nusage: %s\n",
                  spec.usage.c_str());
     return kExitUsage;
   }
-
-  ArchiveImportOptions options;
+  ArchiveImportOptions& options = command->import;
   options.fps = vm["fps"].as<double>();
   options.import.asf_path = vm["asf"].as<std::string>();
   options.import.amc_fps = vm["amc-fps"].as<double>();
@@ -71,8 +83,17 @@ int RunImport(const std::vector<std::string>& args) {
     return ReportError("import", Status::InvalidArgument("--block-frames must be at least 1"));
   }
   options.threads = vm["threads"].as<int>();
+  command->archive = vm["archive"].as<std::string>();
+  command->paths = vm["paths"].as<std::vector<std::string>>();
+  command->progress_mode = ProgressModeFrom(vm);
+  return -1;
+}
 
-  ProgressReporter progress(ProgressModeFrom(vm));
+// The import, its notes and its one "import" stage (counted in takes, opened by the first
+// report) shown by `progress`.
+Result<ArchiveImportResult> ImportWithProgress(const ImportCommandOptions& command,
+                                               ProgressReporter& progress) {
+  ArchiveImportOptions options = command.import;
   options.note = [&](const std::string& message) { progress.Note(message); };
   bool stage_started = false;
   options.progress = [&](uint64_t done, uint64_t total) {
@@ -82,30 +103,47 @@ int RunImport(const std::vector<std::string>& args) {
     }
     progress.Update(done);
   };
-  const std::string archive = vm["archive"].as<std::string>();
-  Result<ArchiveImportResult> result =
-      ImportIntoArchive(archive, vm["paths"].as<std::vector<std::string>>(), options);
+  Result<ArchiveImportResult> result = ImportIntoArchive(command.archive, command.paths, options);
   if (stage_started) progress.EndStage();
+  return result;
+}
+
+void PrintImportSummary(const std::string& archive, const ArchiveImportResult& result) {
+  std::printf("%s %s: %s imported (%s)", result.created ? "created" : "appended to",
+              archive.c_str(), CountOf(result.takes_imported, "take").c_str(),
+              CountOf(result.frames_added, "frame").c_str());
+  if (result.takes_already_present) {
+    std::printf(", %s already present", WithCommas(result.takes_already_present).c_str());
+  }
+  if (result.takes_failed) {
+    std::printf(", %s failed", WithCommas(result.takes_failed).c_str());
+  }
+  std::printf("; the archive now holds %s, %s at %g fps\n",
+              CountOf(result.archive_clips, "clip").c_str(),
+              CountOf(result.archive_frames, "frame").c_str(), result.fps);
+}
+
+}  // namespace
+
+int RunImport(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddImportOptions(spec);
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  ImportCommandOptions command;
+  if (int code = ReadImportOptions(spec, vm, &command); code >= 0) return code;
+
+  ProgressReporter progress(command.progress_mode);
+  Result<ArchiveImportResult> result = ImportWithProgress(command, progress);
   if (!result.ok()) {
     int code = ReportError("import", result.status());
     std::fprintf(stderr, "motifmine import: nothing was imported; %s is unchanged\n",
-                 archive.c_str());
+                 command.archive.c_str());
     return code;
   }
-  std::printf("%s %s: %s imported (%s)", result->created ? "created" : "appended to",
-              archive.c_str(), CountOf(result->takes_imported, "take").c_str(),
-              CountOf(result->frames_added, "frame").c_str());
-  if (result->takes_already_present) {
-    std::printf(", %s already present", WithCommas(result->takes_already_present).c_str());
-  }
-  if (result->takes_failed) {
-    std::printf(", %s failed", WithCommas(result->takes_failed).c_str());
-  }
-  std::printf("; the archive now holds %s, %s at %g fps\n",
-              CountOf(result->archive_clips, "clip").c_str(),
-              CountOf(result->archive_frames, "frame").c_str(), result->fps);
+  PrintImportSummary(command.archive, *result);
   if (result->takes_failed == 0) return kExitOk;
-  ReportSkippedTakes("import", result->failures, ProgressModeFrom(vm));
+  ReportSkippedTakes("import", result->failures, command.progress_mode);
   return kExitWarnings;  // the good takes are stored; the bad ones are named
 }
 

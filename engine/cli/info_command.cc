@@ -10,65 +10,90 @@ namespace motif::cli {
 
 namespace po = boost::program_options;
 
-int RunInfo(const std::vector<std::string>& args) {
-  CommandSpec spec;
+namespace {
+
+void AddInfoOptions(CommandSpec& spec) {
   spec.name = "info";
   spec.usage = "motifmine info ARCHIVE [--json] [--clips N]";
   spec.summary = "Describes an archive: frame rate, skeleton, clips and frames, size on disk.";
   spec.options.add_options()("json", "print everything as one JSON object (every clip included)")(
       "clips", po::value<size_t>()->default_value(20), "clips listed in the text output (0: all)");
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  const std::string path = vm["archive"].as<std::string>();
-  Result<std::unique_ptr<FrameFileReader>> opened = FrameFileReader::Open(path);
-  if (!opened.ok()) return ReportError("info", opened.status());
-  const FrameFileReader& reader = **opened;
-  const FrameFileSummary summary = reader.summary();
-  const Skeleton& skeleton = reader.skeleton();
-  const uint64_t raw_bytes = reader.frame_count() * reader.layout().stride() * sizeof(float);
+}
 
-  if (vm.count("json")) {
-    nlohmann::json out;
-    out["archive"] = path;
-    out["format_version"] =
-        std::to_string(summary.format_major) + "." + std::to_string(summary.format_minor);
-    out["generation"] = summary.generation;
-    out["fps"] = reader.fps();
-    out["frames"] = reader.frame_count();
-    out["seconds"] = reader.frame_count() / reader.fps();
-    out["file_bytes"] = summary.file_bytes;
-    out["compressed_bytes"] = summary.compressed_bytes;
-    out["raw_float32_bytes"] = raw_bytes;
-    out["blocks"] = summary.block_count;
-    out["block_frames"] = summary.block_frames;
-    out["uncommitted_bytes"] = summary.uncommitted_bytes;
-    out["fallback_reason"] = summary.fallback_reason;
-    out["damaged_slot_reason"] = summary.damaged_slot_reason;
-    nlohmann::json joints = nlohmann::json::array();
-    for (const Joint& joint : skeleton.joints()) {
-      joints.push_back({{"name", joint.name}, {"parent", joint.parent}, {"weight", joint.weight}});
-    }
-    out["skeleton"] = {{"family", skeleton.family()}, {"joints", joints}};
-    nlohmann::json clips = nlohmann::json::array();
-    for (const ClipInfo& clip : reader.clips()) {
-      clips.push_back({{"name", clip.name},
-                       {"source", clip.source_path},
-                       {"frames", clip.frame_count},
-                       {"fps", clip.fps},
-                       {"source_fps", clip.source_fps},
-                       {"source_first_frame", clip.source_first_frame},
-                       {"first_frame", clip.first_frame}});
-      if (!clip.source_joint_names.empty()) {
-        clips.back()["source_joint_names"] = clip.source_joint_names;
-      }
-      if (!clip.description.empty()) clips.back()["description"] = clip.description;
-    }
-    out["clips"] = clips;
-    std::printf("%s\n", out.dump(2).c_str());
-    return kExitOk;
+struct InfoCommandOptions {
+  std::string path;
+  bool json = false;
+  size_t clip_limit = 20;  // clips listed in the text (0: all)
+};
+
+InfoCommandOptions ReadInfoOptions(const po::variables_map& vm) {
+  InfoCommandOptions options;
+  options.path = vm["archive"].as<std::string>();
+  options.json = vm.count("json") > 0;
+  options.clip_limit = vm["clips"].as<size_t>();
+  return options;
+}
+
+uint64_t RawFloat32Bytes(const FrameFileReader& reader) {
+  return reader.frame_count() * reader.layout().stride() * sizeof(float);
+}
+
+nlohmann::json InfoSkeletonJson(const Skeleton& skeleton) {
+  nlohmann::json joints = nlohmann::json::array();
+  for (const Joint& joint : skeleton.joints()) {
+    joints.push_back({{"name", joint.name}, {"parent", joint.parent}, {"weight", joint.weight}});
   }
+  return {{"family", skeleton.family()}, {"joints", joints}};
+}
 
+nlohmann::json InfoClipsJson(const std::vector<ClipInfo>& clip_infos) {
+  nlohmann::json clips = nlohmann::json::array();
+  for (const ClipInfo& clip : clip_infos) {
+    clips.push_back({{"name", clip.name},
+                     {"source", clip.source_path},
+                     {"frames", clip.frame_count},
+                     {"fps", clip.fps},
+                     {"source_fps", clip.source_fps},
+                     {"source_first_frame", clip.source_first_frame},
+                     {"first_frame", clip.first_frame}});
+    if (!clip.source_joint_names.empty()) {
+      clips.back()["source_joint_names"] = clip.source_joint_names;
+    }
+    if (!clip.description.empty()) clips.back()["description"] = clip.description;
+  }
+  return clips;
+}
+
+// Everything, every clip included, as one JSON object.
+nlohmann::json InfoJson(const std::string& path, const FrameFileReader& reader) {
+  const FrameFileSummary summary = reader.summary();
+  nlohmann::json out;
+  out["archive"] = path;
+  out["format_version"] =
+      std::to_string(summary.format_major) + "." + std::to_string(summary.format_minor);
+  out["generation"] = summary.generation;
+  out["fps"] = reader.fps();
+  out["frames"] = reader.frame_count();
+  out["seconds"] = reader.frame_count() / reader.fps();
+  out["file_bytes"] = summary.file_bytes;
+  out["compressed_bytes"] = summary.compressed_bytes;
+  out["raw_float32_bytes"] = RawFloat32Bytes(reader);
+  out["blocks"] = summary.block_count;
+  out["block_frames"] = summary.block_frames;
+  out["uncommitted_bytes"] = summary.uncommitted_bytes;
+  out["fallback_reason"] = summary.fallback_reason;
+  out["damaged_slot_reason"] = summary.damaged_slot_reason;
+  out["skeleton"] = InfoSkeletonJson(reader.skeleton());
+  out["clips"] = InfoClipsJson(reader.clips());
+  return out;
+}
+
+// The archive's header lines: format, frames, clips, skeleton, size and compression.
+void PrintInfoOverview(const std::string& path, const FrameFileReader& reader,
+                       const FrameFileSummary& summary) {
+  const Skeleton& skeleton = reader.skeleton();
+  const uint64_t raw_bytes = RawFloat32Bytes(reader);
   std::printf("archive      %s (format %u.%u, generation %llu)\n", path.c_str(),
               summary.format_major, summary.format_minor,
               static_cast<unsigned long long>(summary.generation));
@@ -87,6 +112,10 @@ int RunInfo(const std::vector<std::string>& args) {
                 static_cast<double>(raw_bytes) / summary.compressed_bytes,
                 WithCommas(raw_bytes).c_str());
   }
+}
+
+// Bytes of an interrupted import, a damaged commit slot, a commit that did not validate.
+void PrintInfoWarnings(const FrameFileSummary& summary) {
   if (summary.uncommitted_bytes > 0) {
     std::printf(
         "note         %s bytes after the last commit (an interrupted import); the next "
@@ -103,8 +132,10 @@ int RunInfo(const std::vector<std::string>& args) {
         "version. Run motifmine verify.\n",
         summary.fallback_reason.c_str());
   }
-  const size_t limit = vm["clips"].as<size_t>();
-  const auto& clips = reader.clips();
+}
+
+// The first `limit` clips (0: all), then how the frames count.
+void PrintInfoClips(const std::vector<ClipInfo>& clips, size_t limit) {
   // "file frame": the source file's frame (0-based, in the file's order) of the clip's frame 0;
   // clip frame k is file frame F + k (times source fps / fps for a resampled take).
   std::printf("\n  %-24s %10s %12s %8s %10s  %s\n", "clip", "frames", "first frame", "fps",
@@ -125,6 +156,27 @@ int RunInfo(const std::vector<std::string>& args) {
       "\n  frames are 0-based; clip frame k is frame (file frame + k) of its source file, counted "
       "from 0 in the file's order (an AMC labels it one more); a take resampled from another "
       "rate: file frame + k x source fps / fps\n");
+}
+
+}  // namespace
+
+int RunInfo(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddInfoOptions(spec);
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const InfoCommandOptions options = ReadInfoOptions(vm);
+  Result<std::unique_ptr<FrameFileReader>> opened = FrameFileReader::Open(options.path);
+  if (!opened.ok()) return ReportError("info", opened.status());
+  const FrameFileReader& reader = **opened;
+  if (options.json) {
+    std::printf("%s\n", InfoJson(options.path, reader).dump(2).c_str());
+    return kExitOk;
+  }
+  const FrameFileSummary summary = reader.summary();
+  PrintInfoOverview(options.path, reader, summary);
+  PrintInfoWarnings(summary);
+  PrintInfoClips(reader.clips(), options.clip_limit);
   return kExitOk;
 }
 

@@ -16,8 +16,9 @@ namespace motif::cli {
 
 namespace po = boost::program_options;
 
-int RunReport(const std::vector<std::string>& args) {
-  CommandSpec spec;
+namespace {
+
+void AddReportOptions(CommandSpec& spec) {
   spec.name = "report";
   spec.usage =
       "motifmine report DIR [--archive PATH] [--out FILE.html] [--view side|front] "
@@ -44,9 +45,21 @@ int RunReport(const std::vector<std::string>& args) {
       "a synthetic archive's truth file: add recall, precision and ARI to the overview");
   AddTableFlags(spec, {"playback-mb"});
   spec.positional = {{"dir", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  ReportOptions options;
+}
+
+// The command line of `report`, read back and checked.
+struct ReportCommandOptions {
+  std::string dir;
+  std::string archive;     // "": the one motifs.json names
+  std::string out;         // "": DIR/report.html
+  std::string truth_path;  // "": the mine run's, if any
+  ReportOptions report;
+};
+
+// Fills *command; returns -1 to go on, or the exit code after printing the error.
+int ReadReportOptions(const CommandSpec& spec, const po::variables_map& vm,
+                      ReportCommandOptions* command) {
+  ReportOptions& options = command->report;
   const std::string view = vm["view"].as<std::string>();
   if (view != "side" && view != "front") {
     return ReportError("report",
@@ -62,17 +75,22 @@ int RunReport(const std::vector<std::string>& args) {
   if (options.keyframes == 0 || options.keyframes > 50) {
     return ReportError("report", Status::InvalidArgument("--keyframes must be 1 to 50"));
   }
+  command->dir = vm["dir"].as<std::string>();
+  command->archive = vm["archive"].as<std::string>();
+  command->out = vm["out"].as<std::string>();
+  command->truth_path = vm["truth"].as<std::string>();
+  return -1;
+}
 
-  const std::string dir = vm["dir"].as<std::string>();
-  Result<MinedMotifs> mined = OpenMinedMotifs(dir, vm["archive"].as<std::string>());
-  if (!mined.ok()) return ReportError("report", mined.status());
+// The overview of the `mine` run that wrote this motifs.json, when its record still matches
+// (a record that cannot be used is noted on stderr), and the score against the truth file.
+Result<ReportInfo> ReportInfoFor(const MinedMotifs& mined, const std::string& truth_path) {
   ReportInfo info;
-  info.archive_path = mined->archive->path();
-  info.truth_path = vm["truth"].as<std::string>();
-  // The overview of the `mine` run that wrote this motifs.json, when its record still matches.
+  info.archive_path = mined.archive->path();
+  info.truth_path = truth_path;
   const std::string run_path =
-      (std::filesystem::path(mined->motifs_path).parent_path() / "run.json").string();
-  if (Result<RunRecord> run = ReadRunRecord(run_path, mined->motifs_path); run.ok()) {
+      (std::filesystem::path(mined.motifs_path).parent_path() / "run.json").string();
+  if (Result<RunRecord> run = ReadRunRecord(run_path, mined.motifs_path); run.ok()) {
     info.parameters_text = run->parameters_text;
     // The stages mine's own report showed: its report stage came after that page was made.
     for (const RunStageTiming& timing : run->timings) {
@@ -85,15 +103,31 @@ int RunReport(const std::vector<std::string>& args) {
                  run.status().message().c_str());
   }
   if (!info.truth_path.empty()) {
-    Result<TruthFile> truth = ReadTruthJson(info.truth_path);
-    if (!truth.ok()) return ReportError("report", truth.status());
-    info.planted_score = ScoreMotifsDocument(mined->document, truth->instances);
+    MOTIF_ASSIGN_OR_RETURN(TruthFile truth, ReadTruthJson(info.truth_path));
+    info.planted_score = ScoreMotifsDocument(mined.document, truth.instances);
   }
-  std::string out = vm["out"].as<std::string>();
+  return info;
+}
+
+}  // namespace
+
+int RunReport(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddReportOptions(spec);
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  ReportCommandOptions command;
+  if (int code = ReadReportOptions(spec, vm, &command); code >= 0) return code;
+
+  Result<MinedMotifs> mined = OpenMinedMotifs(command.dir, command.archive);
+  if (!mined.ok()) return ReportError("report", mined.status());
+  Result<ReportInfo> info = ReportInfoFor(*mined, command.truth_path);
+  if (!info.ok()) return ReportError("report", info.status());
+  std::string out = command.out;
   if (out.empty()) {
     out = (std::filesystem::path(mined->motifs_path).parent_path() / "report.html").string();
   }
-  if (Status status = WriteReportHtml(out, mined->document, *mined->archive, info, options);
+  if (Status status = WriteReportHtml(out, mined->document, *mined->archive, *info, command.report);
       !status.ok()) {
     return ReportError("report", status);
   }

@@ -112,10 +112,21 @@ nlohmann::json SearchJson(const SearchResult& result, const FrameFileReader& rea
   return json;
 }
 
-}  // namespace
+// The command line of `search`, read back and checked.
+struct SearchCommandOptions {
+  std::string archive;
+  std::string clip_name;   // a clip query (or a range of it: has_range), or
+  std::string query_file;  // a file query: exactly one of the two is given
+  bool has_range = false;
+  uint64_t start = 0;
+  uint64_t end = 0;
+  std::string weights_path;
+  uint32_t top = 10;
+  int threads = 0;
+  WordsReaderOutput output;
+};
 
-int RunSearch(const std::vector<std::string>& args) {
-  CommandSpec spec;
+void AddSearchOptions(CommandSpec& spec) {
   spec.name = "search";
   spec.usage =
       "motifmine search ARCHIVE (--clip NAME [--start S --end E] | --query FILE.bvh) "
@@ -138,145 +149,217 @@ int RunSearch(const std::vector<std::string>& args) {
   AddWordsReaderOptions(spec, "PREFIX.mwe, .mwm, .mws", "search");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+}
+
+// Fills *options; returns -1 to go on, or the exit code after printing the usage error (a query
+// that is not exactly one of --clip and --query, a lone --start or --end) or the error.
+int ReadSearchOptions(const CommandSpec& spec, const po::variables_map& vm,
+                      SearchCommandOptions* options) {
   const auto fail = [](const Status& status) { return ReportError("search", status); };
-  const std::string archive = vm["archive"].as<std::string>();
-  const std::string clip_name = vm["clip"].as<std::string>();
-  const std::string query_file = vm["query"].as<std::string>();
-  const uint32_t top = vm["top"].as<uint32_t>();
-  const int threads = vm["threads"].as<int>();
-  if (clip_name.empty() == query_file.empty()) {
+  options->archive = vm["archive"].as<std::string>();
+  options->clip_name = vm["clip"].as<std::string>();
+  options->query_file = vm["query"].as<std::string>();
+  options->top = vm["top"].as<uint32_t>();
+  options->threads = vm["threads"].as<int>();
+  if (options->clip_name.empty() == options->query_file.empty()) {
     std::fprintf(stderr, "motifmine search: give either --clip NAME or --query FILE\nusage: %s\n",
                  spec.usage.c_str());
     return kExitUsage;
   }
-  if (vm.count("start") != vm.count("end") || (!query_file.empty() && vm.count("start"))) {
+  if (vm.count("start") != vm.count("end") || (!options->query_file.empty() && vm.count("start"))) {
     std::fprintf(stderr,
                  "motifmine search: --start and --end go together, with --clip\n"
                  "usage: %s\n",
                  spec.usage.c_str());
     return kExitUsage;
   }
-  if (top == 0) return fail(Status::InvalidArgument("--top must be at least 1"));
-  Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, archive, "search");
+  options->has_range = vm.count("start") > 0;
+  if (options->has_range) {
+    options->start = vm["start"].as<uint64_t>();
+    options->end = vm["end"].as<uint64_t>();
+  }
+  options->weights_path = vm["weights"].as<std::string>();
+  if (options->top == 0) return fail(Status::InvalidArgument("--top must be at least 1"));
+  Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, options->archive, "search");
   if (!output.ok()) return fail(output.status());
-  const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
+  options->output = std::move(output.value());
+  return -1;
+}
 
-  Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(archive);
-  if (!reader.ok()) return fail(reader.status());
-  const FrameFileReader& frames = **reader;
-  Result<LoadedWords> words = LoadWords(frames, paths, /*with_embedding=*/!query_file.empty());
-  if (!words.ok()) return fail(words.status());
-
-  const auto start_time = std::chrono::steady_clock::now();
+// A search that ran: what the page and search.json say of the query, and the matches.
+struct SearchRun {
   SearchPageInfo info;
-  info.archive = archive;
-  Take query_take;  // a file query, fitted to the archive: its keyframes head the page
-  info.motifs = words->motifs.motif_count();
-  Result<SearchResult> result = Status::InvalidArgument("no query");
-  std::string query_kind;
-  if (!clip_name.empty()) {
-    uint32_t clip = UINT32_MAX;
-    for (uint32_t idx = 0; idx < frames.clips().size(); ++idx) {
-      if (frames.clips()[idx].name == clip_name) clip = idx;
-    }
-    if (clip == UINT32_MAX) {
-      return fail(Status::NotFound(archive + ": no clip named '" + clip_name +
-                                   "' (motifmine info lists them)"));
-    }
-    const ClipInfo& info_clip = frames.clips()[clip];
-    info.query_in_archive = true;
-    info.query_clip = clip;
-    if (vm.count("start")) {
-      const uint64_t start = vm["start"].as<uint64_t>();
-      const uint64_t end = vm["end"].as<uint64_t>();
-      if (start >= end || end > info_clip.frame_count) {
-        return fail(Status::InvalidArgument("--start " + std::to_string(start) + " --end " +
-                                            std::to_string(end) + " is not a range within clip " +
-                                            clip_name + "'s " +
-                                            std::to_string(info_clip.frame_count) + " frames"));
-      }
-      Result<std::pair<uint64_t, uint64_t>> range = WordsWithin(frames, *words, clip, start, end);
-      if (!range.ok()) return fail(range.status());
-      WindowQuery query;
-      const std::vector<uint32_t> clip_motifs = words->ClipMotifs(clip);
-      query.motifs.assign(clip_motifs.begin() + static_cast<std::ptrdiff_t>(range->first),
-                          clip_motifs.begin() + static_cast<std::ptrdiff_t>(range->second));
-      query.exclude_clip = clip;
-      query.exclude_first_word = range->first;
-      query.exclude_end_word = range->second;
-      info.query_start = start;
-      info.query_end = end;
-      info.query_words = query.motifs.size();
-      info.query_text =
-          "clip " + clip_name + " frames " + std::to_string(start) + "\u2013" + std::to_string(end);
-      query_kind = "clip-range";
-      result = SlidingWindowSearch(frames, *words, query, top, threads);
-    } else {
-      info.query_start = 0;
-      info.query_end = info_clip.frame_count;
-      info.query_words = words->signatures.clip_words[clip];
-      info.query_text = "the whole of clip " + clip_name;
-      query_kind = "take";
-      result = WholeTakeSearch(frames, *words, clip, top, threads);
-    }
-  } else {
-    Result<std::vector<float>> weights =
-        LoadDistanceWeights(frames.skeleton(), vm["weights"].as<std::string>());
-    if (!weights.ok()) return fail(weights.status());
-    Result<std::vector<uint32_t>> motifs =
-        QueryFileMotifs(query_file, frames, *words, *weights, threads, &query_take);
-    if (!motifs.ok()) return fail(motifs.status());
-    WindowQuery query;
-    query.motifs = std::move(motifs.value());
-    info.query_words = query.motifs.size();
-    info.query_text = "file " + query_file;
-    info.query_take = &query_take;
-    query_kind = "file";
-    result = SlidingWindowSearch(frames, *words, query, top, threads);
-  }
-  if (!result.ok()) return fail(result.status());
-  info.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  std::string query_kind;  // "clip-range", "take" or "file"
+  Take query_take;         // a file query, fitted to the archive: its keyframes head the page
+  SearchResult result;
+};
 
-  const std::string& json_path = output->json_path;
-  const std::string& html_path = output->html_path;
-  const nlohmann::json json = SearchJson(*result, frames, info, query_kind, query_file);
-  if (Status status = AtomicWriteFile(json_path, json.dump(2) + "\n"); !status.ok()) {
-    return fail(status);
+Result<uint32_t> FindQueryClip(const FrameFileReader& frames, const SearchCommandOptions& options) {
+  uint32_t clip = UINT32_MAX;
+  for (uint32_t idx = 0; idx < frames.clips().size(); ++idx) {
+    if (frames.clips()[idx].name == options.clip_name) clip = idx;
   }
-  if (Status status = WriteSearchHtml(html_path, *result, frames, info); !status.ok()) {
-    return fail(status);
+  if (clip == UINT32_MAX) {
+    return Status::NotFound(options.archive + ": no clip named '" + options.clip_name +
+                            "' (motifmine info lists them)");
   }
-  std::printf("motifmine search: %s, query %s (%s words)\n", archive.c_str(),
-              info.query_text.c_str(), WithCommas(info.query_words).c_str());
+  return clip;
+}
+
+// Frames [start, end) of `clip`: its words slide along every take, its own words left out.
+Result<SearchResult> SearchQueryRange(const SearchCommandOptions& options,
+                                      const FrameFileReader& frames, const LoadedWords& words,
+                                      uint32_t clip, SearchRun* run) {
+  const ClipInfo& info_clip = frames.clips()[clip];
+  const uint64_t start = options.start;
+  const uint64_t end = options.end;
+  if (start >= end || end > info_clip.frame_count) {
+    return Status::InvalidArgument("--start " + std::to_string(start) + " --end " +
+                                   std::to_string(end) + " is not a range within clip " +
+                                   options.clip_name + "'s " +
+                                   std::to_string(info_clip.frame_count) + " frames");
+  }
+  MOTIF_ASSIGN_OR_RETURN(const auto range, WordsWithin(frames, words, clip, start, end));
+  WindowQuery query;
+  const std::vector<uint32_t> clip_motifs = words.ClipMotifs(clip);
+  query.motifs.assign(clip_motifs.begin() + static_cast<std::ptrdiff_t>(range.first),
+                      clip_motifs.begin() + static_cast<std::ptrdiff_t>(range.second));
+  query.exclude_clip = clip;
+  query.exclude_first_word = range.first;
+  query.exclude_end_word = range.second;
+  SearchPageInfo& info = run->info;
+  info.query_start = start;
+  info.query_end = end;
+  info.query_words = query.motifs.size();
+  info.query_text = "clip " + options.clip_name + " frames " + std::to_string(start) + "\u2013" +
+                    std::to_string(end);
+  run->query_kind = "clip-range";
+  return SlidingWindowSearch(frames, words, query, options.top, options.threads);
+}
+
+// A whole clip: the other takes ranked whole.
+Result<SearchResult> SearchQueryTake(const SearchCommandOptions& options,
+                                     const FrameFileReader& frames, const LoadedWords& words,
+                                     uint32_t clip, SearchRun* run) {
+  SearchPageInfo& info = run->info;
+  info.query_start = 0;
+  info.query_end = frames.clips()[clip].frame_count;
+  info.query_words = words.signatures.clip_words[clip];
+  info.query_text = "the whole of clip " + options.clip_name;
+  run->query_kind = "take";
+  return WholeTakeSearch(frames, words, clip, options.top, options.threads);
+}
+
+// A motion file, embedded with the archive's embedding: its words slide along every take.
+Result<SearchResult> SearchQueryFile(const SearchCommandOptions& options,
+                                     const FrameFileReader& frames, const LoadedWords& words,
+                                     SearchRun* run) {
+  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
+                         LoadDistanceWeights(frames.skeleton(), options.weights_path));
+  WindowQuery query;
+  MOTIF_ASSIGN_OR_RETURN(query.motifs, QueryFileMotifs(options.query_file, frames, words, weights,
+                                                       options.threads, &run->query_take));
+  SearchPageInfo& info = run->info;
+  info.query_words = query.motifs.size();
+  info.query_text = "file " + options.query_file;
+  info.query_take = &run->query_take;
+  run->query_kind = "file";
+  return SlidingWindowSearch(frames, words, query, options.top, options.threads);
+}
+
+// Runs the query the options name into *run (which must stay where it is: run->info points
+// into it for a file query).
+Status SearchArchive(const SearchCommandOptions& options, const FrameFileReader& frames,
+                     const LoadedWords& words, SearchRun* run) {
+  const auto start_time = std::chrono::steady_clock::now();
+  run->info.archive = options.archive;
+  run->info.motifs = words.motifs.motif_count();
+  Result<SearchResult> result = Status::InvalidArgument("no query");
+  if (!options.clip_name.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(const uint32_t clip, FindQueryClip(frames, options));
+    run->info.query_in_archive = true;
+    run->info.query_clip = clip;
+    result = options.has_range ? SearchQueryRange(options, frames, words, clip, run)
+                               : SearchQueryTake(options, frames, words, clip, run);
+  } else {
+    result = SearchQueryFile(options, frames, words, run);
+  }
+  if (!result.ok()) return result.status();
+  run->result = std::move(result.value());
+  run->info.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return Status::Ok();
+}
+
+Status WriteSearchFiles(const SearchCommandOptions& options, const FrameFileReader& frames,
+                        const SearchRun& run) {
+  const nlohmann::json json =
+      SearchJson(run.result, frames, run.info, run.query_kind, options.query_file);
+  MOTIF_RETURN_IF_ERROR(AtomicWriteFile(options.output.json_path, json.dump(2) + "\n"));
+  return WriteSearchHtml(options.output.html_path, run.result, frames, run.info);
+}
+
+// The takes too short for the query, named up to a screenful; the JSON's "left_out" lists them
+// all.
+void PrintSearchLeftOut(const FrameFileReader& frames, const SearchRun& run) {
+  const SearchResult& result = run.result;
+  constexpr size_t kNamed = 10;
+  std::string names;
+  for (size_t idx = 0; idx < result.shorter_clips.size() && idx < kNamed; ++idx) {
+    names += (idx ? ", " : ": ") + frames.clips()[result.shorter_clips[idx]].name;
+  }
+  if (result.shorter_clips.size() > kNamed) {
+    names += " and " + WithCommas(result.shorter_clips.size() - kNamed) + " more";
+  }
+  std::printf("  left out     %s shorter than the query (fewer words than its %s)%s\n",
+              CountOf(result.shorter_takes, "take").c_str(),
+              WithCommas(run.info.query_words).c_str(), names.c_str());
+}
+
+void PrintSearchSummary(const SearchCommandOptions& options, const FrameFileReader& frames,
+                        const SearchRun& run) {
+  const SearchResult& result = run.result;
+  std::printf("motifmine search: %s, query %s (%s words)\n", options.archive.c_str(),
+              run.info.query_text.c_str(), WithCommas(run.info.query_words).c_str());
   const double fps = frames.fps();
-  for (size_t rank = 0; rank < result->matches.size(); ++rank) {
-    const WindowMatch& match = result->matches[rank];
+  for (size_t rank = 0; rank < result.matches.size(); ++rank) {
+    const WindowMatch& match = result.matches[rank];
     std::printf("  %2zu. %-20s frames %7llu-%-7llu (%.2f-%.2f s)  EMD %.4f\n", rank + 1,
                 frames.clips()[match.clip].name.c_str(),
                 static_cast<unsigned long long>(match.start_frame),
                 static_cast<unsigned long long>(match.end_frame), match.start_frame / fps,
                 match.end_frame / fps, match.distance);
   }
-  std::printf("  compared     %s windows in %.2fs\n", WithCommas(result->windows).c_str(),
-              info.seconds);
-  if (result->shorter_takes > 0) {
-    // Named, up to a screenful; the JSON's "left_out" lists them all.
-    constexpr size_t kNamed = 10;
-    std::string names;
-    for (size_t idx = 0; idx < result->shorter_clips.size() && idx < kNamed; ++idx) {
-      names += (idx ? ", " : ": ") + frames.clips()[result->shorter_clips[idx]].name;
-    }
-    if (result->shorter_clips.size() > kNamed) {
-      names += " and " + WithCommas(result->shorter_clips.size() - kNamed) + " more";
-    }
-    std::printf("  left out     %s shorter than the query (fewer words than its %s)%s\n",
-                CountOf(result->shorter_takes, "take").c_str(),
-                WithCommas(info.query_words).c_str(), names.c_str());
+  std::printf("  compared     %s windows in %.2fs\n", WithCommas(result.windows).c_str(),
+              run.info.seconds);
+  if (result.shorter_takes > 0) PrintSearchLeftOut(frames, run);
+  std::printf("  wrote        %s, %s\n", options.output.json_path.c_str(),
+              options.output.html_path.c_str());
+}
+
+}  // namespace
+
+int RunSearch(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddSearchOptions(spec);
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const auto fail = [](const Status& status) { return ReportError("search", status); };
+  SearchCommandOptions options;
+  if (int code = ReadSearchOptions(spec, vm, &options); code >= 0) return code;
+
+  Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(options.archive);
+  if (!reader.ok()) return fail(reader.status());
+  const FrameFileReader& frames = **reader;
+  Result<LoadedWords> words = LoadWords(frames, DefaultWordsPaths(options.output.prefix_archive),
+                                        /*with_embedding=*/!options.query_file.empty());
+  if (!words.ok()) return fail(words.status());
+  SearchRun run;
+  if (Status status = SearchArchive(options, frames, *words, &run); !status.ok()) {
+    return fail(status);
   }
-  std::printf("  wrote        %s, %s\n", json_path.c_str(), html_path.c_str());
+  if (Status status = WriteSearchFiles(options, frames, run); !status.ok()) return fail(status);
+  PrintSearchSummary(options, frames, run);
   return kExitOk;
 }
 

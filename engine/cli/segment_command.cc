@@ -71,18 +71,19 @@ void IndexLabels(const FrameFileReader& reader, const ClipIndex& clip_of, const 
   }
 }
 
-std::string Method(const Segmentation& result) {
+std::string SegmentMethod(const Segmentation& result) {
   if (!result.supervised) return "unsupervised";
   if (result.distance == "dtw") return "supervised, kNN by DTW over the windows' frames";
   return "supervised, kNN by the EMD between " + result.signature + " signatures";
 }
 
-void PrintSummary(const Segmentation& result, const FrameFileReader& reader,
-                  const std::string& archive, double seconds, const WordsReaderOutput& output) {
+void PrintSegmentSummary(const Segmentation& result, const FrameFileReader& reader,
+                         const std::string& archive, double seconds,
+                         const WordsReaderOutput& output) {
   uint64_t segments = 0;
   for (const SegmentedTake& take : result.takes) segments += take.segments.size();
   std::printf("motifmine segment: %s (%zu takes, %s)\n", archive.c_str(), result.takes.size(),
-              Method(result).c_str());
+              SegmentMethod(result).c_str());
   if (result.supervised) {
     std::printf("  method       %u-NN over windows of %u words: %s windows of %s labelled takes\n",
                 result.knn, result.window, WithCommas(result.reference_windows).c_str(),
@@ -107,10 +108,21 @@ void PrintSummary(const Segmentation& result, const FrameFileReader& reader,
   std::printf("  wrote        %s, %s\n", output.json_path.c_str(), output.html_path.c_str());
 }
 
-}  // namespace
+// The command line of `segment`, read back and checked.
+struct SegmentCommandOptions {
+  std::string archive;
+  std::string distance;     // emd or dtw
+  std::string labels_path;  // empty: unsupervised
+  std::string signature;    // "", words or motifs
+  std::string weights_path;
+  std::vector<std::string> clip_names;  // empty: every take
+  uint64_t seed = 1;                    // of the words build, when the files are missing
+  SegmentOptions segment;               // all but the progress callback
+  WordsReaderOutput output;
+  ProgressMode progress_mode = ProgressMode::kAuto;
+};
 
-int RunSegment(const std::vector<std::string>& args) {
-  CommandSpec spec;
+void AddSegmentOptions(CommandSpec& spec) {
   spec.name = "segment";
   spec.usage =
       "motifmine segment ARCHIVE [--labels LABELS.tsv] [--clip NAME ...] --out DIR "
@@ -151,113 +163,179 @@ int RunSegment(const std::vector<std::string>& args) {
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "segments");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
+}
+
+// --distance, --labels and --signature together: InvalidArgument naming the flag.
+Status CheckSegmentMethod(const SegmentCommandOptions& options) {
+  const std::string& distance = options.distance;
+  const std::string& signature = options.signature;
+  if (distance != "emd" && distance != "dtw") {
+    return Status::InvalidArgument("--distance must be emd or dtw, not '" + distance + "'");
+  }
+  if (distance == "dtw" && options.labels_path.empty()) {
+    return Status::InvalidArgument("--distance dtw needs --labels (it is supervised only)");
+  }
+  if (!signature.empty() && signature != "words" && signature != "motifs") {
+    return Status::InvalidArgument("--signature must be words or motifs, not '" + signature + "'");
+  }
+  if (signature == "words" && (options.labels_path.empty() || distance == "dtw")) {
+    return Status::InvalidArgument(
+        "--signature words needs --labels and --distance emd (without --labels, segments are "
+        "found and grouped by motif signatures)");
+  }
+  return Status::Ok();
+}
+
+// InvalidArgument naming the flag for a bad value; IOError if the output folder cannot be made.
+Result<SegmentCommandOptions> ReadSegmentOptions(const po::variables_map& vm) {
+  SegmentCommandOptions options;
+  options.archive = vm["archive"].as<std::string>();
+  options.distance = vm["distance"].as<std::string>();
+  options.labels_path = vm["labels"].as<std::string>();
+  options.signature = vm["signature"].as<std::string>();
+  MOTIF_RETURN_IF_ERROR(CheckSegmentMethod(options));
+  SegmentOptions& segment = options.segment;
+  segment.signature =
+      options.signature == "motifs" ? WindowSignature::kMotifs : WindowSignature::kWords;
+  segment.window = vm["window"].as<uint32_t>();
+  segment.knn = vm["knn"].as<uint32_t>();
+  segment.dtw_step = vm["dtw-step"].as<uint32_t>();
+  const std::string neighbours = vm["neighbours"].as<std::string>();
+  if (neighbours != "windows" && neighbours != "takes") {
+    return Status::InvalidArgument("--neighbours must be windows or takes, not '" + neighbours +
+                                   "'");
+  }
+  segment.one_per_take = neighbours == "takes";
+  segment.threads = vm["threads"].as<int>();
+  if (segment.window == 0 || segment.knn == 0 || segment.dtw_step == 0) {
+    return Status::InvalidArgument("--window, --knn and --dtw-step must be at least 1");
+  }
+  MOTIF_ASSIGN_OR_RETURN(options.output, WordsReaderOutputFrom(vm, options.archive, "segments"));
+  options.clip_names =
+      vm.count("clip") ? vm["clip"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  options.weights_path = vm["weights"].as<std::string>();
+  options.seed = vm["seed"].as<uint64_t>();
+  options.progress_mode = ProgressModeFrom(vm);
+  return options;
+}
+
+// The archive, the takes to segment and the labels.
+struct SegmentInputs {
+  std::unique_ptr<FrameFileReader> reader;
+  ClipIndex clip_index;
+  std::vector<uint32_t> clips;
+  TakeLabels labels;
+};
+
+Status OpenSegmentInputs(const SegmentCommandOptions& options, SegmentInputs* inputs) {
+  MOTIF_ASSIGN_OR_RETURN(inputs->reader, FrameFileReader::Open(options.archive));
+  inputs->clip_index = IndexClips(*inputs->reader);
+  MOTIF_ASSIGN_OR_RETURN(inputs->clips,
+                         ClipsAskedFor(*inputs->reader, inputs->clip_index, options.clip_names));
+  if (!options.labels_path.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(inputs->labels, ReadTakeLabels(options.labels_path));
+  }
+  return Status::Ok();
+}
+
+// Motif signatures need the words files (built when missing); word signatures and the DTW
+// baseline need only where the words lie, not their embedding.
+Result<LoadedWords> LoadSegmentWords(const SegmentCommandOptions& options,
+                                     const FrameFileReader& reader, ProgressReporter& progress) {
+  const WordsPaths paths = DefaultWordsPaths(options.output.prefix_archive);
+  const bool needs_motifs =
+      options.labels_path.empty() || (options.distance == "emd" && options.signature == "motifs");
+  return needs_motifs ? LoadOrBuildWords(options.archive, reader, paths, options.seed,
+                                         options.segment.threads, progress)
+                      : LoadWordsOrGrid(options.archive, reader, paths, progress);
+}
+
+// What the supervised segmentation needs besides the words: the labels per clip, the joint
+// weights (in *segment) and, for dtw, the archive's pose features.
+struct SupervisedSegmentInputs {
+  std::vector<uint32_t> clip_labels;
+  std::vector<std::string> label_names;
+  std::optional<PoseFeatures> features;
+};
+
+Status PrepareSupervisedSegments(const SegmentCommandOptions& options, const SegmentInputs& inputs,
+                                 ProgressReporter& progress, SupervisedSegmentInputs* supervised,
+                                 SegmentOptions* segment) {
+  uint64_t unknown = 0;
+  IndexLabels(*inputs.reader, inputs.clip_index, inputs.labels, &supervised->clip_labels,
+              &supervised->label_names, &unknown);
+  if (unknown > 0) {
+    progress.Note(std::to_string(unknown) + " labelled clips of " + options.labels_path +
+                  " are not clips of the archive: ignored");
+  }
+  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
+                         LoadDistanceWeights(inputs.reader->skeleton(), options.weights_path));
+  segment->joint_weights = weights;
+  if (options.distance == "dtw") {
+    MOTIF_ASSIGN_OR_RETURN(supervised->features,
+                           PoseFeatures::FromArchive(*inputs.reader, weights));
+  }
+  return Status::Ok();
+}
+
+// Segments the takes, supervised with the labels or not. The progress stages end with the
+// segmentation (not after an error in preparing the supervised one, which stops the command).
+Result<Segmentation> SegmentTakes(const SegmentCommandOptions& options, const SegmentInputs& inputs,
+                                  const LoadedWords& words, ProgressReporter& progress) {
+  SegmentOptions segment = options.segment;
+  segment.progress = [&progress](const std::string& stage, uint64_t done, uint64_t total) {
+    progress.StageUpdate(stage, done, total, stage == "windows" ? "takes" : "windows");
+  };
+  Result<Segmentation> result = Status::InvalidArgument("not segmented");
+  if (options.labels_path.empty()) {
+    result = SegmentUnsupervised(*inputs.reader, words, inputs.clips, segment);
+  } else {
+    SupervisedSegmentInputs supervised;
+    MOTIF_RETURN_IF_ERROR(
+        PrepareSupervisedSegments(options, inputs, progress, &supervised, &segment));
+    result = SegmentSupervised(*inputs.reader, words, inputs.clips, supervised.clip_labels,
+                               supervised.label_names,
+                               supervised.features ? &*supervised.features : nullptr, segment);
+  }
+  progress.EndStages();
+  return result;
+}
+
+Status WriteSegmentFiles(const SegmentCommandOptions& options, const FrameFileReader& reader,
+                         const LoadedWords& words, const Segmentation& result, double seconds) {
+  nlohmann::json json = SegmentsJson(result, reader, options.archive);
+  json["seconds"] = seconds;
+  MOTIF_RETURN_IF_ERROR(AtomicWriteFile(options.output.json_path, json.dump(2) + "\n"));
+  SegmentsPageInfo info{options.archive, options.labels_path, words.motifs.motif_count(), seconds};
+  return WriteSegmentsHtml(options.output.html_path, result, reader, info);
+}
+
+}  // namespace
+
+int RunSegment(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddSegmentOptions(spec);
   po::variables_map vm;
   if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
   const auto fail = [](const Status& status) { return ReportError("segment", status); };
-  const std::string archive = vm["archive"].as<std::string>();
-  const std::string distance = vm["distance"].as<std::string>();
-  const std::string labels_path = vm["labels"].as<std::string>();
-  if (distance != "emd" && distance != "dtw") {
-    return fail(Status::InvalidArgument("--distance must be emd or dtw, not '" + distance + "'"));
-  }
-  if (distance == "dtw" && labels_path.empty()) {
-    return fail(Status::InvalidArgument("--distance dtw needs --labels (it is supervised only)"));
-  }
-  const std::string signature = vm["signature"].as<std::string>();
-  if (!signature.empty() && signature != "words" && signature != "motifs") {
-    return fail(
-        Status::InvalidArgument("--signature must be words or motifs, not '" + signature + "'"));
-  }
-  if (signature == "words" && (labels_path.empty() || distance == "dtw")) {
-    return fail(Status::InvalidArgument(
-        "--signature words needs --labels and --distance emd (without --labels, segments are "
-        "found and grouped by motif signatures)"));
-  }
-  SegmentOptions options;
-  options.signature = signature == "motifs" ? WindowSignature::kMotifs : WindowSignature::kWords;
-  options.window = vm["window"].as<uint32_t>();
-  options.knn = vm["knn"].as<uint32_t>();
-  options.dtw_step = vm["dtw-step"].as<uint32_t>();
-  const std::string neighbours = vm["neighbours"].as<std::string>();
-  if (neighbours != "windows" && neighbours != "takes") {
-    return fail(
-        Status::InvalidArgument("--neighbours must be windows or takes, not '" + neighbours + "'"));
-  }
-  options.one_per_take = neighbours == "takes";
-  options.threads = vm["threads"].as<int>();
-  if (options.window == 0 || options.knn == 0 || options.dtw_step == 0) {
-    return fail(Status::InvalidArgument("--window, --knn and --dtw-step must be at least 1"));
-  }
-  Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, archive, "segments");
-  if (!output.ok()) return fail(output.status());
-  Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(archive);
-  if (!reader.ok()) return fail(reader.status());
-  const std::vector<std::string> names =
-      vm.count("clip") ? vm["clip"].as<std::vector<std::string>>() : std::vector<std::string>{};
-  const ClipIndex clip_index = IndexClips(**reader);
-  Result<std::vector<uint32_t>> clips = ClipsAskedFor(**reader, clip_index, names);
-  if (!clips.ok()) return fail(clips.status());
-  TakeLabels labels;
-  if (!labels_path.empty()) {
-    Result<TakeLabels> read = ReadTakeLabels(labels_path);
-    if (!read.ok()) return fail(read.status());
-    labels = std::move(read.value());
-  }
+  Result<SegmentCommandOptions> options = ReadSegmentOptions(vm);
+  if (!options.ok()) return fail(options.status());
+  SegmentInputs inputs;
+  if (Status status = OpenSegmentInputs(*options, &inputs); !status.ok()) return fail(status);
 
-  ProgressReporter progress(ProgressModeFrom(vm));
-  const WordsPaths paths = DefaultWordsPaths(output->prefix_archive);
-  // Word signatures and the DTW baseline need only where the words lie, not their embedding.
-  const bool needs_motifs = labels_path.empty() || (distance == "emd" && signature == "motifs");
-  Result<LoadedWords> words =
-      needs_motifs ? LoadOrBuildWords(archive, **reader, paths, vm["seed"].as<uint64_t>(),
-                                      options.threads, progress)
-                   : LoadWordsOrGrid(archive, **reader, paths, progress);
+  ProgressReporter progress(options->progress_mode);
+  Result<LoadedWords> words = LoadSegmentWords(*options, *inputs.reader, progress);
   if (!words.ok()) return fail(words.status());
-
-  options.progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-    progress.StageUpdate(stage, done, total, stage == "windows" ? "takes" : "windows");
-  };
   const auto start = std::chrono::steady_clock::now();
-  Result<Segmentation> result = Status::InvalidArgument("not segmented");
-  if (labels_path.empty()) {
-    result = SegmentUnsupervised(**reader, *words, *clips, options);
-  } else {
-    std::vector<uint32_t> clip_labels;
-    std::vector<std::string> label_names;
-    uint64_t unknown = 0;
-    IndexLabels(**reader, clip_index, labels, &clip_labels, &label_names, &unknown);
-    if (unknown > 0) {
-      progress.Note(std::to_string(unknown) + " labelled clips of " + labels_path +
-                    " are not clips of the archive: ignored");
-    }
-    std::optional<PoseFeatures> features;
-    Result<std::vector<float>> weights =
-        LoadDistanceWeights((*reader)->skeleton(), vm["weights"].as<std::string>());
-    if (!weights.ok()) return fail(weights.status());
-    options.joint_weights = *weights;
-    if (distance == "dtw") {
-      Result<PoseFeatures> computed = PoseFeatures::FromArchive(**reader, *weights);
-      if (!computed.ok()) return fail(computed.status());
-      features = std::move(computed.value());
-    }
-    result = SegmentSupervised(**reader, *words, *clips, clip_labels, label_names,
-                               features ? &*features : nullptr, options);
-  }
-  progress.EndStages();
+  Result<Segmentation> result = SegmentTakes(*options, inputs, *words, progress);
   if (!result.ok()) return fail(result.status());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  nlohmann::json json = SegmentsJson(*result, **reader, archive);
-  json["seconds"] = seconds;
-  if (Status status = AtomicWriteFile(output->json_path, json.dump(2) + "\n"); !status.ok()) {
+  if (Status status = WriteSegmentFiles(*options, *inputs.reader, *words, *result, seconds);
+      !status.ok()) {
     return fail(status);
   }
-  SegmentsPageInfo info{archive, labels_path, words->motifs.motif_count(), seconds};
-  if (Status status = WriteSegmentsHtml(output->html_path, *result, **reader, info); !status.ok()) {
-    return fail(status);
-  }
-  PrintSummary(*result, **reader, archive, seconds, *output);
+  PrintSegmentSummary(*result, *inputs.reader, options->archive, seconds, options->output);
   return kExitOk;
 }
 

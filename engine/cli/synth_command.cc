@@ -42,10 +42,7 @@ Result<std::vector<Take>> LoadSourceTakes(const std::vector<std::string>& paths,
   return takes;
 }
 
-}  // namespace
-
-int RunSynth(const std::vector<std::string>& args) {
-  CommandSpec spec;
+void AddSynthOptions(CommandSpec& spec) {
   spec.name = "synth";
   spec.usage = "motifmine synth OUT.mfs --frames N --motifs M --seed S [--from PATH...] [options]";
   spec.summary =
@@ -82,10 +79,21 @@ int RunSynth(const std::vector<std::string>& args) {
       "force", "replace OUT.mfs if it exists");
   AddProgressOptions(spec);
   spec.positional = {{"out", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+}
 
-  SynthOptions options;
+// The command line of `synth`, read back (the synthesizer checks the values).
+struct SynthCommandOptions {
+  SynthOptions synth;
+  std::string out;
+  bool force = false;
+  std::vector<std::string> from;  // real takes to re-sequence; empty: procedural motion
+  uint32_t block_frames = 4096;
+  ProgressMode progress_mode = ProgressMode::kAuto;
+};
+
+SynthCommandOptions ReadSynthOptions(const po::variables_map& vm) {
+  SynthCommandOptions command;
+  SynthOptions& options = command.synth;
   options.frames = vm["frames"].as<uint64_t>();
   options.motifs = vm["motifs"].as<uint32_t>();
   options.seed = vm["seed"].as<uint64_t>();
@@ -100,41 +108,53 @@ int RunSynth(const std::vector<std::string>& args) {
   options.gap_seconds = vm["gap-seconds"].as<double>();
   options.background_variation_degrees = vm["background-variation"].as<double>();
   options.threads = vm["threads"].as<uint32_t>();
-  const std::string out = vm["out"].as<std::string>();
-  const bool force = vm.count("force") > 0;
+  command.out = vm["out"].as<std::string>();
+  command.force = vm.count("force") > 0;
+  if (vm.count("from")) command.from = vm["from"].as<std::vector<std::string>>();
+  command.block_frames = vm["block-frames"].as<uint32_t>();
+  command.progress_mode = ProgressModeFrom(vm);
+  return command;
+}
+
+// The procedural synthesizer, or with --from one that re-sequences the real takes.
+Result<std::unique_ptr<MotionSynthesizer>> CreateSynthesizer(const SynthCommandOptions& command,
+                                                             ProgressReporter* progress) {
+  if (command.from.empty()) return MotionSynthesizer::Create(command.synth);
+  MOTIF_ASSIGN_OR_RETURN(std::vector<Take> takes,
+                         LoadSourceTakes(command.from, command.synth.fps, progress));
+  return MotionSynthesizer::CreateFromTakes(command.synth, std::move(takes));
+}
+
+}  // namespace
+
+int RunSynth(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddSynthOptions(spec);
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const SynthCommandOptions command = ReadSynthOptions(vm);
+  const SynthOptions& options = command.synth;
   std::error_code error;
-  if (!force && std::filesystem::exists(out, error)) {
-    return ReportError("synth", Status::InvalidArgument(out + ": exists already (use --force to "
-                                                              "replace it)"));
+  if (!command.force && std::filesystem::exists(command.out, error)) {
+    return ReportError("synth",
+                       Status::InvalidArgument(command.out + ": exists already (use --force to "
+                                                             "replace it)"));
   }
 
-  ProgressReporter progress(ProgressModeFrom(vm));
-  std::unique_ptr<MotionSynthesizer> synthesizer;
-  if (vm.count("from")) {
-    Result<std::vector<Take>> takes =
-        LoadSourceTakes(vm["from"].as<std::vector<std::string>>(), options.fps, &progress);
-    if (!takes.ok()) return ReportError("synth", takes.status());
-    Result<std::unique_ptr<MotionSynthesizer>> created =
-        MotionSynthesizer::CreateFromTakes(options, std::move(takes.value()));
-    if (!created.ok()) return ReportError("synth", created.status());
-    synthesizer = std::move(created.value());
-  } else {
-    Result<std::unique_ptr<MotionSynthesizer>> created = MotionSynthesizer::Create(options);
-    if (!created.ok()) return ReportError("synth", created.status());
-    synthesizer = std::move(created.value());
-  }
-
+  ProgressReporter progress(command.progress_mode);
+  Result<std::unique_ptr<MotionSynthesizer>> synthesizer = CreateSynthesizer(command, &progress);
+  if (!synthesizer.ok()) return ReportError("synth", synthesizer.status());
   progress.BeginStage("synth", options.frames, "frames");
   Result<uint64_t> frames_done =
-      WriteSyntheticArchive(out, *synthesizer, options, vm["block-frames"].as<uint32_t>(),
+      WriteSyntheticArchive(command.out, **synthesizer, options, command.block_frames,
                             [&](uint64_t done, uint64_t) { progress.Update(done); });
   progress.EndStage();
   if (!frames_done.ok()) return ReportError("synth", frames_done.status());
-  const std::string truth_path = TruthPathFor(out);
+  const std::string truth_path = TruthPathFor(command.out);
   std::printf("wrote %s: %s frames in %s clips at %g fps, %u motifs planted as %zu instances\n",
-              out.c_str(), WithCommas(*frames_done).c_str(),
-              WithCommas(synthesizer->clip_count()).c_str(), options.fps, options.motifs,
-              synthesizer->truth().size());
+              command.out.c_str(), WithCommas(*frames_done).c_str(),
+              WithCommas((*synthesizer)->clip_count()).c_str(), options.fps, options.motifs,
+              (*synthesizer)->truth().size());
   std::printf("wrote %s: the planted instances (ground truth)\n", truth_path.c_str());
   return kExitOk;
 }

@@ -15,7 +15,7 @@ namespace po = boost::program_options;
 
 namespace {
 
-nlohmann::json ReportJson(const std::string& archive, const WordsReport& report) {
+nlohmann::json WordsReportJson(const std::string& archive, const WordsReport& report) {
   nlohmann::json json;
   json["version"] = 1;
   json["archive"] = archive;
@@ -47,10 +47,7 @@ nlohmann::json ReportJson(const std::string& archive, const WordsReport& report)
   return json;
 }
 
-}  // namespace
-
-int RunWords(const std::vector<std::string>& args) {
-  CommandSpec spec;
+void AddWordsCommandOptions(CommandSpec& spec) {
   spec.name = "words";
   spec.usage =
       "motifmine words ARCHIVE [--motifs K] [--embedding FILE.mwe] [--epochs E] "
@@ -99,10 +96,21 @@ int RunWords(const std::vector<std::string>& args) {
                                        "also write this summary as JSON");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  const std::string archive = vm["archive"].as<std::string>();
-  WordsOptions options;
+}
+
+// The command line of `words`, read back (BuildWords checks the values).
+struct WordsCommandOptions {
+  std::string archive;
+  WordsOptions build;
+  WordsPaths paths;
+  std::string json_path;  // empty: no JSON summary
+  ProgressMode progress_mode = ProgressMode::kAuto;
+};
+
+WordsCommandOptions ReadWordsCommandOptions(const po::variables_map& vm) {
+  WordsCommandOptions command;
+  command.archive = vm["archive"].as<std::string>();
+  WordsOptions& options = command.build;
   options.motifs = vm["motifs"].as<uint32_t>();
   options.embedding_in = vm["embedding"].as<std::string>();
   options.seed = vm["seed"].as<uint64_t>();
@@ -122,34 +130,36 @@ int RunWords(const std::vector<std::string>& args) {
   options.train.shape.conv1_channels = vm["channels"].as<uint32_t>();
   options.train.shape.conv2_channels = vm["channels"].as<uint32_t>();
   const std::string prefix = vm["prefix"].as<std::string>();
-  const WordsPaths paths = DefaultWordsPaths(prefix.empty() ? archive : prefix + ".mfs");
+  command.paths = DefaultWordsPaths(prefix.empty() ? command.archive : prefix + ".mfs");
+  command.json_path = vm["json"].as<std::string>();
+  command.progress_mode = ProgressModeFrom(vm);
+  return command;
+}
 
-  ProgressReporter progress(ProgressModeFrom(vm));
-  ReportWordsProgress(progress, &options);
-  Result<WordsReport> report = BuildWords(archive, paths, options);
-  progress.EndStages();
-  if (!report.ok()) return ReportError("words", report.status());
-
-  const WordsReport& r = *report;
-  std::printf("motifmine words: %s\n", archive.c_str());
-  std::printf("  words        %s in %s takes (%s clips)\n", WithCommas(r.words).c_str(),
-              WithCommas(r.takes).c_str(), WithCommas(r.clips).c_str());
+// The embedding line: loaded, or trained / reused (resumed) with its epochs' losses.
+void PrintWordsEmbedding(const WordsOptions& options, const WordsReport& r) {
   if (r.embedding_loaded) {
     std::printf("  embedding    loaded from %s (%u dimensions)\n", options.embedding_in.c_str(),
                 r.dims);
-  } else {
-    std::printf(
-        "  embedding    %s%s: %u dimensions, %s training words, %zu epochs",
-        r.embedding_reused ? "reused" : "trained",
-        r.resumed_from_epoch
-            ? (" (resumed after epoch " + std::to_string(r.resumed_from_epoch) + ")").c_str()
-            : "",
-        r.dims, WithCommas(r.pool_words).c_str(), r.epoch_loss.size());
-    if (!r.epoch_loss.empty()) {
-      std::printf(", loss %.4f -> %.4f", r.epoch_loss.front(), r.epoch_loss.back());
-    }
-    std::printf("\n");
+    return;
   }
+  std::printf("  embedding    %s%s: %u dimensions, %s training words, %zu epochs",
+              r.embedding_reused ? "reused" : "trained",
+              r.resumed_from_epoch
+                  ? (" (resumed after epoch " + std::to_string(r.resumed_from_epoch) + ")").c_str()
+                  : "",
+              r.dims, WithCommas(r.pool_words).c_str(), r.epoch_loss.size());
+  if (!r.epoch_loss.empty()) {
+    std::printf(", loss %.4f -> %.4f", r.epoch_loss.front(), r.epoch_loss.back());
+  }
+  std::printf("\n");
+}
+
+void PrintWordsSummary(const WordsCommandOptions& command, const WordsReport& r) {
+  std::printf("motifmine words: %s\n", command.archive.c_str());
+  std::printf("  words        %s in %s takes (%s clips)\n", WithCommas(r.words).c_str(),
+              WithCommas(r.takes).c_str(), WithCommas(r.clips).c_str());
+  PrintWordsEmbedding(command.build, r);
   if (r.accuracy.triplets > 0) {
     std::printf(
         "  held out     triplet accuracy %.3f trained, %.3f untrained, %.3f raw "
@@ -169,11 +179,28 @@ int RunWords(const std::vector<std::string>& args) {
   std::printf("  memory       peak resident %s\n", FormatBytes(PeakResidentBytes()).c_str());
   std::printf("  wrote        %s, %s, %s\n", r.paths.embedding.c_str(), r.paths.motifs.c_str(),
               r.paths.signatures.c_str());
-  const std::string json_path = vm["json"].as<std::string>();
-  if (!json_path.empty()) {
-    nlohmann::json json = ReportJson(archive, r);
+}
+
+}  // namespace
+
+int RunWords(const std::vector<std::string>& args) {
+  CommandSpec spec;
+  AddWordsCommandOptions(spec);
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  WordsCommandOptions command = ReadWordsCommandOptions(vm);
+
+  ProgressReporter progress(command.progress_mode);
+  ReportWordsProgress(progress, &command.build);
+  Result<WordsReport> report = BuildWords(command.archive, command.paths, command.build);
+  progress.EndStages();
+  if (!report.ok()) return ReportError("words", report.status());
+
+  PrintWordsSummary(command, *report);
+  if (!command.json_path.empty()) {
+    nlohmann::json json = WordsReportJson(command.archive, *report);
     json["peak_resident_bytes"] = PeakResidentBytes();
-    if (Status status = AtomicWriteFile(json_path, json.dump(2) + "\n"); !status.ok()) {
+    if (Status status = AtomicWriteFile(command.json_path, json.dump(2) + "\n"); !status.ok()) {
       return ReportError("words", status);
     }
   }

@@ -249,6 +249,85 @@ RawInstanceSet RawInstances(const std::vector<PathCandidate>& paths, uint64_t mi
   return set;
 }
 
+namespace {
+
+bool RangeBefore(const MotifInstance& a, const MotifInstance& b) {
+  return std::tie(a.start, a.end) < std::tie(b.start, b.end);
+}
+
+// The sweep in start order: `reaching` holds the earlier instances whose end is past the current
+// start; only they can overlap it. Instances overlapping by `merge_overlap` join one set.
+void UnionOverlapping(const std::vector<MotifInstance>& raw, double merge_overlap,
+                      DisjointSets* sets) {
+  std::vector<size_t> by_start(raw.size());
+  std::iota(by_start.begin(), by_start.end(), size_t{0});
+  std::sort(by_start.begin(), by_start.end(), [&](size_t a, size_t b) {
+    return std::tie(raw[a].start, raw[a].end, a) < std::tie(raw[b].start, raw[b].end, b);
+  });
+  std::vector<size_t> reaching;
+  for (size_t idx : by_start) {
+    const MotifInstance& current = raw[idx];
+    size_t kept = 0;
+    for (size_t other : reaching) {
+      if (raw[other].end <= current.start) continue;
+      reaching[kept++] = other;
+      if (OverlapsEnough(raw[other], current, merge_overlap)) sets->Union(other, idx);
+    }
+    reaching.resize(kept);
+    reaching.push_back(idx);
+  }
+}
+
+// Each set becomes the union of its ranges (*merged_of_root, by root); sets with equal unions
+// become one instance. Sorted by (start, end).
+std::vector<MotifInstance> MergeInstanceSets(const std::vector<MotifInstance>& raw,
+                                             DisjointSets* sets,
+                                             std::vector<MotifInstance>* merged_of_root) {
+  merged_of_root->assign(raw.size(), MotifInstance());
+  std::vector<size_t> roots;
+  for (size_t idx = 0; idx < raw.size(); ++idx) {
+    const size_t root = sets->Find(idx);
+    MotifInstance& merged = (*merged_of_root)[root];
+    if (root == idx) {
+      merged = raw[idx];
+      roots.push_back(root);
+    } else {
+      merged.start = std::min(merged.start, raw[idx].start);
+      merged.end = std::max(merged.end, raw[idx].end);
+    }
+  }
+  std::vector<MotifInstance> instances;
+  for (size_t root : roots) instances.push_back((*merged_of_root)[root]);
+  std::sort(instances.begin(), instances.end(), RangeBefore);
+  instances.erase(std::unique(instances.begin(), instances.end()), instances.end());
+  return instances;
+}
+
+// The raw links as distinct, sorted links between the merged instances; a link whose two ends
+// merged into one instance is counted in stats.self_links.
+void LinkMergedInstances(const std::vector<std::pair<size_t, size_t>>& raw_links,
+                         const std::vector<MotifInstance>& merged_of_root, DisjointSets* sets,
+                         InstanceSet* set) {
+  auto id_of = [&](size_t raw_idx) {
+    const MotifInstance& range = merged_of_root[sets->Find(raw_idx)];
+    auto it = std::lower_bound(set->instances.begin(), set->instances.end(), range, RangeBefore);
+    return static_cast<uint32_t>(it - set->instances.begin());
+  };
+  for (const auto& [from, to] : raw_links) {
+    const uint32_t a = id_of(from);
+    const uint32_t b = id_of(to);
+    if (a == b) {
+      ++set->stats.self_links;
+      continue;
+    }
+    set->links.push_back({std::min(a, b), std::max(a, b)});
+  }
+  std::sort(set->links.begin(), set->links.end());
+  set->links.erase(std::unique(set->links.begin(), set->links.end()), set->links.end());
+}
+
+}  // namespace
+
 InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
                            const InstanceOptions& options) {
   InstanceSet set;
@@ -265,77 +344,20 @@ InstanceSet BuildInstances(const std::vector<PathCandidate>& candidates,
 
   RawInstanceSet raw_set = RawInstances(paths, options.min_length);
   std::vector<MotifInstance>& raw = raw_set.instances;
-  std::vector<std::pair<size_t, size_t>>& raw_links = raw_set.links;
   set.stats.periodic_paths = raw_set.periodic_paths;
   set.stats.harmonic_paths = raw_set.harmonic_paths;
   if (!options.pauses.empty()) {
-    TrimToMovement(options.pauses, options.min_length, &raw, &raw_links,
+    TrimToMovement(options.pauses, options.min_length, &raw, &raw_set.links,
                    &set.stats.trimmed_instances, &set.stats.still_instances);
   }
   set.stats.raw_instances = raw.size();
 
-  std::vector<size_t> by_start(raw.size());
-  std::iota(by_start.begin(), by_start.end(), size_t{0});
-  std::sort(by_start.begin(), by_start.end(), [&](size_t a, size_t b) {
-    return std::tie(raw[a].start, raw[a].end, a) < std::tie(raw[b].start, raw[b].end, b);
-  });
-
-  // The sweep: `reaching` holds the earlier instances whose end is past the current start; only
-  // they can overlap it.
   DisjointSets sets(raw.size());
-  std::vector<size_t> reaching;
-  for (size_t idx : by_start) {
-    const MotifInstance& current = raw[idx];
-    size_t kept = 0;
-    for (size_t other : reaching) {
-      if (raw[other].end <= current.start) continue;
-      reaching[kept++] = other;
-      if (OverlapsEnough(raw[other], current, options.merge_overlap)) sets.Union(other, idx);
-    }
-    reaching.resize(kept);
-    reaching.push_back(idx);
-  }
-
-  // Each set becomes the union of its ranges. Sets with equal unions are merged as well.
-  std::vector<MotifInstance> merged_of_root(raw.size());
-  std::vector<size_t> roots;
-  for (size_t idx = 0; idx < raw.size(); ++idx) {
-    const size_t root = sets.Find(idx);
-    if (root == idx) {
-      merged_of_root[root] = raw[idx];
-      roots.push_back(root);
-    } else {
-      merged_of_root[root].start = std::min(merged_of_root[root].start, raw[idx].start);
-      merged_of_root[root].end = std::max(merged_of_root[root].end, raw[idx].end);
-    }
-  }
-  for (size_t root : roots) set.instances.push_back(merged_of_root[root]);
-  std::sort(set.instances.begin(), set.instances.end(),
-            [](const MotifInstance& a, const MotifInstance& b) {
-              return std::tie(a.start, a.end) < std::tie(b.start, b.end);
-            });
-  set.instances.erase(std::unique(set.instances.begin(), set.instances.end()), set.instances.end());
+  UnionOverlapping(raw, options.merge_overlap, &sets);
+  std::vector<MotifInstance> merged_of_root;
+  set.instances = MergeInstanceSets(raw, &sets, &merged_of_root);
   set.stats.instances = set.instances.size();
-
-  auto id_of = [&](size_t raw_idx) {
-    const MotifInstance& range = merged_of_root[sets.Find(raw_idx)];
-    auto it = std::lower_bound(set.instances.begin(), set.instances.end(), range,
-                               [](const MotifInstance& a, const MotifInstance& b) {
-                                 return std::tie(a.start, a.end) < std::tie(b.start, b.end);
-                               });
-    return static_cast<uint32_t>(it - set.instances.begin());
-  };
-  for (const auto& [from, to] : raw_links) {
-    const uint32_t a = id_of(from);
-    const uint32_t b = id_of(to);
-    if (a == b) {
-      ++set.stats.self_links;
-      continue;
-    }
-    set.links.push_back({std::min(a, b), std::max(a, b)});
-  }
-  std::sort(set.links.begin(), set.links.end());
-  set.links.erase(std::unique(set.links.begin(), set.links.end()), set.links.end());
+  LinkMergedInstances(raw_set.links, merged_of_root, &sets, &set);
   set.stats.links = set.links.size();
   return set;
 }

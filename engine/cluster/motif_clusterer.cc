@@ -197,10 +197,10 @@ std::vector<Motif> RankMotifs(const std::vector<std::vector<uint32_t>>& groups,
   return WithoutPartsOfBetterMotifs(std::move(motifs), instances);
 }
 
-Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates,
-                                    const TrellisFileReader& trellis,
-                                    const ClusterOptions& options) {
-  const uint64_t columns = trellis.column_count();
+namespace {
+
+// InvalidArgument for a candidate outside the trellis's columns (another trellis's paths).
+Status CheckCandidatesInTrellis(const std::vector<PathCandidate>& candidates, uint64_t columns) {
   for (size_t idx = 0; idx < candidates.size(); ++idx) {
     const PathCandidate& candidate = candidates[idx];
     if (candidate.top_end > columns || candidate.match_end > columns ||
@@ -210,28 +210,49 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
                                      " columns (does the paths file belong to this trellis?)");
     }
   }
-  ClusterResult result;
-  auto started = std::chrono::steady_clock::now();
-  InstanceOptions instance_options = options.instances;
-  if (options.archive != nullptr) {
-    std::vector<MotifInstance> segments;
-    segments.reserve(2 * candidates.size());
-    for (const PathCandidate& candidate : candidates) {
-      if (candidate.top_end > candidate.top_start) {
-        segments.push_back({candidate.top_start, candidate.top_end});
-      }
-      if (candidate.match_end > candidate.match_start) {
-        segments.push_back({candidate.match_start, candidate.match_end});
-      }
-    }
-    MOTIF_ASSIGN_OR_RETURN(instance_options.pauses,
-                           FindPausesNear(*options.archive, options.pauses, std::move(segments)));
-  }
-  result.report.pauses = instance_options.pauses.size();
-  InstanceSet set = BuildInstances(candidates, instance_options);
-  result.report.instance_stats = set.stats;
-  result.report.instance_seconds = SecondsSince(started);
+  return Status::Ok();
+}
 
+// The pauses of the archive near the candidates' non-empty segments.
+Result<std::vector<MotifInstance>> PausesNearCandidates(
+    const FrameFileReader& archive, const PauseOptions& pauses,
+    const std::vector<PathCandidate>& candidates) {
+  std::vector<MotifInstance> segments;
+  segments.reserve(2 * candidates.size());
+  for (const PathCandidate& candidate : candidates) {
+    if (candidate.top_end > candidate.top_start) {
+      segments.push_back({candidate.top_start, candidate.top_end});
+    }
+    if (candidate.match_end > candidate.match_start) {
+      segments.push_back({candidate.match_start, candidate.match_end});
+    }
+  }
+  return FindPausesNear(archive, pauses, std::move(segments));
+}
+
+// Frames of the archive in some instance of a motif (overlaps counted once).
+uint64_t CoveredByMotifs(const std::vector<Motif>& motifs,
+                         const std::vector<MotifInstance>& instances) {
+  std::vector<MotifInstance> clustered;
+  for (const Motif& motif : motifs) {
+    for (uint32_t id : motif.instances) clustered.push_back(instances[id]);
+  }
+  std::sort(clustered.begin(), clustered.end(),
+            [](const MotifInstance& a, const MotifInstance& b) { return a.start < b.start; });
+  uint64_t covered_frames = 0;
+  uint64_t covered_until = 0;
+  for (const MotifInstance& instance : clustered) {
+    const uint64_t from = std::max(instance.start, covered_until);
+    if (instance.end > from) covered_frames += instance.end - from;
+    covered_until = std::max(covered_until, instance.end);
+  }
+  return covered_frames;
+}
+
+// The instance graph: shared similar frames from the trellis, reweighted by the instances'
+// time-warped distance when the archive is given.
+Result<SimilarityGraph> InstanceGraph(const TrellisFileReader& trellis, const InstanceSet& set,
+                                      const ClusterOptions& options, ClusterReport* report) {
   SimilarityOptions similarity = options.similarity;
   similarity.threads = options.threads;
   if (options.progress) {
@@ -241,15 +262,36 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
   }
   MOTIF_ASSIGN_OR_RETURN(SimilarityGraph graph,
                          BuildSimilarityGraph(trellis, set.instances, set.links, similarity,
-                                              &result.report.similarity_stats));
-
+                                              &report->similarity_stats));
   if (options.archive != nullptr) {
     WarpedSimilarityOptions warped = options.warped;
     warped.threads = options.threads;
     MOTIF_ASSIGN_OR_RETURN(
         graph, ReweightByWarpedDistance(*options.archive, set.instances, graph,
-                                        trellis.params().eps, warped, &result.report.warped_stats));
+                                        trellis.params().eps, warped, &report->warped_stats));
   }
+  return graph;
+}
+
+}  // namespace
+
+Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates,
+                                    const TrellisFileReader& trellis,
+                                    const ClusterOptions& options) {
+  MOTIF_RETURN_IF_ERROR(CheckCandidatesInTrellis(candidates, trellis.column_count()));
+  ClusterResult result;
+  auto started = std::chrono::steady_clock::now();
+  InstanceOptions instance_options = options.instances;
+  if (options.archive != nullptr) {
+    MOTIF_ASSIGN_OR_RETURN(instance_options.pauses,
+                           PausesNearCandidates(*options.archive, options.pauses, candidates));
+  }
+  result.report.pauses = instance_options.pauses.size();
+  InstanceSet set = BuildInstances(candidates, instance_options);
+  result.report.instance_stats = set.stats;
+  result.report.instance_seconds = SecondsSince(started);
+  MOTIF_ASSIGN_OR_RETURN(SimilarityGraph graph,
+                         InstanceGraph(trellis, set, options, &result.report));
 
   started = std::chrono::steady_clock::now();
   NormalizedCutOptions cut = options.cut;
@@ -259,6 +301,7 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
       ClusterByNormalizedCut(graph, cut, &result.report.cut_stats);
   result.report.cut_seconds = SecondsSince(started);
   if (options.archive != nullptr) {
+    // Held poses (the body does not move for the whole instance) are never motif instances.
     MOTIF_ASSIGN_OR_RETURN(const std::vector<bool> held,
                            FindHeldPoses(*options.archive, set.instances, trellis.params().eps));
     for (std::vector<uint32_t>& group : groups) {
@@ -269,19 +312,10 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
 
   result.motifs = RankMotifs(groups, set.instances, set.links, options.max_length_ratio,
                              &result.report.length_outliers);
-  std::vector<MotifInstance> clustered;
   for (const Motif& motif : result.motifs) {
     result.report.clustered_instances += motif.instances.size();
-    for (uint32_t id : motif.instances) clustered.push_back(set.instances[id]);
   }
-  std::sort(clustered.begin(), clustered.end(),
-            [](const MotifInstance& a, const MotifInstance& b) { return a.start < b.start; });
-  uint64_t covered_until = 0;
-  for (const MotifInstance& instance : clustered) {
-    const uint64_t from = std::max(instance.start, covered_until);
-    if (instance.end > from) result.report.covered_frames += instance.end - from;
-    covered_until = std::max(covered_until, instance.end);
-  }
+  result.report.covered_frames = CoveredByMotifs(result.motifs, set.instances);
   result.instances = std::move(set.instances);
   result.links = std::move(set.links);
   return result;

@@ -76,29 +76,25 @@ Result<MotifsDocument> MakeMotifsDocument(const ClusterResult& result,
   return document;
 }
 
-std::string MotifsJsonText(const MotifsDocument& document) {
-  std::unordered_map<std::string, double> fps_of;
-  for (const MotifsJsonClip& clip : document.clips) fps_of[clip.name] = clip.fps;
-  uint64_t instance_count = 0;
-  for (const MotifsJsonMotif& motif : document.motifs) instance_count += motif.instances.size();
+namespace {
 
-  // One clip, and one instance, per line: readable and diffable with thousands of them.
-  std::string text = "{\n";
-  text += "  \"version\": 2,\n";
-  text += "  \"archive\": " + Dump(document.archive) + ",\n";
-  text += "  \"frames\": " + std::to_string(document.frames) + ",\n";
-  if (document.archive_version.known()) {
-    char identity[17];
-    std::snprintf(identity, sizeof identity, "%016" PRIx64, document.archive_version.identity);
-    Json version;
-    version["generation"] = document.archive_version.generation;
-    version["committed_bytes"] = document.archive_version.committed_bytes;
-    version["identity"] = identity;
-    text += "  \"archive_version\": " + Dump(version) + ",\n";
-  }
-  text += "  \"clips\": [";
-  for (size_t idx = 0; idx < document.clips.size(); ++idx) {
-    const MotifsJsonClip& clip = document.clips[idx];
+using ClipRates = std::unordered_map<std::string, double>;  // fps by clip name
+
+Json ArchiveVersionJson(const MotifsArchiveVersion& archive_version) {
+  char identity[17];
+  std::snprintf(identity, sizeof identity, "%016" PRIx64, archive_version.identity);
+  Json version;
+  version["generation"] = archive_version.generation;
+  version["committed_bytes"] = archive_version.committed_bytes;
+  version["identity"] = identity;
+  return version;
+}
+
+// "clips": one clip a line.
+void AppendClipsText(const std::vector<MotifsJsonClip>& clips, std::string* text) {
+  *text += "  \"clips\": [";
+  for (size_t idx = 0; idx < clips.size(); ++idx) {
+    const MotifsJsonClip& clip = clips[idx];
     Json entry;
     entry["name"] = clip.name;
     entry["source"] = clip.source;
@@ -106,9 +102,13 @@ std::string MotifsJsonText(const MotifsDocument& document) {
     entry["fps"] = clip.fps;
     entry["first_frame"] = clip.first_frame;
     entry["source_first_frame"] = clip.source_first_frame;
-    text += (idx == 0 ? "\n    " : ",\n    ") + Dump(entry);
+    *text += (idx == 0 ? "\n    " : ",\n    ") + Dump(entry);
   }
-  text += document.clips.empty() ? "],\n" : "\n  ],\n";
+  *text += clips.empty() ? "],\n" : "\n  ],\n";
+}
+
+// The parameters; the shortest motif also in seconds at the first clip's rate.
+Json ParamsJson(const MotifsDocument& document) {
   Json params;
   params["eps"] = document.params.eps;
   params["kmax"] = document.params.kmax;
@@ -127,34 +127,50 @@ std::string MotifsJsonText(const MotifsDocument& document) {
   params["similarity"] = document.params.similarity;
   params["pause_speed"] = document.params.pause_speed;
   params["pause_seconds"] = document.params.pause_seconds;
-  text += "  \"params\": " + Dump(params) + ",\n";
+  return params;
+}
+
+Json SummaryJson(const MotifsDocument& document) {
+  uint64_t instance_count = 0;
+  for (const MotifsJsonMotif& motif : document.motifs) instance_count += motif.instances.size();
   Json summary;
   summary["motifs"] = document.motifs.size();
   summary["instances"] = instance_count;
   summary["covered_frames"] = document.covered_frames;
-  text += "  \"summary\": " + Dump(summary) + ",\n";
-  text += "  \"motifs\": [";
+  return summary;
+}
+
+// A motif's head: id, instance count, mean length (frames and seconds) and score.
+Json MotifHeadJson(const MotifsJsonMotif& motif, const ClipRates& fps_of) {
+  uint64_t frames = 0;
+  double seconds = 0;
+  for (const MotifsJsonInstance& instance : motif.instances) {
+    frames += instance.length();
+    auto fps = fps_of.find(instance.clip);
+    if (fps != fps_of.end() && fps->second > 0) {
+      seconds += static_cast<double>(instance.length()) / fps->second;
+    }
+  }
+  const double count = static_cast<double>(std::max<size_t>(1, motif.instances.size()));
+  Json head;
+  head["id"] = motif.id;
+  head["instance_count"] = motif.instances.size();
+  head["mean_length"] = static_cast<double>(frames) / count;
+  head["mean_seconds"] = seconds / count;
+  head["score"] = static_cast<double>(frames) * (count - 1) / count;  // RankMotifs' order
+  return head;
+}
+
+// "motifs": a motif's head on its line, then one instance a line.
+void AppendMotifsText(const MotifsDocument& document, std::string* text) {
+  ClipRates fps_of;
+  for (const MotifsJsonClip& clip : document.clips) fps_of[clip.name] = clip.fps;
+  *text += "  \"motifs\": [";
   for (size_t idx = 0; idx < document.motifs.size(); ++idx) {
     const MotifsJsonMotif& motif = document.motifs[idx];
-    uint64_t frames = 0;
-    double seconds = 0;
-    for (const MotifsJsonInstance& instance : motif.instances) {
-      frames += instance.length();
-      auto fps = fps_of.find(instance.clip);
-      if (fps != fps_of.end() && fps->second > 0) {
-        seconds += static_cast<double>(instance.length()) / fps->second;
-      }
-    }
-    const double count = static_cast<double>(std::max<size_t>(1, motif.instances.size()));
-    Json head;
-    head["id"] = motif.id;
-    head["instance_count"] = motif.instances.size();
-    head["mean_length"] = static_cast<double>(frames) / count;
-    head["mean_seconds"] = seconds / count;
-    head["score"] = static_cast<double>(frames) * (count - 1) / count;  // RankMotifs' order
-    std::string head_text = Dump(head);
+    std::string head_text = Dump(MotifHeadJson(motif, fps_of));
     head_text.pop_back();  // reopen the object to append the instances array
-    text += (idx == 0 ? "\n    " : ",\n    ") + head_text + ", \"instances\": [";
+    *text += (idx == 0 ? "\n    " : ",\n    ") + head_text + ", \"instances\": [";
     for (size_t inst = 0; inst < motif.instances.size(); ++inst) {
       const MotifsJsonInstance& instance = motif.instances[inst];
       Json entry;
@@ -163,11 +179,28 @@ std::string MotifsJsonText(const MotifsDocument& document) {
       entry["end"] = instance.end;
       entry["frame"] = instance.frame;
       entry["length"] = instance.length();
-      text += (inst == 0 ? "\n      " : ",\n      ") + Dump(entry);
+      *text += (inst == 0 ? "\n      " : ",\n      ") + Dump(entry);
     }
-    text += motif.instances.empty() ? "]}" : "\n    ]}";
+    *text += motif.instances.empty() ? "]}" : "\n    ]}";
   }
-  text += document.motifs.empty() ? "]\n" : "\n  ]\n";
+  *text += document.motifs.empty() ? "]\n" : "\n  ]\n";
+}
+
+}  // namespace
+
+std::string MotifsJsonText(const MotifsDocument& document) {
+  // One clip, and one instance, per line: readable and diffable with thousands of them.
+  std::string text = "{\n";
+  text += "  \"version\": 2,\n";
+  text += "  \"archive\": " + Dump(document.archive) + ",\n";
+  text += "  \"frames\": " + std::to_string(document.frames) + ",\n";
+  if (document.archive_version.known()) {
+    text += "  \"archive_version\": " + Dump(ArchiveVersionJson(document.archive_version)) + ",\n";
+  }
+  AppendClipsText(document.clips, &text);
+  text += "  \"params\": " + Dump(ParamsJson(document)) + ",\n";
+  text += "  \"summary\": " + Dump(SummaryJson(document)) + ",\n";
+  AppendMotifsText(document, &text);
   text += "}\n";
   return text;
 }
@@ -199,8 +232,125 @@ Status WriteMotifsJson(const std::string& path, const MotifsDocument& document) 
   return status.ok() ? status : status.WithContext("motifs file " + path);
 }
 
+namespace {
+
+using FirstFrames = std::unordered_map<std::string, uint64_t>;  // first archive frame by clip
+
+Status ParseArchiveVersion(const Json& version, const std::string& where,
+                           MotifsArchiveVersion* out) {
+  if (!version.is_object()) return Status::InvalidArgument(where + " is not an object");
+  MOTIF_RETURN_IF_ERROR(Get(version, "generation", where, &out->generation));
+  MOTIF_RETURN_IF_ERROR(Get(version, "committed_bytes", where, &out->committed_bytes));
+  std::string identity;
+  MOTIF_RETURN_IF_ERROR(Get(version, "identity", where, &identity));
+  char* end = nullptr;
+  out->identity = std::strtoull(identity.c_str(), &end, 16);
+  if (identity.size() != 16 || *end != '\0' || out->generation == 0) {
+    return Status::InvalidArgument(where +
+                                   ": \"identity\" must be 16 hex digits and "
+                                   "\"generation\" at least 1");
+  }
+  return Status::Ok();
+}
+
+// The "clips" array, and each clip's first frame by name (for the instances' global frames).
+Status ParseMotifsClips(const Json& clips, const std::string& name,
+                        std::vector<MotifsJsonClip>* out, FirstFrames* first_frame_of) {
+  for (size_t idx = 0; idx < clips.size(); ++idx) {
+    const Json& entry = clips[idx];
+    const std::string where = name + ": clips[" + std::to_string(idx) + "]";
+    if (!entry.is_object()) return Status::InvalidArgument(where + " is not an object");
+    MotifsJsonClip clip;
+    MOTIF_RETURN_IF_ERROR(Get(entry, "name", where, &clip.name));
+    MOTIF_RETURN_IF_ERROR(Get(entry, "source", where, &clip.source));
+    MOTIF_RETURN_IF_ERROR(Get(entry, "frames", where, &clip.frames));
+    MOTIF_RETURN_IF_ERROR(Get(entry, "fps", where, &clip.fps));
+    MOTIF_RETURN_IF_ERROR(Get(entry, "first_frame", where, &clip.first_frame));
+    if (entry.contains("source_first_frame")) {
+      MOTIF_RETURN_IF_ERROR(Get(entry, "source_first_frame", where, &clip.source_first_frame));
+    }
+    (*first_frame_of)[clip.name] = clip.first_frame;
+    out->push_back(std::move(clip));
+  }
+  return Status::Ok();
+}
+
+// The "params" object; similarity and the pause fields are optional (older files).
+Status ParseMotifsParams(const Json& params, const std::string& where, MotifsJsonParams* out) {
+  MOTIF_RETURN_IF_ERROR(Get(params, "eps", where, &out->eps));
+  MOTIF_RETURN_IF_ERROR(Get(params, "kmax", where, &out->kmax));
+  MOTIF_RETURN_IF_ERROR(Get(params, "branch", where, &out->branch));
+  MOTIF_RETURN_IF_ERROR(Get(params, "min_length", where, &out->min_length));
+  MOTIF_RETURN_IF_ERROR(Get(params, "seed", where, &out->seed));
+  if (params.contains("similarity")) {
+    MOTIF_RETURN_IF_ERROR(Get(params, "similarity", where, &out->similarity));
+  }
+  if (params.contains("pause_speed")) {
+    MOTIF_RETURN_IF_ERROR(Get(params, "pause_speed", where, &out->pause_speed));
+    MOTIF_RETURN_IF_ERROR(Get(params, "pause_seconds", where, &out->pause_seconds));
+  }
+  if (params.contains("groups") && params["groups"].is_string() && params["groups"] == "auto") {
+    out->groups = 0;
+  } else {
+    MOTIF_RETURN_IF_ERROR(Get(params, "groups", where + " (a number or \"auto\")", &out->groups));
+  }
+  return Status::Ok();
+}
+
+Result<MotifsJsonInstance> ParseMotifsInstance(const Json& item, const std::string& where,
+                                               const FirstFrames& first_frame_of) {
+  if (!item.is_object()) return Status::InvalidArgument(where + " is not an object");
+  MotifsJsonInstance instance;
+  MOTIF_RETURN_IF_ERROR(Get(item, "clip", where, &instance.clip));
+  MOTIF_RETURN_IF_ERROR(Get(item, "start", where, &instance.start));
+  MOTIF_RETURN_IF_ERROR(Get(item, "end", where, &instance.end));
+  if (instance.end <= instance.start) {
+    return Status::InvalidArgument(where + ": end must be after start");
+  }
+  auto clip = first_frame_of.find(instance.clip);
+  if (clip == first_frame_of.end()) {
+    return Status::InvalidArgument(where + ": unknown clip \"" + instance.clip + "\"");
+  }
+  instance.frame = clip->second + instance.start;
+  return instance;
+}
+
+Result<MotifsJsonMotif> ParseMotifsMotif(const Json& entry, const std::string& where,
+                                         const FirstFrames& first_frame_of) {
+  if (!entry.is_object()) return Status::InvalidArgument(where + " is not an object");
+  MotifsJsonMotif motif;
+  MOTIF_RETURN_IF_ERROR(Get(entry, "id", where, &motif.id));
+  if (!entry.contains("instances") || !entry["instances"].is_array()) {
+    return Status::InvalidArgument(where + ": \"instances\" must be an array");
+  }
+  const Json& instances = entry["instances"];
+  for (size_t inst = 0; inst < instances.size(); ++inst) {
+    MOTIF_ASSIGN_OR_RETURN(
+        MotifsJsonInstance instance,
+        ParseMotifsInstance(instances[inst], where + ".instances[" + std::to_string(inst) + "]",
+                            first_frame_of));
+    motif.instances.push_back(std::move(instance));
+  }
+  return motif;
+}
+
+// "clips" and "motifs" are arrays, "params" an object.
+Status CheckMotifsShape(const Json& root, const std::string& name) {
+  for (const char* key : {"clips", "motifs"}) {
+    if (!root.contains(key) || !root[key].is_array()) {
+      return Status::InvalidArgument(name + ": \"" + key + "\" must be an array");
+    }
+  }
+  if (!root.contains("params") || !root["params"].is_object()) {
+    return Status::InvalidArgument(name + ": \"params\" must be an object");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::string& name) {
-  Json root = Json::parse(text, nullptr, /*allow_exceptions=*/false);
+  const Json root = Json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (root.is_discarded() || !root.is_object()) {
     return Status::InvalidArgument(name + ": not a JSON object");
   }
@@ -215,100 +365,24 @@ Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::strin
   MOTIF_RETURN_IF_ERROR(Get(root, "archive", name, &document.archive));
   MOTIF_RETURN_IF_ERROR(Get(root, "frames", name, &document.frames));
   if (root.contains("archive_version")) {
-    const Json& version = root["archive_version"];
-    const std::string where = name + ": archive_version";
-    if (!version.is_object()) return Status::InvalidArgument(where + " is not an object");
-    MotifsArchiveVersion& out = document.archive_version;
-    MOTIF_RETURN_IF_ERROR(Get(version, "generation", where, &out.generation));
-    MOTIF_RETURN_IF_ERROR(Get(version, "committed_bytes", where, &out.committed_bytes));
-    std::string identity;
-    MOTIF_RETURN_IF_ERROR(Get(version, "identity", where, &identity));
-    char* end = nullptr;
-    out.identity = std::strtoull(identity.c_str(), &end, 16);
-    if (identity.size() != 16 || *end != '\0' || out.generation == 0) {
-      return Status::InvalidArgument(where +
-                                     ": \"identity\" must be 16 hex digits and "
-                                     "\"generation\" at least 1");
-    }
+    MOTIF_RETURN_IF_ERROR(ParseArchiveVersion(root["archive_version"], name + ": archive_version",
+                                              &document.archive_version));
   }
-  for (const char* key : {"clips", "motifs"}) {
-    if (!root.contains(key) || !root[key].is_array()) {
-      return Status::InvalidArgument(name + ": \"" + key + "\" must be an array");
-    }
-  }
-  if (!root.contains("params") || !root["params"].is_object()) {
-    return Status::InvalidArgument(name + ": \"params\" must be an object");
-  }
-  std::unordered_map<std::string, uint64_t> first_frame_of;
-  for (size_t idx = 0; idx < root["clips"].size(); ++idx) {
-    const Json& entry = root["clips"][idx];
-    const std::string where = name + ": clips[" + std::to_string(idx) + "]";
-    if (!entry.is_object()) return Status::InvalidArgument(where + " is not an object");
-    MotifsJsonClip clip;
-    MOTIF_RETURN_IF_ERROR(Get(entry, "name", where, &clip.name));
-    MOTIF_RETURN_IF_ERROR(Get(entry, "source", where, &clip.source));
-    MOTIF_RETURN_IF_ERROR(Get(entry, "frames", where, &clip.frames));
-    MOTIF_RETURN_IF_ERROR(Get(entry, "fps", where, &clip.fps));
-    MOTIF_RETURN_IF_ERROR(Get(entry, "first_frame", where, &clip.first_frame));
-    if (entry.contains("source_first_frame")) {
-      MOTIF_RETURN_IF_ERROR(Get(entry, "source_first_frame", where, &clip.source_first_frame));
-    }
-    first_frame_of[clip.name] = clip.first_frame;
-    document.clips.push_back(std::move(clip));
-  }
-  const Json& params = root["params"];
-  const std::string params_where = name + ": params";
-  MOTIF_RETURN_IF_ERROR(Get(params, "eps", params_where, &document.params.eps));
-  MOTIF_RETURN_IF_ERROR(Get(params, "kmax", params_where, &document.params.kmax));
-  MOTIF_RETURN_IF_ERROR(Get(params, "branch", params_where, &document.params.branch));
-  MOTIF_RETURN_IF_ERROR(Get(params, "min_length", params_where, &document.params.min_length));
-  MOTIF_RETURN_IF_ERROR(Get(params, "seed", params_where, &document.params.seed));
-  if (params.contains("similarity")) {
-    MOTIF_RETURN_IF_ERROR(Get(params, "similarity", params_where, &document.params.similarity));
-  }
-  if (params.contains("pause_speed")) {
-    MOTIF_RETURN_IF_ERROR(Get(params, "pause_speed", params_where, &document.params.pause_speed));
-    MOTIF_RETURN_IF_ERROR(
-        Get(params, "pause_seconds", params_where, &document.params.pause_seconds));
-  }
-  if (params.contains("groups") && params["groups"].is_string() && params["groups"] == "auto") {
-    document.params.groups = 0;
-  } else {
-    MOTIF_RETURN_IF_ERROR(
-        Get(params, "groups", params_where + " (a number or \"auto\")", &document.params.groups));
-  }
+  MOTIF_RETURN_IF_ERROR(CheckMotifsShape(root, name));
+  FirstFrames first_frame_of;
+  MOTIF_RETURN_IF_ERROR(ParseMotifsClips(root["clips"], name, &document.clips, &first_frame_of));
+  MOTIF_RETURN_IF_ERROR(ParseMotifsParams(root["params"], name + ": params", &document.params));
   if (root.contains("summary") && root["summary"].is_object() &&
       root["summary"].contains("covered_frames") &&
       root["summary"]["covered_frames"].is_number_unsigned()) {
     document.covered_frames = root["summary"]["covered_frames"].get<uint64_t>();
   }
-  for (size_t idx = 0; idx < root["motifs"].size(); ++idx) {
-    const Json& entry = root["motifs"][idx];
-    const std::string where = name + ": motifs[" + std::to_string(idx) + "]";
-    if (!entry.is_object()) return Status::InvalidArgument(where + " is not an object");
-    MotifsJsonMotif motif;
-    MOTIF_RETURN_IF_ERROR(Get(entry, "id", where, &motif.id));
-    if (!entry.contains("instances") || !entry["instances"].is_array()) {
-      return Status::InvalidArgument(where + ": \"instances\" must be an array");
-    }
-    for (size_t inst = 0; inst < entry["instances"].size(); ++inst) {
-      const Json& item = entry["instances"][inst];
-      const std::string item_where = where + ".instances[" + std::to_string(inst) + "]";
-      if (!item.is_object()) return Status::InvalidArgument(item_where + " is not an object");
-      MotifsJsonInstance instance;
-      MOTIF_RETURN_IF_ERROR(Get(item, "clip", item_where, &instance.clip));
-      MOTIF_RETURN_IF_ERROR(Get(item, "start", item_where, &instance.start));
-      MOTIF_RETURN_IF_ERROR(Get(item, "end", item_where, &instance.end));
-      if (instance.end <= instance.start) {
-        return Status::InvalidArgument(item_where + ": end must be after start");
-      }
-      auto clip = first_frame_of.find(instance.clip);
-      if (clip == first_frame_of.end()) {
-        return Status::InvalidArgument(item_where + ": unknown clip \"" + instance.clip + "\"");
-      }
-      instance.frame = clip->second + instance.start;
-      motif.instances.push_back(std::move(instance));
-    }
+  const Json& motifs = root["motifs"];
+  for (size_t idx = 0; idx < motifs.size(); ++idx) {
+    MOTIF_ASSIGN_OR_RETURN(
+        MotifsJsonMotif motif,
+        ParseMotifsMotif(motifs[idx], name + ": motifs[" + std::to_string(idx) + "]",
+                         first_frame_of));
     document.motifs.push_back(std::move(motif));
   }
   return document;

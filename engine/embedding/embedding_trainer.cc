@@ -194,6 +194,149 @@ EmbeddingNet EmbeddingTrainer::NetOf(const TrainingState& state) const {
   return net;
 }
 
+// One batch's rows and buffers, reused from batch to batch, and the arena its chunks run in.
+struct EmbeddingTrainer::BatchWork {
+  BatchWork(int threads, size_t parameter_count)
+      : arena(threads > 0 ? threads : tbb::task_arena::automatic), gradient(parameter_count) {}
+
+  tbb::task_arena arena;
+  // Rows: anchors [0, count), positives [count, 2 count), negatives [2 count, 3 count).
+  std::vector<BatchRow> rows;
+  Matrix input;
+  Matrix embeddings;
+  Matrix d_embeddings;
+  std::vector<EmbeddingNet::Workspace> workspaces;  // per chunk of kChunkRows rows
+  std::vector<std::vector<float>> chunk_gradients;
+  std::vector<float> gradient;  // the chunks' gradients summed in chunk order
+};
+
+std::vector<uint32_t> EmbeddingTrainer::TrainingAnchors() const {
+  std::vector<uint32_t> anchors;
+  for (uint32_t word : train_words_) {
+    if (!positives_[word].empty()) anchors.push_back(word);
+  }
+  return anchors;
+}
+
+void EmbeddingTrainer::DrawBatchRows(const std::vector<uint32_t>& order, size_t first, size_t count,
+                                     SplitMix64* random, BatchWork* work) const {
+  const WordPool& pool = *pool_;
+  std::vector<BatchRow>& rows = work->rows;
+  rows.assign(3 * count, BatchRow{0, 0});
+  for (size_t idx = 0; idx < count; ++idx) {
+    const uint32_t anchor = order[first + idx];
+    const std::vector<uint32_t>& positives = positives_[anchor];
+    rows[idx] = {anchor, 0};
+    rows[count + idx] = {positives[random->Below(positives.size())],
+                         static_cast<uint32_t>(random->Below(pool.versions()))};
+    rows[2 * count + idx] = {DrawNegative(anchor, /*train=*/true, random),
+                             static_cast<uint32_t>(random->Below(pool.versions()))};
+  }
+}
+
+void EmbeddingTrainer::EmbedBatch(const EmbeddingNet& net, BatchWork* work) const {
+  const WordPool& pool = *pool_;
+  const std::vector<BatchRow>& rows = work->rows;
+  const size_t row_count = rows.size();
+  const size_t chunks = (row_count + kChunkRows - 1) / kChunkRows;
+  work->input.resize(static_cast<Eigen::Index>(row_count),
+                     static_cast<Eigen::Index>(options_.shape.input_size()));
+  work->embeddings.resize(static_cast<Eigen::Index>(row_count), options_.shape.embedding_dims);
+  work->workspaces.resize(chunks);
+  ForEachChunk(work->arena, chunks, [&](size_t chunk) {
+    const size_t begin = chunk * kChunkRows;
+    const size_t end = std::min(row_count, begin + kChunkRows);
+    for (size_t row = begin; row < end; ++row) {
+      pool.EncodeInput(rows[row].word, rows[row].version,
+                       work->input.row(static_cast<Eigen::Index>(row)).data());
+    }
+    net.Forward(work->input.middleRows(static_cast<Eigen::Index>(begin),
+                                       static_cast<Eigen::Index>(end - begin)),
+                &work->workspaces[chunk]);
+    work->embeddings.middleRows(static_cast<Eigen::Index>(begin),
+                                static_cast<Eigen::Index>(end - begin)) =
+        work->workspaces[chunk].embeddings;
+  });
+}
+
+void EmbeddingTrainer::TripletLossGradient(size_t count, BatchWork* work, double* loss_sum,
+                                           uint64_t* active) const {
+  const Matrix& embeddings = work->embeddings;
+  const std::vector<BatchRow>& rows = work->rows;
+  const float margin = static_cast<float>(options_.margin);
+  Matrix& d_embeddings = work->d_embeddings;
+  d_embeddings.setZero(static_cast<Eigen::Index>(rows.size()), options_.shape.embedding_dims);
+  const float scale = 1.0f / static_cast<float>(count);
+  for (size_t idx = 0; idx < count; ++idx) {
+    const auto a = embeddings.row(static_cast<Eigen::Index>(idx));
+    const auto p = embeddings.row(static_cast<Eigen::Index>(count + idx));
+    const float positive = (a - p).squaredNorm();
+    size_t negative_row = 2 * count + idx;
+    float negative = (a - embeddings.row(static_cast<Eigen::Index>(negative_row))).squaredNorm();
+    if (options_.mine_semi_hard) {
+      float best = std::numeric_limits<float>::infinity();
+      for (size_t other = 0; other < count; ++other) {
+        const size_t row = 2 * count + other;
+        if (!ValidNegative(rows[idx].word, rows[row].word)) continue;
+        const float candidate = (a - embeddings.row(static_cast<Eigen::Index>(row))).squaredNorm();
+        if (candidate > positive && candidate < positive + margin && candidate < best) {
+          best = candidate;
+          negative_row = row;
+        }
+      }
+      if (best < std::numeric_limits<float>::infinity()) negative = best;
+    }
+    const float loss = positive - negative + margin;
+    if (loss <= 0) continue;
+    *loss_sum += loss;
+    ++*active;
+    const auto n = embeddings.row(static_cast<Eigen::Index>(negative_row));
+    // d/da = 2 (n - p), d/dp = 2 (p - a), d/dn = 2 (a - n); times 1 / count (the mean).
+    d_embeddings.row(static_cast<Eigen::Index>(idx)) += 2.0f * scale * (n - p);
+    d_embeddings.row(static_cast<Eigen::Index>(count + idx)) += 2.0f * scale * (p - a);
+    d_embeddings.row(static_cast<Eigen::Index>(negative_row)) += 2.0f * scale * (a - n);
+  }
+}
+
+void EmbeddingTrainer::BatchGradient(const EmbeddingNet& net, BatchWork* work) const {
+  const size_t parameter_count = options_.shape.parameter_count();
+  const size_t row_count = work->rows.size();
+  const size_t chunks = (row_count + kChunkRows - 1) / kChunkRows;
+  work->chunk_gradients.resize(chunks);
+  ForEachChunk(work->arena, chunks, [&](size_t chunk) {
+    const size_t begin = chunk * kChunkRows;
+    const size_t end = std::min(row_count, begin + kChunkRows);
+    work->chunk_gradients[chunk].assign(parameter_count, 0.0f);
+    net.Backward(work->d_embeddings.middleRows(static_cast<Eigen::Index>(begin),
+                                               static_cast<Eigen::Index>(end - begin)),
+                 &work->workspaces[chunk], work->chunk_gradients[chunk].data());
+  });
+  std::vector<float>& gradient = work->gradient;
+  std::fill(gradient.begin(), gradient.end(), 0.0f);
+  for (size_t chunk = 0; chunk < chunks; ++chunk) {
+    for (size_t idx = 0; idx < parameter_count; ++idx)
+      gradient[idx] += work->chunk_gradients[chunk][idx];
+  }
+}
+
+void EmbeddingTrainer::AdamStep(const std::vector<float>& gradient, TrainingState* state,
+                                EmbeddingNet* net) const {
+  ++state->adam_steps;
+  const double correction1 = 1.0 - std::pow(kAdamBeta1, static_cast<double>(state->adam_steps));
+  const double correction2 = 1.0 - std::pow(kAdamBeta2, static_cast<double>(state->adam_steps));
+  const double step = options_.learning_rate * std::sqrt(correction2) / correction1;
+  std::vector<float>& parameters = net->mutable_parameters();
+  for (size_t idx = 0; idx < gradient.size(); ++idx) {
+    const float g = gradient[idx];
+    state->adam_m[idx] = static_cast<float>(kAdamBeta1 * state->adam_m[idx] + (1 - kAdamBeta1) * g);
+    state->adam_v[idx] =
+        static_cast<float>(kAdamBeta2 * state->adam_v[idx] + (1 - kAdamBeta2) * g * g);
+    parameters[idx] -=
+        static_cast<float>(step * state->adam_m[idx] /
+                           (std::sqrt(static_cast<double>(state->adam_v[idx])) + kAdamEpsilon));
+  }
+}
+
 Status EmbeddingTrainer::Train(
     TrainingState* state, const std::function<Status(const TrainingState&)>& checkpoint) const {
   const size_t parameter_count = options_.shape.parameter_count();
@@ -203,35 +346,16 @@ Status EmbeddingTrainer::Train(
         "training: a state of " + std::to_string(state->parameters.size()) +
         " parameters for a network of " + std::to_string(parameter_count));
   }
-  const WordPool& pool = *pool_;
   const uint32_t batch_size = options_.batch_triplets;
-  const size_t input_size = options_.shape.input_size();
-  const uint32_t dims = options_.shape.embedding_dims;
-  const float margin = static_cast<float>(options_.margin);
-  tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
-
-  std::vector<uint32_t> anchors;
-  for (uint32_t word : train_words_) {
-    if (!positives_[word].empty()) anchors.push_back(word);
-  }
+  const std::vector<uint32_t> anchors = TrainingAnchors();
   if (anchors.empty()) return Status::InvalidArgument("training: no anchor has a positive");
   const uint64_t batches_per_epoch = (anchors.size() + batch_size - 1) / batch_size;
   const uint64_t total_batches = batches_per_epoch * options_.epochs;
 
   EmbeddingNet net = NetOf(*state);
-  struct Row {
-    uint32_t word;
-    uint32_t version;
-  };
-  std::vector<Row> rows;
-  Matrix input;
-  Matrix embeddings;
-  Matrix d_embeddings;
-  std::vector<EmbeddingNet::Workspace> workspaces;
-  std::vector<std::vector<float>> chunk_gradients;
-  std::vector<float> gradient(parameter_count);
-
+  BatchWork work(options_.threads, parameter_count);
   for (uint32_t epoch = state->epochs_done; epoch < options_.epochs; ++epoch) {
+    // The epoch's seed shuffles the anchors, then draws every batch's positives and negatives.
     SplitMix64 random(EpochSeed(options_.seed, epoch));
     std::vector<uint32_t> order = anchors;
     for (size_t idx = order.size() - 1; idx > 0; --idx) {
@@ -242,103 +366,12 @@ Status EmbeddingTrainer::Train(
     for (uint64_t batch = 0; batch < batches_per_epoch; ++batch) {
       const size_t first = batch * batch_size;
       const size_t count = std::min<size_t>(batch_size, order.size() - first);
-      // Rows: anchors [0, count), positives [count, 2 count), negatives [2 count, 3 count).
-      rows.assign(3 * count, Row{0, 0});
-      for (size_t idx = 0; idx < count; ++idx) {
-        const uint32_t anchor = order[first + idx];
-        const std::vector<uint32_t>& positives = positives_[anchor];
-        rows[idx] = {anchor, 0};
-        rows[count + idx] = {positives[random.Below(positives.size())],
-                             static_cast<uint32_t>(random.Below(pool.versions()))};
-        rows[2 * count + idx] = {DrawNegative(anchor, /*train=*/true, &random),
-                                 static_cast<uint32_t>(random.Below(pool.versions()))};
-      }
-      const size_t row_count = rows.size();
-      const size_t chunks = (row_count + kChunkRows - 1) / kChunkRows;
-      input.resize(static_cast<Eigen::Index>(row_count), static_cast<Eigen::Index>(input_size));
-      embeddings.resize(static_cast<Eigen::Index>(row_count), dims);
-      workspaces.resize(chunks);
-      ForEachChunk(arena, chunks, [&](size_t chunk) {
-        const size_t begin = chunk * kChunkRows;
-        const size_t end = std::min(row_count, begin + kChunkRows);
-        for (size_t row = begin; row < end; ++row) {
-          pool.EncodeInput(rows[row].word, rows[row].version,
-                           input.row(static_cast<Eigen::Index>(row)).data());
-        }
-        net.Forward(input.middleRows(static_cast<Eigen::Index>(begin),
-                                     static_cast<Eigen::Index>(end - begin)),
-                    &workspaces[chunk]);
-        embeddings.middleRows(static_cast<Eigen::Index>(begin),
-                              static_cast<Eigen::Index>(end - begin)) =
-            workspaces[chunk].embeddings;
-      });
-
+      DrawBatchRows(order, first, count, &random, &work);
+      EmbedBatch(net, &work);
       // The loss, with in-batch semi-hard negatives, and its gradient per embedding row.
-      d_embeddings.setZero(static_cast<Eigen::Index>(row_count), dims);
-      const float scale = 1.0f / static_cast<float>(count);
-      for (size_t idx = 0; idx < count; ++idx) {
-        const auto a = embeddings.row(static_cast<Eigen::Index>(idx));
-        const auto p = embeddings.row(static_cast<Eigen::Index>(count + idx));
-        const float positive = (a - p).squaredNorm();
-        size_t negative_row = 2 * count + idx;
-        float negative =
-            (a - embeddings.row(static_cast<Eigen::Index>(negative_row))).squaredNorm();
-        if (options_.mine_semi_hard) {
-          float best = std::numeric_limits<float>::infinity();
-          for (size_t other = 0; other < count; ++other) {
-            const size_t row = 2 * count + other;
-            if (!ValidNegative(rows[idx].word, rows[row].word)) continue;
-            const float candidate =
-                (a - embeddings.row(static_cast<Eigen::Index>(row))).squaredNorm();
-            if (candidate > positive && candidate < positive + margin && candidate < best) {
-              best = candidate;
-              negative_row = row;
-            }
-          }
-          if (best < std::numeric_limits<float>::infinity()) negative = best;
-        }
-        const float loss = positive - negative + margin;
-        if (loss <= 0) continue;
-        loss_sum += loss;
-        ++active;
-        const auto n = embeddings.row(static_cast<Eigen::Index>(negative_row));
-        // d/da = 2 (n - p), d/dp = 2 (p - a), d/dn = 2 (a - n); times 1 / count (the mean).
-        d_embeddings.row(static_cast<Eigen::Index>(idx)) += 2.0f * scale * (n - p);
-        d_embeddings.row(static_cast<Eigen::Index>(count + idx)) += 2.0f * scale * (p - a);
-        d_embeddings.row(static_cast<Eigen::Index>(negative_row)) += 2.0f * scale * (a - n);
-      }
-
-      chunk_gradients.resize(chunks);
-      ForEachChunk(arena, chunks, [&](size_t chunk) {
-        const size_t begin = chunk * kChunkRows;
-        const size_t end = std::min(row_count, begin + kChunkRows);
-        chunk_gradients[chunk].assign(parameter_count, 0.0f);
-        net.Backward(d_embeddings.middleRows(static_cast<Eigen::Index>(begin),
-                                             static_cast<Eigen::Index>(end - begin)),
-                     &workspaces[chunk], chunk_gradients[chunk].data());
-      });
-      std::fill(gradient.begin(), gradient.end(), 0.0f);
-      for (size_t chunk = 0; chunk < chunks; ++chunk) {
-        for (size_t idx = 0; idx < parameter_count; ++idx)
-          gradient[idx] += chunk_gradients[chunk][idx];
-      }
-
-      // Adam.
-      ++state->adam_steps;
-      const double correction1 = 1.0 - std::pow(kAdamBeta1, static_cast<double>(state->adam_steps));
-      const double correction2 = 1.0 - std::pow(kAdamBeta2, static_cast<double>(state->adam_steps));
-      const double step = options_.learning_rate * std::sqrt(correction2) / correction1;
-      std::vector<float>& parameters = net.mutable_parameters();
-      for (size_t idx = 0; idx < parameter_count; ++idx) {
-        const float g = gradient[idx];
-        state->adam_m[idx] =
-            static_cast<float>(kAdamBeta1 * state->adam_m[idx] + (1 - kAdamBeta1) * g);
-        state->adam_v[idx] =
-            static_cast<float>(kAdamBeta2 * state->adam_v[idx] + (1 - kAdamBeta2) * g * g);
-        parameters[idx] -=
-            static_cast<float>(step * state->adam_m[idx] /
-                               (std::sqrt(static_cast<double>(state->adam_v[idx])) + kAdamEpsilon));
-      }
+      TripletLossGradient(count, &work, &loss_sum, &active);
+      BatchGradient(net, &work);
+      AdamStep(work.gradient, state, &net);
       if (options_.progress)
         options_.progress(epoch * batches_per_epoch + batch + 1, total_batches);
     }

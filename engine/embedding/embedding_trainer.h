@@ -123,6 +123,28 @@ class EmbeddingTrainer {
   // A negative of `anchor` drawn from `random`; training words only if `train`.
   uint32_t DrawNegative(uint64_t anchor, bool train, SplitMix64* random) const;
 
+  // The steps of Train, one batch at a time (embedding_trainer.cc).
+  struct BatchRow {
+    uint32_t word;
+    uint32_t version;
+  };
+  struct BatchWork;  // the batch's rows and buffers, and the arena its chunks run in
+  // The training words with at least one positive.
+  std::vector<uint32_t> TrainingAnchors() const;
+  // Anchors order[first, first + count), a positive (a random version) and a negative each.
+  void DrawBatchRows(const std::vector<uint32_t>& order, size_t first, size_t count,
+                     SplitMix64* random, BatchWork* work) const;
+  // The rows' inputs and embeddings, a fixed chunk of rows per task.
+  void EmbedBatch(const EmbeddingNet& net, BatchWork* work) const;
+  // The mean triplet loss of the batch's `count` triplets (added to *loss_sum and *active) and
+  // its gradient per embedding row.
+  void TripletLossGradient(size_t count, BatchWork* work, double* loss_sum, uint64_t* active) const;
+  // The parameters' gradient: per chunk, then summed in chunk order (the same for any thread
+  // count).
+  void BatchGradient(const EmbeddingNet& net, BatchWork* work) const;
+  // One Adam step of `net`'s parameters and the state's moments.
+  void AdamStep(const std::vector<float>& gradient, TrainingState* state, EmbeddingNet* net) const;
+
   const WordPool* pool_;
   EmbeddingTrainOptions options_;
   std::vector<std::vector<WordNeighbour>> neighbours_;

@@ -54,6 +54,165 @@ TakeInFlight PrepareTake(const TakeSource& source, size_t index, const Skeleton&
   return item;
 }
 
+// A message for the user, if the caller takes them (empty ones are not passed on).
+void ImportNote(const ArchiveImportOptions& options, const std::string& message) {
+  if (options.note) message.empty() ? void() : options.note(message);
+}
+
+// The archive's writer: appending to it when it exists, else creating it from the first take
+// that imports, which decides the skeleton and, unless given, the rate (result->created).
+Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& archive_path,
+                                                             const std::vector<TakeSource>& sources,
+                                                             const ArchiveImportOptions& options,
+                                                             ArchiveImportResult* result) {
+  FrameFileWriterOptions writer_options;
+  writer_options.block_frames = options.block_frames;
+  writer_options.file_system = options.file_system;
+  std::error_code error;
+  if (std::filesystem::exists(archive_path, error)) {
+    return FrameFileWriter::OpenForAppend(archive_path, writer_options);
+  }
+  Result<Take> first_take = Status::NotFound("no take");
+  for (const TakeSource& source : sources) {
+    first_take = ImportTake(source, options.import);
+    if (first_take.ok() || !options.skip_bad) break;
+  }
+  if (!first_take.ok()) return first_take.status();
+  const Take& first = *first_take;
+  const double fps = options.fps > 0 ? options.fps : first.fps;
+  MOTIF_ASSIGN_OR_RETURN(
+      std::unique_ptr<FrameFileWriter> writer,
+      FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options));
+  result->created = true;
+  ImportNote(options, "creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
+                          std::to_string(first.skeleton.joint_count()) + " joints), " +
+                          FormatFps(fps) + " fps");
+  return writer;
+}
+
+// The pipeline's last, serial stage: appends the prepared takes in discovery order, skipping
+// those already in the archive (by content hash) and renaming those whose name is taken. A
+// failure stops the import (stop(), first_error()) unless skip_bad lets it pass, named.
+class ClipAppender {
+ public:
+  ClipAppender(FrameFileWriter* writer, const ArchiveImportOptions& options, uint64_t take_count,
+               ArchiveImportResult* result)
+      : writer_(writer), options_(options), take_count_(take_count), result_(result) {
+    for (const ClipInfo& clip : writer->clips()) {
+      if (clip.content_hash != 0) known_hashes_.insert(clip.content_hash);
+      known_names_.insert(clip.name);
+    }
+  }
+
+  bool stopped() const { return stop_.load(); }
+  const Status& first_error() const { return first_error_; }
+
+  void Consume(TakeInFlight item) {
+    if (stop_.load()) return;
+    ++done_;
+    if (options_.progress) options_.progress(done_, take_count_);
+    if (!item.status.ok()) {
+      ++result_->takes_failed;
+      result_->failures.push_back(item.status.message());
+      if (!options_.skip_bad) {
+        Stop(item.status);
+      } else {
+        ImportNote(options_, "skipped: " + item.status.message());
+      }
+      return;
+    }
+    ClipFrames& clip = *item.clip;
+    if (known_hashes_.count(clip.info.content_hash)) {
+      ++result_->takes_already_present;
+      ImportNote(options_, clip.info.source_path + ": already in the archive, skipped");
+      return;
+    }
+    GiveUniqueName(&clip);
+    Append(clip);
+  }
+
+ private:
+  void Stop(const Status& status) {
+    first_error_ = status;
+    stop_.store(true);
+  }
+
+  // "<stem>~2" ("~3", ...) when a clip of that name exists already.
+  void GiveUniqueName(ClipFrames* clip) {
+    std::string name = clip->info.name;
+    for (int suffix = 2; known_names_.count(name); ++suffix) {
+      name = clip->info.name + "~" + std::to_string(suffix);
+    }
+    if (name != clip->info.name) {
+      ImportNote(options_, clip->info.source_path + ": a clip named '" + clip->info.name +
+                               "' exists already; stored as '" + name + "'");
+      clip->info.name = name;
+    }
+  }
+
+  void Append(const ClipFrames& clip) {
+    Status status = writer_->AppendClip(clip);
+    if (status.IsInvalidArgument()) {
+      // The take's own values (a root position of 1e308 gives an infinite velocity): a bad take
+      // like any other, named by its file. The writer refused it before storing anything and
+      // stays usable.
+      status = status.WithContext(clip.info.source_path);
+      ++result_->takes_failed;
+      result_->failures.push_back(status.message());
+      if (options_.skip_bad) {
+        ImportNote(options_, "skipped: " + status.message());
+        return;
+      }
+    }
+    if (!status.ok()) {
+      Stop(status);
+      return;
+    }
+    known_hashes_.insert(clip.info.content_hash);
+    known_names_.insert(clip.info.name);
+    ++result_->takes_imported;
+    result_->frames_added += clip.info.frame_count;
+  }
+
+  FrameFileWriter* writer_;
+  const ArchiveImportOptions& options_;
+  const uint64_t take_count_;
+  ArchiveImportResult* result_;
+  std::unordered_set<uint64_t> known_hashes_;
+  std::unordered_set<std::string> known_names_;
+  Status first_error_;
+  std::atomic<bool> stop_{false};
+  uint64_t done_ = 0;
+};
+
+// Parses and converts the takes in parallel (at most twice the threads in flight) and hands
+// them to `appender` in discovery order; nothing new starts once it has stopped.
+void RunImportPipeline(const std::vector<TakeSource>& sources, const Skeleton& skeleton, double fps,
+                       const ArchiveImportOptions& options, ClipAppender* appender) {
+  size_t next_source = 0;
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  const size_t max_in_flight = 2 * static_cast<size_t>(arena.max_concurrency());
+  auto next = [&](tbb::flow_control& control) -> size_t {
+    if (next_source >= sources.size() || appender->stopped()) {
+      control.stop();
+      return 0;
+    }
+    return next_source++;
+  };
+  auto prepare = [&](size_t index) {
+    if (appender->stopped()) return TakeInFlight{index, Status::Ok(), std::nullopt};
+    return PrepareTake(sources[index], index, skeleton, fps, options.import);
+  };
+  auto consume = [&](TakeInFlight item) { appender->Consume(std::move(item)); };
+  arena.execute([&] {
+    tbb::parallel_pipeline(
+        max_in_flight,
+        tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order, next) &
+            tbb::make_filter<size_t, TakeInFlight>(tbb::filter_mode::parallel, prepare) &
+            tbb::make_filter<TakeInFlight, void>(tbb::filter_mode::serial_in_order, consume));
+  });
+}
+
 }  // namespace
 
 Result<ArchiveImportResult> ImportIntoArchive(const std::string& archive_path,
@@ -79,123 +238,17 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
   ArchiveImportResult result;
   result.takes_found = sources.size();
   if (sources.empty()) return Status::InvalidArgument("no takes to import");
-  auto note = [&](const std::string& message) {
-    if (options.note) message.empty() ? void() : options.note(message);
-  };
-
-  FrameFileWriterOptions writer_options;
-  writer_options.block_frames = options.block_frames;
-  writer_options.file_system = options.file_system;
-  std::unique_ptr<FrameFileWriter> writer;
-  std::error_code error;
-  if (std::filesystem::exists(archive_path, error)) {
-    MOTIF_ASSIGN_OR_RETURN(writer, FrameFileWriter::OpenForAppend(archive_path, writer_options));
-  } else {
-    // The first take that imports decides the skeleton and, unless given, the rate.
-    Result<Take> first_take = Status::NotFound("no take");
-    for (const TakeSource& source : sources) {
-      first_take = ImportTake(source, options.import);
-      if (first_take.ok() || !options.skip_bad) break;
-    }
-    if (!first_take.ok()) return first_take.status();
-    const Take& first = *first_take;
-    const double fps = options.fps > 0 ? options.fps : first.fps;
-    MOTIF_ASSIGN_OR_RETURN(
-        writer, FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options));
-    result.created = true;
-    note("creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
-         std::to_string(first.skeleton.joint_count()) + " joints), " + FormatFps(fps) + " fps");
-  }
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
+                         OpenOrCreateArchive(archive_path, sources, options, &result));
   const Skeleton skeleton = writer->skeleton();
   const double fps = writer->fps();
   result.fps = fps;
-
-  std::unordered_set<uint64_t> known_hashes;
-  std::unordered_set<std::string> known_names;
-  for (const ClipInfo& clip : writer->clips()) {
-    if (clip.content_hash != 0) known_hashes.insert(clip.content_hash);
-    known_names.insert(clip.name);
+  {
+    ClipAppender appender(writer.get(), options, sources.size(), &result);
+    RunImportPipeline(sources, skeleton, fps, options, &appender);
+    // The writer's destructor abandons the append.
+    if (!appender.first_error().ok()) return appender.first_error();
   }
-
-  Status first_error;
-  std::atomic<bool> stop{false};
-  size_t next_source = 0;
-  uint64_t done = 0;
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  const size_t max_in_flight = 2 * static_cast<size_t>(arena.max_concurrency());
-  arena.execute([&] {
-    tbb::parallel_pipeline(
-        max_in_flight,
-        tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order,
-                                       [&](tbb::flow_control& control) -> size_t {
-                                         if (next_source >= sources.size() || stop.load()) {
-                                           control.stop();
-                                           return 0;
-                                         }
-                                         return next_source++;
-                                       }) &
-            tbb::make_filter<size_t, TakeInFlight>(
-                tbb::filter_mode::parallel,
-                [&](size_t index) {
-                  if (stop.load()) return TakeInFlight{index, Status::Ok(), std::nullopt};
-                  return PrepareTake(sources[index], index, skeleton, fps, options.import);
-                }) &
-            tbb::make_filter<TakeInFlight, void>(
-                tbb::filter_mode::serial_in_order, [&](TakeInFlight item) {
-                  if (stop.load()) return;
-                  ++done;
-                  if (options.progress) options.progress(done, sources.size());
-                  if (!item.status.ok()) {
-                    ++result.takes_failed;
-                    result.failures.push_back(item.status.message());
-                    if (!options.skip_bad) {
-                      first_error = item.status;
-                      stop.store(true);
-                    } else {
-                      note("skipped: " + item.status.message());
-                    }
-                    return;
-                  }
-                  ClipFrames& clip = *item.clip;
-                  if (known_hashes.count(clip.info.content_hash)) {
-                    ++result.takes_already_present;
-                    note(clip.info.source_path + ": already in the archive, skipped");
-                    return;
-                  }
-                  std::string name = clip.info.name;
-                  for (int suffix = 2; known_names.count(name); ++suffix) {
-                    name = clip.info.name + "~" + std::to_string(suffix);
-                  }
-                  if (name != clip.info.name) {
-                    note(clip.info.source_path + ": a clip named '" + clip.info.name +
-                         "' exists already; stored as '" + name + "'");
-                    clip.info.name = name;
-                  }
-                  Status status = writer->AppendClip(clip);
-                  if (status.IsInvalidArgument()) {
-                    // The take's own values (a root position of 1e308 gives an infinite
-                    // velocity): a bad take like any other, named by its file. The writer
-                    // refused it before storing anything and stays usable.
-                    status = status.WithContext(clip.info.source_path);
-                    ++result.takes_failed;
-                    result.failures.push_back(status.message());
-                    if (options.skip_bad) {
-                      note("skipped: " + status.message());
-                      return;
-                    }
-                  }
-                  if (!status.ok()) {
-                    first_error = status;
-                    stop.store(true);
-                    return;
-                  }
-                  known_hashes.insert(clip.info.content_hash);
-                  known_names.insert(name);
-                  ++result.takes_imported;
-                  result.frames_added += clip.info.frame_count;
-                }));
-  });
-  if (!first_error.ok()) return first_error;  // the writer's destructor abandons the append
   // An append that adds nothing is not committed: the archive keeps its generation and identity,
   // so a rerun (after a kill past the commit, or from cron) leaves it and what was built on it
   // as they are.

@@ -186,10 +186,57 @@ Result<PlaybackBlocks> PlaybackData(const MotifsDocument& document, const FrameF
 
 std::string ViewName(FigureView view) { return view == FigureView::kSide ? "side" : "front"; }
 
+// "frames": how many, how long, the clips and the skeleton.
+std::string OverviewFramesHtml(const FrameFileReader& reader) {
+  const double fps = reader.fps();
+  return HtmlCommas(reader.frame_count()) + " (" +
+         HtmlNumber("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) + " at " +
+         HtmlNumber("%g fps", fps) + "), " + HtmlCount(reader.clips().size(), "clip") +
+         ", skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
+         std::to_string(reader.skeleton().joint_count()) + " joints)";
+}
+
+// "parameters": plain names first, the papers' symbols beside them, each once.
+std::string OverviewParametersHtml(const MotifsJsonParams& params, double fps,
+                                   const std::string& parameters_text) {
+  return "match radius &epsilon; " + HtmlNumber("%.4g", params.eps) +
+         " &middot; neighbours kept per frame K<sub>max</sub> " + std::to_string(params.kmax) +
+         " &middot; frames a path may skip B " + std::to_string(params.branch) +
+         " &middot; shortest motif &lambda; " + HtmlCount(params.min_length, "frame") + " (" +
+         HtmlSeconds(params.min_length, fps) + ") &middot; motif groups " +
+         (params.groups ? std::to_string(params.groups) : std::string("automatic")) +
+         " &middot; random seed " + std::to_string(params.seed) +
+         (parameters_text.empty()
+              ? std::string()
+              : "<br><span class=\"note\">" + HtmlEscape(parameters_text) + "</span>");
+}
+
+// "timings": a row per stage and their total.
+std::string OverviewTimingsHtml(const std::vector<ReportStageTiming>& timings) {
+  std::string table = "<table class=\"t\">";
+  double total = 0;
+  for (const ReportStageTiming& timing : timings) {
+    table += "<tr><td>" + HtmlEscape(timing.stage) + "</td><td>" +
+             HtmlNumber("%.2f s", timing.seconds) + "</td></tr>";
+    total += timing.seconds;
+  }
+  table += "<tr><td><b>total</b></td><td><b>" + HtmlNumber("%.2f s", total) + "</b></td></tr>";
+  return table + "</table>";
+}
+
+// "planted motifs": the score against a synthetic archive's truth.
+std::string OverviewPlantedHtml(const PlantedMotifScore& score, const std::string& truth_path) {
+  return (truth_path.empty() ? std::string() : "<code>" + HtmlEscape(truth_path) + "</code>: ") +
+         HtmlCount(score.planted_motifs, "motif") + ", " + HtmlCount(score.planted, "instance") +
+         "; recall " + HtmlNumber("%.3f", score.recall) + " (" + HtmlCommas(score.planted_hit) +
+         " hit), precision " + HtmlNumber("%.3f", score.precision) + " (" +
+         HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
+         " found instances), adjusted Rand index " + HtmlNumber("%.3f", score.adjusted_rand_index);
+}
+
 void AppendOverview(const MotifsDocument& document, const FrameFileReader& reader,
                     const ReportInfo& info, const ReportOptions& options, uint64_t instance_count,
                     uint64_t covered_frames, std::string* html) {
-  const double fps = reader.fps();
   const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
   std::string& out = *html;
   out += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">\n";
@@ -197,36 +244,9 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
     out += HtmlRow(key, value_html);
   };
   row("archive", "<code>" + HtmlEscape(archive) + "</code>");
-  row("frames", HtmlCommas(reader.frame_count()) + " (" +
-                    HtmlNumber("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) +
-                    " at " + HtmlNumber("%g fps", fps) + "), " +
-                    HtmlCount(reader.clips().size(), "clip") + ", skeleton " +
-                    HtmlEscape(reader.skeleton().family()) + " (" +
-                    std::to_string(reader.skeleton().joint_count()) + " joints)");
-  // Plain names first, the papers' symbols beside them, each once.
-  const MotifsJsonParams& params = document.params;
-  row("parameters",
-      "match radius &epsilon; " + HtmlNumber("%.4g", params.eps) +
-          " &middot; neighbours kept per frame K<sub>max</sub> " + std::to_string(params.kmax) +
-          " &middot; frames a path may skip B " + std::to_string(params.branch) +
-          " &middot; shortest motif &lambda; " + HtmlCount(params.min_length, "frame") + " (" +
-          HtmlSeconds(params.min_length, fps) + ") &middot; motif groups " +
-          (params.groups ? std::to_string(params.groups) : std::string("automatic")) +
-          " &middot; random seed " + std::to_string(params.seed) +
-          (info.parameters_text.empty()
-               ? std::string()
-               : "<br><span class=\"note\">" + HtmlEscape(info.parameters_text) + "</span>"));
-  if (!info.timings.empty()) {
-    std::string table = "<table class=\"t\">";
-    double total = 0;
-    for (const ReportStageTiming& timing : info.timings) {
-      table += "<tr><td>" + HtmlEscape(timing.stage) + "</td><td>" +
-               HtmlNumber("%.2f s", timing.seconds) + "</td></tr>";
-      total += timing.seconds;
-    }
-    table += "<tr><td><b>total</b></td><td><b>" + HtmlNumber("%.2f s", total) + "</b></td></tr>";
-    row("timings", table + "</table>");
-  }
+  row("frames", OverviewFramesHtml(reader));
+  row("parameters", OverviewParametersHtml(document.params, reader.fps(), info.parameters_text));
+  if (!info.timings.empty()) row("timings", OverviewTimingsHtml(info.timings));
   if (info.peak_memory_bytes > 0) row("peak memory", HtmlBytes(info.peak_memory_bytes));
   row("motifs",
       HtmlCount(document.motifs.size(), "motif") + ", " + HtmlCount(instance_count, "instance"));
@@ -237,16 +257,7 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
                                                     : 0.0) +
           " of the archive)");
   if (info.planted_score) {
-    const PlantedMotifScore& score = *info.planted_score;
-    row("planted motifs",
-        (info.truth_path.empty() ? std::string()
-                                 : "<code>" + HtmlEscape(info.truth_path) + "</code>: ") +
-            HtmlCount(score.planted_motifs, "motif") + ", " + HtmlCount(score.planted, "instance") +
-            "; recall " + HtmlNumber("%.3f", score.recall) + " (" + HtmlCommas(score.planted_hit) +
-            " hit), precision " + HtmlNumber("%.3f", score.precision) + " (" +
-            HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
-            " found instances), adjusted Rand index " +
-            HtmlNumber("%.3f", score.adjusted_rand_index));
+    row("planted motifs", OverviewPlantedHtml(*info.planted_score, info.truth_path));
   }
   row("figures", ViewName(options.view) + " view, heading removed; " +
                      std::to_string(options.keyframes) +
@@ -285,15 +296,47 @@ void AppendTimeAxis(uint64_t longest, double fps, std::string* html) {
   out += "</div></span></div>\n";
 }
 
+// An instance on the timeline.
+struct TimelineMark {
+  uint64_t start = 0;
+  uint64_t end = 0;
+  uint32_t motif_id = 0;
+};
+
+// One clip's bar, `longest` frames to the full width: a rectangle per instance.
+void AppendTimelineBar(const ClipInfo& clip, std::vector<TimelineMark>* clip_marks,
+                       uint64_t longest, double fps, std::string* html) {
+  std::string& out = *html;
+  std::sort(clip_marks->begin(), clip_marks->end(),
+            [](const TimelineMark& a, const TimelineMark& b) { return a.start < b.start; });
+  const std::string name = HtmlEscape(clip.name);
+  const double width_percent =
+      std::max(2.0, 100.0 * static_cast<double>(clip.frame_count) / longest);
+  // The take's description, when the import was given one, after its name.
+  const std::string described =
+      clip.description.empty() ? std::string() : " \u2014 " + HtmlEscape(clip.description);
+  out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + described + " (" +
+         HtmlCount(clip.frame_count, "frame") + ")\">" + name +
+         (described.empty() ? "" : "<small>" + described + "</small>") +
+         "</span><span class=\"w\"><svg " +
+         "class=\"tl\" style=\"width:" + HtmlNumber("%.1f", width_percent) + "%\" viewBox=\"0 0 " +
+         std::to_string(clip.frame_count) + " 1\" preserveAspectRatio=\"none\">";
+  for (const TimelineMark& mark : *clip_marks) {
+    const std::string id = std::to_string(mark.motif_id);
+    // The colour comes from the motif's class; a click is handled by the page's script. Both
+    // keep the thousands of rectangles of a large archive short.
+    out += "<rect class=\"c" + id + "\" x=\"" + std::to_string(mark.start) + "\" width=\"" +
+           std::to_string(mark.end - mark.start) + "\" height=\"1\"><title>motif " + id +
+           ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) + " (" +
+           HtmlSeconds(mark.end - mark.start, fps) + ")</title></rect>";
+  }
+  out += "</svg></span></div>\n";
+}
+
 void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reader,
                     std::string* html) {
   const double fps = reader.fps();
-  struct Mark {
-    uint64_t start = 0;
-    uint64_t end = 0;
-    uint32_t motif_id = 0;
-  };
-  std::unordered_map<std::string, std::vector<Mark>> marks;
+  std::unordered_map<std::string, std::vector<TimelineMark>> marks;
   for (const MotifsJsonMotif& motif : document.motifs) {
     for (const MotifsJsonInstance& instance : motif.instances) {
       marks[instance.clip].push_back({instance.start, instance.end, motif.id});
@@ -314,32 +357,7 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
       empty_clips.push_back(&clip);
       continue;
     }
-    std::vector<Mark>& clip_marks = found->second;
-    std::sort(clip_marks.begin(), clip_marks.end(),
-              [](const Mark& a, const Mark& b) { return a.start < b.start; });
-    const std::string name = HtmlEscape(clip.name);
-    const double width_percent =
-        std::max(2.0, 100.0 * static_cast<double>(clip.frame_count) / longest);
-    // The take's description, when the import was given one, after its name.
-    const std::string described =
-        clip.description.empty() ? std::string() : " \u2014 " + HtmlEscape(clip.description);
-    out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + described + " (" +
-           HtmlCount(clip.frame_count, "frame") + ")\">" + name +
-           (described.empty() ? "" : "<small>" + described + "</small>") +
-           "</span><span class=\"w\"><svg " +
-           "class=\"tl\" style=\"width:" + HtmlNumber("%.1f", width_percent) +
-           "%\" viewBox=\"0 0 " + std::to_string(clip.frame_count) +
-           " 1\" preserveAspectRatio=\"none\">";
-    for (const Mark& mark : clip_marks) {
-      const std::string id = std::to_string(mark.motif_id);
-      // The colour comes from the motif's class; a click is handled by the page's script. Both
-      // keep the thousands of rectangles of a large archive short.
-      out += "<rect class=\"c" + id + "\" x=\"" + std::to_string(mark.start) + "\" width=\"" +
-             std::to_string(mark.end - mark.start) + "\" height=\"1\"><title>motif " + id +
-             ", frames " + std::to_string(mark.start) + "\u2013" + std::to_string(mark.end) + " (" +
-             HtmlSeconds(mark.end - mark.start, fps) + ")</title></rect>";
-    }
-    out += "</svg></span></div>\n";
+    AppendTimelineBar(clip, &found->second, longest, fps, &out);
   }
   if (!empty_clips.empty()) {
     out += "<details><summary>" + HtmlCount(empty_clips.size(), "clip") +
@@ -353,32 +371,22 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
   out += "</section>\n";
 }
 
-}  // namespace
+using ReportClipsByName = std::unordered_map<std::string, const ClipInfo*>;
 
-Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFileReader& reader,
-                                   const ReportInfo& info, const ReportOptions& options) {
-  MOTIF_RETURN_IF_ERROR(CheckMotifsMatchArchive(document, "the motifs document", reader));
-  const double fps = reader.fps();
-  std::unordered_map<std::string, const ClipInfo*> clips_by_name;
-  for (const ClipInfo& clip : reader.clips()) clips_by_name.emplace(clip.name, &clip);
-
-  // Instances, coverage, and the strips to draw, in archive order.
+uint64_t CountInstances(const MotifsDocument& document) {
   uint64_t instance_count = 0;
+  for (const MotifsJsonMotif& motif : document.motifs) instance_count += motif.instances.size();
+  return instance_count;
+}
+
+// Frames of the archive inside some instance: instances overlap (within and across motifs), so
+// their global ranges are merged in start order and each frame counts once.
+uint64_t CoveredFrames(const MotifsDocument& document, const ReportClipsByName& clips_by_name) {
   std::vector<GlobalRange> ranges;
-  std::vector<std::vector<size_t>> chosen(document.motifs.size());
-  std::vector<FigureJob> jobs;
-  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
-    const MotifsJsonMotif& motif = document.motifs[motif_idx];
-    instance_count += motif.instances.size();
+  for (const MotifsJsonMotif& motif : document.motifs) {
     for (const MotifsJsonInstance& instance : motif.instances) {
       const uint64_t first = clips_by_name.at(instance.clip)->first_frame;
       ranges.push_back({first + instance.start, first + instance.end});
-    }
-    chosen[motif_idx] = ChooseInstances(motif, options.instances_per_motif);
-    for (size_t slot = 0; slot < chosen[motif_idx].size(); ++slot) {
-      const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
-      jobs.push_back(
-          {motif_idx, slot, clips_by_name.at(instance.clip), instance.start, instance.end});
     }
   }
   std::sort(ranges.begin(), ranges.end(),
@@ -390,24 +398,58 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     if (range.end > from) covered_frames += range.end - from;
     covered_until = std::max(covered_until, range.end);
   }
+  return covered_frames;
+}
 
-  // Figures: SVG for the eager motifs, encoded points for the rest.
+// The instances drawn for each motif (ChooseInstances), and their keyframe strips: SVG for the
+// eager motifs, encoded points (EncodeFigurePoints) for the page's script to draw.
+struct FigureStrips {
+  std::vector<std::vector<size_t>> chosen;       // per motif, indices into its instances
+  std::vector<std::vector<std::string>> strips;  // per motif, per chosen instance
+};
+
+// One job per drawn instance, in archive order so that each block is decoded about once.
+std::vector<FigureJob> FigureJobsInArchiveOrder(const MotifsDocument& document,
+                                                const std::vector<std::vector<size_t>>& chosen,
+                                                const ReportClipsByName& clips_by_name) {
+  std::vector<FigureJob> jobs;
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    const MotifsJsonMotif& motif = document.motifs[motif_idx];
+    for (size_t slot = 0; slot < chosen[motif_idx].size(); ++slot) {
+      const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
+      jobs.push_back(
+          {motif_idx, slot, clips_by_name.at(instance.clip), instance.start, instance.end});
+    }
+  }
   std::sort(jobs.begin(), jobs.end(), [](const FigureJob& a, const FigureJob& b) {
     const uint64_t a_start = a.clip->first_frame + a.start;
     const uint64_t b_start = b.clip->first_frame + b.start;
     return a_start != b_start ? a_start < b_start
                               : std::tie(a.motif_idx, a.slot) < std::tie(b.motif_idx, b.slot);
   });
-  KeyframeFigures renderer(reader, options.view, options.keyframes);
-  const FigureProjection& projection = renderer.projection();
-  std::vector<std::vector<std::string>> strips(document.motifs.size());
+  return jobs;
+}
+
+Result<FigureStrips> DrawFigureStrips(const MotifsDocument& document, const ReportOptions& options,
+                                      const ReportClipsByName& clips_by_name,
+                                      KeyframeFigures& renderer) {
+  FigureStrips figures;
+  figures.chosen.resize(document.motifs.size());
   for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
-    strips[motif_idx].resize(chosen[motif_idx].size());
+    figures.chosen[motif_idx] =
+        ChooseInstances(document.motifs[motif_idx], options.instances_per_motif);
+  }
+  const std::vector<FigureJob> jobs =
+      FigureJobsInArchiveOrder(document, figures.chosen, clips_by_name);
+  const FigureProjection& projection = renderer.projection();
+  figures.strips.resize(document.motifs.size());
+  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+    figures.strips[motif_idx].resize(figures.chosen[motif_idx].size());
   }
   for (const FigureJob& job : jobs) {
     MOTIF_ASSIGN_OR_RETURN(std::vector<std::vector<FigurePoint>> keyframes,
                            renderer.Project(*job.clip, job.start, job.end));
-    std::string& strip = strips[job.motif_idx][job.slot];
+    std::string& strip = figures.strips[job.motif_idx][job.slot];
     const bool eager = job.motif_idx < options.eager_motifs;
     for (const std::vector<FigurePoint>& points : keyframes) {
       strip += eager ? StickFigureSvg(renderer.layout(), points, projection.width_px,
@@ -415,37 +457,84 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
                      : EncodeFigurePoints(points);
     }
   }
+  return figures;
+}
 
-  const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
-  std::string html;
-  html.reserve(1 << 20);
+// The page's start: a colour class per motif (the timeline, swatches and strips use it) and the
+// navigation.
+void AppendReportPageStart(const MotifsDocument& document, const std::string& archive,
+                           std::string* html) {
   std::string motif_css;
   for (const MotifsJsonMotif& motif : document.motifs) {
     motif_css += ".c" + std::to_string(motif.id) + "{color:" + HtmlColour(motif.id) + "}\n";
   }
-  html += HtmlPageStart("motifmine report: " + archive, motif_css);
-  html +=
+  *html += HtmlPageStart("motifmine report: " + archive, motif_css);
+  *html +=
       "<h1>motifmine report</h1>\n<nav><a href=\"#overview\">"
       "overview</a><a href=\"#timeline\">timeline</a><a href=\"#motifs\">motifs</a></nav>\n";
-  AppendOverview(document, reader, info, options, instance_count, covered_frames, &html);
-  AppendTimeline(document, reader, &html);
+}
 
-  MOTIF_ASSIGN_OR_RETURN(PlaybackBlocks playback,
-                         PlaybackData(document, reader, renderer.layout(), archive, clips_by_name,
-                                      options.playback_bytes));
-  html += "<section id=\"motifs\"><h2>Motifs</h2>";
-  if (document.motifs.empty()) html += "<p>No motifs were found.</p>";
-  if (document.motifs.size() > options.eager_motifs) {
-    html += "<p class=\"note\">Figures of motifs after the first " +
-            std::to_string(options.eager_motifs) +
-            " are drawn as they scroll into view. <button id=\"draw-all\" type=\"button\">"
-            "Draw all figures</button> (before printing)</p>";
+// Writes the "Motifs" section, one <section> per motif in rank order, and gathers the lazy
+// motifs' encoded strips (lazy_json()) for the pose-data block the page's script draws from.
+class MotifSectionsWriter {
+ public:
+  MotifSectionsWriter(const MotifsDocument& document, const ReportOptions& options,
+                      const ReportClipsByName& clips_by_name, const KeyframeFigures& renderer,
+                      double fps, const PlaybackBlocks& playback, const FigureStrips& figures)
+      : document_(document),
+        options_(options),
+        clips_by_name_(clips_by_name),
+        renderer_(renderer),
+        fps_(fps),
+        playback_(playback),
+        figures_(figures) {}
+
+  void Append(std::string* html) {
+    *html += "<section id=\"motifs\"><h2>Motifs</h2>";
+    if (document_.motifs.empty()) *html += "<p>No motifs were found.</p>";
+    if (document_.motifs.size() > options_.eager_motifs) {
+      *html += "<p class=\"note\">Figures of motifs after the first " +
+               std::to_string(options_.eager_motifs) +
+               " are drawn as they scroll into view. <button id=\"draw-all\" type=\"button\">"
+               "Draw all figures</button> (before printing)</p>";
+    }
+    *html += "\n";
+    for (size_t motif_idx = 0; motif_idx < document_.motifs.size(); ++motif_idx) {
+      AppendMotif(motif_idx, html);
+    }
+    *html += "</section>\n";
   }
-  html += "\n";
-  std::string lazy_json;
-  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
-    const MotifsJsonMotif& motif = document.motifs[motif_idx];
+
+  // "id":["strip",...] per lazy motif, comma-separated; empty when every motif is eager.
+  const std::string& lazy_json() const { return lazy_json_; }
+
+ private:
+  void AppendMotif(size_t motif_idx, std::string* html) {
+    const MotifsJsonMotif& motif = document_.motifs[motif_idx];
     const std::string id = std::to_string(motif.id);
+    const size_t count = motif.instances.size();
+    *html += "<section class=\"motif\" id=\"m" + id + "\"><h3><span class=\"sw c" + id +
+             "\"></span>motif " + id + "</h3><p class=\"meta\">";
+    AppendLengthsAndClips(motif, html);
+    *html += "</p><div class=\"playbox\">";
+    AppendPlayBox(motif_idx, html);
+    const bool eager = motif_idx < options_.eager_motifs;
+    *html += "</div><div class=\"insts c" + id + "\"" +
+             (eager ? std::string() : " data-m=\"" + id + "\"") + ">";
+    AppendStrips(motif_idx, html);
+    *html += "</div>";
+    const size_t drawn = figures_.chosen[motif_idx].size();
+    if (count > drawn) {
+      const size_t more = count - drawn;
+      *html += "<p class=\"note\">" + HtmlCommas(more) +
+               (more == 1 ? " more instance not drawn" : " more instances not drawn") +
+               " (all of them are in the timeline above and in motifs.json).</p>";
+    }
+    *html += "</section>\n";
+  }
+
+  // "N instances · M frames (s) on average, shortest–longest · C clips: names".
+  void AppendLengthsAndClips(const MotifsJsonMotif& motif, std::string* html) const {
     uint64_t total_frames = 0;
     uint64_t shortest = UINT64_MAX;
     uint64_t longest = 0;
@@ -459,108 +548,161 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
     }
     const size_t count = motif.instances.size();
     const uint64_t mean = count ? (total_frames + count / 2) / count : 0;
-    html += "<section class=\"motif\" id=\"m" + id + "\"><h3><span class=\"sw c" + id +
-            "\"></span>motif " + id + "</h3><p class=\"meta\">" + HtmlCommas(count) +
-            (count == 1 ? " instance" : " instances") + " &middot; " + HtmlCommas(mean) +
-            " frames (" + HtmlSeconds(mean, fps) + ") on average";
+    *html += HtmlCommas(count) + (count == 1 ? " instance" : " instances") + " &middot; " +
+             HtmlCommas(mean) + " frames (" + HtmlSeconds(mean, fps_) + ") on average";
     if (count > 1 && shortest != longest) {
-      html += ", " + HtmlCommas(shortest) + "\u2013" + HtmlCommas(longest);
+      *html += ", " + HtmlCommas(shortest) + "\u2013" + HtmlCommas(longest);
     }
-    html += " &middot; " + HtmlCommas(clip_names.size()) +
-            (clip_names.size() == 1 ? " clip: " : " clips: ");
-    for (size_t idx = 0; idx < clip_names.size() && idx < options.clip_names_per_motif; ++idx) {
-      if (idx > 0) html += ", ";
-      html += HtmlEscape(clip_names[idx]);
-      const std::string& description = clips_by_name.at(clip_names[idx])->description;
-      if (!description.empty()) html += " (" + HtmlEscape(description) + ")";
+    *html += " &middot; " + HtmlCommas(clip_names.size()) +
+             (clip_names.size() == 1 ? " clip: " : " clips: ");
+    AppendClipNames(clip_names, html);
+  }
+
+  // The first clip_names_per_motif clips, each with its description, then "+N more".
+  void AppendClipNames(const std::vector<std::string>& clip_names, std::string* html) const {
+    for (size_t idx = 0; idx < clip_names.size() && idx < options_.clip_names_per_motif; ++idx) {
+      if (idx > 0) *html += ", ";
+      *html += HtmlEscape(clip_names[idx]);
+      const std::string& description = clips_by_name_.at(clip_names[idx])->description;
+      if (!description.empty()) *html += " (" + HtmlEscape(description) + ")";
     }
-    if (clip_names.size() > options.clip_names_per_motif) {
-      html += " +" + HtmlCommas(clip_names.size() - options.clip_names_per_motif) + " more";
+    if (clip_names.size() > options_.clip_names_per_motif) {
+      *html += " +" + HtmlCommas(clip_names.size() - options_.clip_names_per_motif) + " more";
     }
-    const bool eager = motif_idx < options.eager_motifs;
-    html += "</p><div class=\"playbox\">";
+  }
+
+  // The play button, or why this motif has no player in the page.
+  void AppendPlayBox(size_t motif_idx, std::string* html) const {
+    const MotifsJsonMotif& motif = document_.motifs[motif_idx];
+    const size_t count = motif.instances.size();
     if (motif.instances.empty()) {
       // nothing to play
-    } else if (options.playback_bytes == 0) {
-      html += "<p class=\"note\">No player in this page (<code>--playback-mb 0</code>).</p>";
-    } else if (playback.motifs[motif_idx].empty()) {
-      html += "<p class=\"note\">Playback of this motif is not in the page (over its " +
-              HtmlBytes(options.playback_bytes) +
-              " of playback data): <code>motifmine report DIR --playback-mb N</code> raises "
-              "the limit.</p>";
+    } else if (options_.playback_bytes == 0) {
+      *html += "<p class=\"note\">No player in this page (<code>--playback-mb 0</code>).</p>";
+    } else if (playback_.motifs[motif_idx].empty()) {
+      *html += "<p class=\"note\">Playback of this motif is not in the page (over its " +
+               HtmlBytes(options_.playback_bytes) +
+               " of playback data): <code>motifmine report DIR --playback-mb N</code> raises "
+               "the limit.</p>";
     } else {
-      html +=
-          "<button type=\"button\" class=\"play\" data-play=\"" + id + "\">&#9654; play " +
+      *html +=
+          "<button type=\"button\" class=\"play\" data-play=\"" + std::to_string(motif.id) +
+          "\">&#9654; play " +
           (count == 1 ? std::string("the instance") : "all " + HtmlCommas(count) + " instances") +
           "</button>";
     }
-    html += "</div><div class=\"insts c" + id + "\"" +
-            (eager ? std::string() : " data-m=\"" + id + "\"") + ">";
+  }
+
+  // A labelled strip per drawn instance: its figures inline when the motif is eager, else in
+  // lazy_json_ (the strip's box stays empty until the script fills it).
+  void AppendStrips(size_t motif_idx, std::string* html) {
+    const MotifsJsonMotif& motif = document_.motifs[motif_idx];
+    const std::vector<size_t>& chosen = figures_.chosen[motif_idx];
+    const std::vector<std::string>& strips = figures_.strips[motif_idx];
+    const bool eager = motif_idx < options_.eager_motifs;
     if (!eager) {
-      if (!lazy_json.empty()) lazy_json += ",\n";
-      lazy_json += "\"" + id + "\":[";
+      if (!lazy_json_.empty()) lazy_json_ += ",\n";
+      lazy_json_ += "\"" + std::to_string(motif.id) + "\":[";
     }
-    for (size_t slot = 0; slot < chosen[motif_idx].size(); ++slot) {
-      const MotifsJsonInstance& instance = motif.instances[chosen[motif_idx][slot]];
+    for (size_t slot = 0; slot < chosen.size(); ++slot) {
+      const MotifsJsonInstance& instance = motif.instances[chosen[slot]];
       std::string keyframes;
-      for (uint64_t frame : renderer.KeyframeFrames(instance.start, instance.end)) {
+      for (uint64_t frame : renderer_.KeyframeFrames(instance.start, instance.end)) {
         keyframes += (keyframes.empty() ? "" : " \u00b7 ") + std::to_string(frame);
       }
-      html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(instance.clip) + " " +
-              std::to_string(instance.start) + "\u2013" + std::to_string(instance.end) + " (" +
-              HtmlSeconds(instance.length(), fps) + ")<br><span class=\"kf\">frames " + keyframes +
-              "</span></div><div class=\"figs\">" +
-              (eager ? strips[motif_idx][slot] : std::string()) + "</div></div>";
+      *html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(instance.clip) + " " +
+               std::to_string(instance.start) + "\u2013" + std::to_string(instance.end) + " (" +
+               HtmlSeconds(instance.length(), fps_) + ")<br><span class=\"kf\">frames " +
+               keyframes + "</span></div><div class=\"figs\">" +
+               (eager ? strips[slot] : std::string()) + "</div></div>";
       if (!eager) {
-        if (slot > 0) lazy_json += ",";
-        lazy_json += "\"" + strips[motif_idx][slot] + "\"";
+        if (slot > 0) lazy_json_ += ",";
+        lazy_json_ += "\"" + strips[slot] + "\"";
       }
     }
-    if (!eager) lazy_json += "]";
-    html += "</div>";
-    if (count > chosen[motif_idx].size()) {
-      const size_t more = count - chosen[motif_idx].size();
-      html += "<p class=\"note\">" + HtmlCommas(more) +
-              (more == 1 ? " more instance not drawn" : " more instances not drawn") +
-              " (all of them are in the timeline above and in motifs.json).</p>";
-    }
-    html += "</section>\n";
+    if (!eager) lazy_json_ += "]";
   }
-  html += "</section>\n";
 
-  if (!lazy_json.empty()) {
-    const StickFigureLayout& layout = renderer.layout();
-    html += "<script type=\"application/json\" id=\"pose-data\">{\"w\":" +
-            FormatFigureCoord(projection.width_px) +
-            ",\"h\":" + FormatFigureCoord(projection.height_px) +
-            ",\"points\":" + std::to_string(layout.points.size()) +
-            ",\"min\":" + std::to_string(std::lround(kFigureCoordMin * 10)) + ",\"chains\":[";
-    for (size_t chain_idx = 0; chain_idx < layout.chains.size(); ++chain_idx) {
-      html += chain_idx ? ",[" : "[";
-      for (size_t step = 0; step < layout.chains[chain_idx].size(); ++step) {
-        if (step > 0) html += ",";
-        html += std::to_string(layout.chains[chain_idx][step]);
-      }
-      html += "]";
+  const MotifsDocument& document_;
+  const ReportOptions& options_;
+  const ReportClipsByName& clips_by_name_;
+  const KeyframeFigures& renderer_;
+  const double fps_;
+  const PlaybackBlocks& playback_;
+  const FigureStrips& figures_;
+  std::string lazy_json_;
+};
+
+// The lazy motifs' strips with what the script needs to draw them (format: kScript's fig()):
+// the figure's size, points per figure, the coordinates' offset and the layout's chains.
+void AppendPoseData(const std::string& lazy_json, const KeyframeFigures& renderer,
+                    std::string* html) {
+  if (lazy_json.empty()) return;
+  const StickFigureLayout& layout = renderer.layout();
+  const FigureProjection& projection = renderer.projection();
+  *html += "<script type=\"application/json\" id=\"pose-data\">{\"w\":" +
+           FormatFigureCoord(projection.width_px) +
+           ",\"h\":" + FormatFigureCoord(projection.height_px) +
+           ",\"points\":" + std::to_string(layout.points.size()) +
+           ",\"min\":" + std::to_string(std::lround(kFigureCoordMin * 10)) + ",\"chains\":[";
+  for (size_t chain_idx = 0; chain_idx < layout.chains.size(); ++chain_idx) {
+    *html += chain_idx ? ",[" : "[";
+    for (size_t step = 0; step < layout.chains[chain_idx].size(); ++step) {
+      if (step > 0) *html += ",";
+      *html += std::to_string(layout.chains[chain_idx][step]);
     }
-    html += "],\"motifs\":{\n" + lazy_json + "}}</script>\n";
+    *html += "]";
   }
-  // The player's data after the page's content, decoded only when a player opens; none, and no
-  // player script, when no motif has a player.
+  *html += "],\"motifs\":{\n" + lazy_json + "}}</script>\n";
+}
+
+// The player's data after the page's content, decoded only when a player opens; none, and no
+// player script, when no motif has a player. Then the page's scripts.
+void AppendPlaybackAndScripts(const MotifsDocument& document, const PlaybackBlocks& playback,
+                              std::string* html) {
   const bool any_player = std::any_of(playback.motifs.begin(), playback.motifs.end(),
                                       [](const std::string& motif) { return !motif.empty(); });
   if (any_player) {
-    html +=
+    *html +=
         "<script type=\"application/json\" id=\"play-figure\">" + playback.figure + "</script>\n";
   }
   for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
     if (playback.motifs[motif_idx].empty()) continue;
-    html += "<script type=\"application/json\" id=\"play-" +
-            std::to_string(document.motifs[motif_idx].id) + "\">" + playback.motifs[motif_idx] +
-            "</script>\n";
+    *html += "<script type=\"application/json\" id=\"play-" +
+             std::to_string(document.motifs[motif_idx].id) + "\">" + playback.motifs[motif_idx] +
+             "</script>\n";
   }
-  html += std::string("<script>") + kScript + "</script>\n";
-  if (any_player) html += std::string("<script>") + kInstancePlayerScript + "</script>\n";
+  *html += std::string("<script>") + kScript + "</script>\n";
+  if (any_player) *html += std::string("<script>") + kInstancePlayerScript + "</script>\n";
+}
+
+}  // namespace
+
+Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFileReader& reader,
+                                   const ReportInfo& info, const ReportOptions& options) {
+  MOTIF_RETURN_IF_ERROR(CheckMotifsMatchArchive(document, "the motifs document", reader));
+  ReportClipsByName clips_by_name;
+  for (const ClipInfo& clip : reader.clips()) clips_by_name.emplace(clip.name, &clip);
+  const uint64_t instance_count = CountInstances(document);
+  const uint64_t covered_frames = CoveredFrames(document, clips_by_name);
+  KeyframeFigures renderer(reader, options.view, options.keyframes);
+  MOTIF_ASSIGN_OR_RETURN(FigureStrips figures,
+                         DrawFigureStrips(document, options, clips_by_name, renderer));
+
+  const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
+  std::string html;
+  html.reserve(1 << 20);
+  AppendReportPageStart(document, archive, &html);
+  AppendOverview(document, reader, info, options, instance_count, covered_frames, &html);
+  AppendTimeline(document, reader, &html);
+  MOTIF_ASSIGN_OR_RETURN(PlaybackBlocks playback,
+                         PlaybackData(document, reader, renderer.layout(), archive, clips_by_name,
+                                      options.playback_bytes));
+  MotifSectionsWriter sections(document, options, clips_by_name, renderer, reader.fps(), playback,
+                               figures);
+  sections.Append(&html);
+  AppendPoseData(sections.lazy_json(), renderer, &html);
+  AppendPlaybackAndScripts(document, playback, &html);
   html += HtmlPageEnd();
   return html;
 }

@@ -33,6 +33,54 @@ std::string Shade(double value, double lo, double hi) {
          std::to_string(std::min(255, level + 20)) + ")";
 }
 
+// The query's table, and its keyframes: from the archive, or the query file fitted to it.
+Status AppendSearchQuery(const SearchResult& result, const FrameFileReader& reader,
+                         const SearchPageInfo& info, KeyframeFigures* figures, std::string* html) {
+  *html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
+  *html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
+                                  HtmlCommas(reader.clips().size()) + " clips)");
+  *html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
+                                (info.query_words == 1 ? " word" : " words"));
+  *html += HtmlRow("search", result.whole_take
+                                 ? "whole takes: the EMD between take signatures over " +
+                                       std::to_string(info.motifs) + " motifs"
+                                 : "a window of " + HtmlCommas(info.query_words) +
+                                       " words slid along every take, one word at a time (" +
+                                       HtmlCommas(result.windows) + " windows); EMD over " +
+                                       std::to_string(info.motifs) + " motifs");
+  *html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
+  *html += "</table>\n";
+  if (info.query_in_archive) {
+    const ClipInfo& clip = reader.clips()[info.query_clip];
+    MOTIF_ASSIGN_OR_RETURN(std::string svg, figures->Svg(clip, info.query_start, info.query_end));
+    *html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(clip.name) + " " +
+             std::to_string(info.query_start) + "\u2013" + std::to_string(info.query_end) +
+             "</div><div class=\"figs\">" + svg + "</div></div>\n";
+  } else if (info.query_take != nullptr && info.query_take->frame_count() > 0) {
+    const std::string svg = figures->TakeSvg(*info.query_take);
+    *html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(info.query_text) + ", " +
+             HtmlCount(info.query_take->frame_count(), "frame") + " at the archive's rate" +
+             "</div><div class=\"figs\">" + svg + "</div></div>\n";
+  }
+  return Status::Ok();
+}
+
+// The strip of the EMD of every window along a match's take, darker where closer (shaded
+// between lo and hi); the box marks the match's window.
+void AppendWindowProfile(const std::vector<float>& profile, uint64_t best_window, double lo,
+                         double hi, std::string* html) {
+  *html += "<svg class=\"heat\" viewBox=\"0 0 " + std::to_string(profile.size()) +
+           " 1\" preserveAspectRatio=\"none\">";
+  for (size_t window = 0; window < profile.size(); ++window) {
+    if (std::isnan(profile[window])) continue;
+    *html += "<rect x=\"" + std::to_string(window) + "\" width=\"1\" height=\"1\" fill=\"" +
+             Shade(profile[window], lo, hi) + "\"><title>window at word " + std::to_string(window) +
+             ": EMD " + HtmlNumber("%.4f", profile[window]) + "</title></rect>";
+  }
+  *html += "<rect class=\"best\" x=\"" + std::to_string(best_window) +
+           "\" width=\"1\" height=\"1\"/></svg>";
+}
+
 }  // namespace
 
 Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileReader& reader,
@@ -40,38 +88,14 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
   const double fps = reader.fps();
   KeyframeFigures figures(reader, FigureView::kSide, 5);
   std::string html = HtmlPageStart("motifmine search: " + info.archive, kWordsCss);
-  html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
-  html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
-                                 HtmlCommas(reader.clips().size()) + " clips)");
-  html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
-                               (info.query_words == 1 ? " word" : " words"));
-  html += HtmlRow("search", result.whole_take
-                                ? "whole takes: the EMD between take signatures over " +
-                                      std::to_string(info.motifs) + " motifs"
-                                : "a window of " + HtmlCommas(info.query_words) +
-                                      " words slid along every take, one word at a time (" +
-                                      HtmlCommas(result.windows) + " windows); EMD over " +
-                                      std::to_string(info.motifs) + " motifs");
-  html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
-  html += "</table>\n";
-  if (info.query_in_archive) {
-    const ClipInfo& clip = reader.clips()[info.query_clip];
-    MOTIF_ASSIGN_OR_RETURN(std::string svg, figures.Svg(clip, info.query_start, info.query_end));
-    html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(clip.name) + " " +
-            std::to_string(info.query_start) + "\u2013" + std::to_string(info.query_end) +
-            "</div><div class=\"figs\">" + svg + "</div></div>\n";
-  } else if (info.query_take != nullptr && info.query_take->frame_count() > 0) {
-    const std::string svg = figures.TakeSvg(*info.query_take);
-    html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(info.query_text) + ", " +
-            HtmlCount(info.query_take->frame_count(), "frame") + " at the archive's rate" +
-            "</div><div class=\"figs\">" + svg + "</div></div>\n";
-  }
+  MOTIF_RETURN_IF_ERROR(AppendSearchQuery(result, reader, info, &figures, &html));
   html +=
       "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "
       "one per take (its best window). The strip under each match shows the EMD of every "
       "window along its take, darker where closer; the box marks the match. Frames are "
       "0-based within the clip, the end excluded.</p>\n";
   if (result.matches.empty()) html += "<p>No take holds enough words for the query.</p>\n";
+  // One shade scale for every profile on the page.
   double lo = std::numeric_limits<double>::infinity();
   double hi = 0;
   for (const std::vector<float>& profile : result.profiles) {
@@ -92,17 +116,7 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
             "</span></h3><div class=\"figs\">" + svg + "</div>";
     const std::vector<float>& profile = result.profiles[rank];
     if (!result.whole_take && !profile.empty()) {
-      html += "<svg class=\"heat\" viewBox=\"0 0 " + std::to_string(profile.size()) +
-              " 1\" preserveAspectRatio=\"none\">";
-      for (size_t window = 0; window < profile.size(); ++window) {
-        if (std::isnan(profile[window])) continue;
-        html += "<rect x=\"" + std::to_string(window) + "\" width=\"1\" height=\"1\" fill=\"" +
-                Shade(profile[window], lo, hi) + "\"><title>window at word " +
-                std::to_string(window) + ": EMD " + HtmlNumber("%.4f", profile[window]) +
-                "</title></rect>";
-      }
-      html += "<rect class=\"best\" x=\"" + std::to_string(match.first_word) +
-              "\" width=\"1\" height=\"1\"/></svg>";
+      AppendWindowProfile(profile, match.first_word, lo, hi, &html);
     }
     html += "</div>\n";
   }
@@ -116,32 +130,33 @@ Status WriteSearchHtml(const std::string& path, const SearchResult& result,
   return AtomicWriteFile(path, html);
 }
 
-std::string ClassificationHtmlText(const TakeClassification& r, const std::string& archive) {
-  const size_t n = r.names.size();
-  const bool labelled = !r.label_names.empty();
+namespace {
+
+// A colour class per group and per label (the map's dots, the swatches).
+std::string ClassifyPageCss(const TakeClassification& r) {
   std::string css = kWordsCss;
   for (uint32_t id = 0; id < std::max<size_t>(r.group_count, r.label_names.size()); ++id) {
     css +=
         ".c" + std::to_string(id) + "{color:" + HtmlColour(id) + ";fill:" + HtmlColour(id) + "}\n";
   }
-  std::string html = HtmlPageStart("motifmine classify: " + archive, css);
-  html +=
-      "<h1>motifmine classify</h1>\n<nav><a href=\"#overview\">overview</a><a "
-      "href=\"#map\">map</a>" +
-      std::string(labelled ? "<a href=\"#confusion\">confusion</a>" : "") +
-      "<a href=\"#matrix\">distances</a><a href=\"#takes\">takes</a></nav>\n";
-  html += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">";
-  html += HtmlRow("archive", "<code>" + HtmlEscape(archive) + "</code>");
+  return css;
+}
+
+void AppendClassifyOverview(const TakeClassification& r, const std::string& archive,
+                            std::string* html) {
+  const bool labelled = !r.label_names.empty();
+  *html += "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">";
+  *html += HtmlRow("archive", "<code>" + HtmlEscape(archive) + "</code>");
   const std::string distance_text =
       r.distance == "emd"      ? "Earth Mover's Distance between TF-IDF motion signatures"
       : r.distance == "emd-tf" ? "Earth Mover's Distance between signatures without TF-IDF"
                                : "dynamic time warping over the takes' frames";
-  html += HtmlRow("distance", HtmlEscape(r.distance) + ": " + distance_text + " (" +
-                                  HtmlNumber("%.2f s", r.seconds_distances) + ")");
-  html += HtmlRow(
-      "takes", HtmlCommas(n) + (labelled ? ", " + HtmlCommas(r.knn.labelled) + " labelled with " +
-                                               std::to_string(r.label_names.size()) + " labels"
-                                         : std::string()));
+  *html += HtmlRow("distance", HtmlEscape(r.distance) + ": " + distance_text + " (" +
+                                   HtmlNumber("%.2f s", r.seconds_distances) + ")");
+  *html += HtmlRow("takes", HtmlCommas(r.names.size()) +
+                                (labelled ? ", " + HtmlCommas(r.knn.labelled) + " labelled with " +
+                                                std::to_string(r.label_names.size()) + " labels"
+                                          : std::string()));
   std::string unsupervised = "classical MDS into " + std::to_string(r.mds.coordinates.cols()) +
                              " dimensions, then k-means into " + std::to_string(r.group_count) +
                              " groups";
@@ -150,102 +165,135 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
                     HtmlNumber("%.3f", r.adjusted_rand_index) + ", purity " +
                     HtmlNumber("%.3f", r.purity);
   }
-  html += HtmlRow("unsupervised", unsupervised);
+  *html += HtmlRow("unsupervised", unsupervised);
   if (labelled) {
-    html += HtmlRow("supervised", std::to_string(r.knn.k) +
-                                      "-nearest-neighbour, leave one out: "
-                                      "accuracy <b>" +
-                                      HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
-                                      HtmlCommas(r.knn.correct) + " of " +
-                                      HtmlCommas(r.knn.labelled) + ")");
-    html += HtmlRow("retrieval", "whole-take precision@" + std::to_string(r.top) + " <b>" +
-                                     HtmlNumber("%.3f", r.precision_at_top) + "</b>");
+    *html += HtmlRow("supervised", std::to_string(r.knn.k) +
+                                       "-nearest-neighbour, leave one out: "
+                                       "accuracy <b>" +
+                                       HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
+                                       HtmlCommas(r.knn.correct) + " of " +
+                                       HtmlCommas(r.knn.labelled) + ")");
+    *html += HtmlRow("retrieval", "whole-take precision@" + std::to_string(r.top) + " <b>" +
+                                      HtmlNumber("%.3f", r.precision_at_top) + "</b>");
   }
-  html += "</table></section>\n";
+  *html += "</table></section>\n";
+}
 
-  // The MDS map: first two coordinates, by group and by label.
-  html +=
-      "<section id=\"map\"><h2>MDS map</h2><p class=\"note\">The takes at their first two "
-      "MDS coordinates; hover for the clip. Left: coloured by unsupervised group";
-  html += labelled ? "; right: by label.</p>" : ".</p>";
-  const Eigen::Index dims = r.mds.coordinates.cols();
-  double min_x = 0, max_x = 1, min_y = 0, max_y = 1;
-  if (n > 0) {
-    min_x = max_x = r.mds.coordinates(0, 0);
-    min_y = max_y = dims > 1 ? r.mds.coordinates(0, 1) : 0.0;
+// The takes at their first two MDS coordinates (the second is 0 with one dimension), scaled
+// into a square of `size` pixels with a 12-pixel margin.
+class MdsMapDrawer {
+ public:
+  explicit MdsMapDrawer(const TakeClassification& r) : r_(r) {
+    const size_t n = r.names.size();
+    if (n == 0) return;
+    min_x_ = max_x_ = X(0);
+    min_y_ = max_y_ = Y(0);
     for (size_t take = 0; take < n; ++take) {
-      const double x = r.mds.coordinates(static_cast<Eigen::Index>(take), 0);
-      const double y = dims > 1 ? r.mds.coordinates(static_cast<Eigen::Index>(take), 1) : 0.0;
-      min_x = std::min(min_x, x);
-      max_x = std::max(max_x, x);
-      min_y = std::min(min_y, y);
-      max_y = std::max(max_y, y);
+      min_x_ = std::min(min_x_, X(take));
+      max_x_ = std::max(max_x_, X(take));
+      min_y_ = std::min(min_y_, Y(take));
+      max_y_ = std::max(max_y_, Y(take));
     }
   }
-  const double size = 420;
-  auto map = [&](bool by_label) {
-    std::string svg = "<svg class=\"map\" width=\"" + HtmlNumber("%.0f", size) + "\" height=\"" +
-                      HtmlNumber("%.0f", size) + "\">";
-    for (size_t take = 0; take < n; ++take) {
-      const double x = r.mds.coordinates(static_cast<Eigen::Index>(take), 0);
-      const double y = dims > 1 ? r.mds.coordinates(static_cast<Eigen::Index>(take), 1) : 0.0;
-      const double px = 12 + (size - 24) * (max_x > min_x ? (x - min_x) / (max_x - min_x) : 0.5);
-      const double py = 12 + (size - 24) * (max_y > min_y ? (max_y - y) / (max_y - min_y) : 0.5);
-      const uint32_t label = r.labels[take];
+
+  // One dot per take, coloured by its group or by its label (grey when unlabelled).
+  std::string Svg(bool by_label) const {
+    std::string svg = "<svg class=\"map\" width=\"" + HtmlNumber("%.0f", kSize) + "\" height=\"" +
+                      HtmlNumber("%.0f", kSize) + "\">";
+    for (size_t take = 0; take < r_.names.size(); ++take) {
+      const double x = X(take);
+      const double y = Y(take);
+      const double px =
+          12 + (kSize - 24) * (max_x_ > min_x_ ? (x - min_x_) / (max_x_ - min_x_) : 0.5);
+      const double py =
+          12 + (kSize - 24) * (max_y_ > min_y_ ? (max_y_ - y) / (max_y_ - min_y_) : 0.5);
+      const uint32_t label = r_.labels[take];
       const std::string cls = by_label ? (label == kUnlabelled ? "" : "c" + std::to_string(label))
-                                       : "c" + std::to_string(r.groups[take]);
+                                       : "c" + std::to_string(r_.groups[take]);
       svg += "<circle class=\"" + cls + "\" cx=\"" + HtmlNumber("%.1f", px) + "\" cy=\"" +
              HtmlNumber("%.1f", py) + "\" r=\"5\"" +
              (by_label && label == kUnlabelled ? " fill=\"#999\"" : "") + "><title>" +
-             HtmlEscape(r.names[take]) +
-             (label == kUnlabelled ? "" : " (" + HtmlEscape(r.label_names[label]) + ")") +
-             ", group " + std::to_string(r.groups[take]) + "</title></circle>";
+             HtmlEscape(r_.names[take]) +
+             (label == kUnlabelled ? "" : " (" + HtmlEscape(r_.label_names[label]) + ")") +
+             ", group " + std::to_string(r_.groups[take]) + "</title></circle>";
     }
     return svg + "</svg>";
-  };
-  html += map(false);
+  }
+
+ private:
+  static constexpr double kSize = 420;
+
+  double X(size_t take) const { return r_.mds.coordinates(static_cast<Eigen::Index>(take), 0); }
+  double Y(size_t take) const {
+    return r_.mds.coordinates.cols() > 1 ? r_.mds.coordinates(static_cast<Eigen::Index>(take), 1)
+                                         : 0.0;
+  }
+
+  const TakeClassification& r_;
+  double min_x_ = 0, max_x_ = 1, min_y_ = 0, max_y_ = 1;
+};
+
+// The MDS map by group, and by label beside it with the labels' legend when there are labels.
+void AppendClassifyMaps(const TakeClassification& r, std::string* html) {
+  const bool labelled = !r.label_names.empty();
+  *html +=
+      "<section id=\"map\"><h2>MDS map</h2><p class=\"note\">The takes at their first two "
+      "MDS coordinates; hover for the clip. Left: coloured by unsupervised group";
+  *html += labelled ? "; right: by label.</p>" : ".</p>";
+  const MdsMapDrawer drawer(r);
+  *html += drawer.Svg(false);
   if (labelled) {
-    html += " " + map(true) + "<p>";
+    *html += " " + drawer.Svg(true) + "<p>";
     for (size_t label = 0; label < r.label_names.size(); ++label) {
-      html += "<span class=\"sw c" + std::to_string(label) + "\"></span>" +
-              HtmlEscape(r.label_names[label]) + " &nbsp; ";
+      *html += "<span class=\"sw c" + std::to_string(label) + "\"></span>" +
+               HtmlEscape(r.label_names[label]) + " &nbsp; ";
     }
-    html += "</p>";
+    *html += "</p>";
   }
-  html += "</section>\n";
+  *html += "</section>\n";
+}
 
-  if (labelled) {
-    html +=
-        "<section id=\"confusion\"><h2>Confusion matrix</h2><p class=\"note\">Rows: the "
-        "label; columns: the " +
-        std::to_string(r.knn.k) +
-        "-NN prediction with the take left out.</p><table class=\"g\"><tr><th></th>";
-    for (const std::string& name : r.label_names) html += "<th>" + HtmlEscape(name) + "</th>";
-    html += "</tr>";
-    for (size_t truth = 0; truth < r.label_names.size(); ++truth) {
-      html += "<tr><th>" + HtmlEscape(r.label_names[truth]) + "</th>";
-      for (size_t predicted = 0; predicted < r.label_names.size(); ++predicted) {
-        const uint64_t count = r.knn.confusion[truth][predicted];
-        html += std::string("<td") + (truth == predicted && count ? " class=\"ok\"" : "") + ">" +
-                (count ? std::to_string(count) : "") + "</td>";
-      }
-      html += "</tr>";
+// Label against the kNN prediction (only with labels).
+void AppendClassifyConfusion(const TakeClassification& r, std::string* html) {
+  *html +=
+      "<section id=\"confusion\"><h2>Confusion matrix</h2><p class=\"note\">Rows: the "
+      "label; columns: the " +
+      std::to_string(r.knn.k) +
+      "-NN prediction with the take left out.</p><table class=\"g\"><tr><th></th>";
+  for (const std::string& name : r.label_names) *html += "<th>" + HtmlEscape(name) + "</th>";
+  *html += "</tr>";
+  for (size_t truth = 0; truth < r.label_names.size(); ++truth) {
+    *html += "<tr><th>" + HtmlEscape(r.label_names[truth]) + "</th>";
+    for (size_t predicted = 0; predicted < r.label_names.size(); ++predicted) {
+      const uint64_t count = r.knn.confusion[truth][predicted];
+      *html += std::string("<td") + (truth == predicted && count ? " class=\"ok\"" : "") + ">" +
+               (count ? std::to_string(count) : "") + "</td>";
     }
-    html += "</table></section>\n";
+    *html += "</tr>";
   }
+  *html += "</table></section>\n";
+}
 
-  // The distance matrix, takes ordered by label then group.
-  std::vector<uint32_t> order(n);
+// The takes ordered by label, then group (stable: the archive's order within a pair).
+std::vector<uint32_t> TakesByLabelThenGroup(const TakeClassification& r) {
+  std::vector<uint32_t> order(r.names.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return std::make_pair(r.labels[a], r.groups[a]) < std::make_pair(r.labels[b], r.groups[b]);
   });
-  html += "<section id=\"matrix\"><h2>Distance matrix</h2>";
+  return order;
+}
+
+// One grey cell per pair of takes, in `order`; not drawn above 400 takes (160,000 cells).
+void AppendClassifyDistanceMatrix(const TakeClassification& r, const std::vector<uint32_t>& order,
+                                  std::string* html) {
+  const size_t n = r.names.size();
+  *html += "<section id=\"matrix\"><h2>Distance matrix</h2>";
   if (n <= 400) {
     double hi = 0;
     for (Eigen::Index idx = 0; idx < r.distances.size(); ++idx)
       hi = std::max(hi, r.distances.data()[idx]);
-    html +=
+    *html +=
         "<p class=\"note\">Takes ordered by label, then group; darker is closer.</p>"
         "<svg class=\"dm\" width=\"" +
         std::to_string(std::max<size_t>(n * 4, 200)) + "\" height=\"" +
@@ -254,45 +302,70 @@ std::string ClassificationHtmlText(const TakeClassification& r, const std::strin
     for (size_t row = 0; row < n; ++row) {
       for (size_t col = 0; col < n; ++col) {
         const double value = r.distances(order[row], order[col]);
-        html += "<rect x=\"" + std::to_string(col) + "\" y=\"" + std::to_string(row) +
-                "\" width=\"1\" height=\"1\" fill=\"" + Shade(value, 0, hi) + "\"/>";
+        *html += "<rect x=\"" + std::to_string(col) + "\" y=\"" + std::to_string(row) +
+                 "\" width=\"1\" height=\"1\" fill=\"" + Shade(value, 0, hi) + "\"/>";
       }
     }
-    html += "</svg>";
+    *html += "</svg>";
   } else {
-    html +=
+    *html +=
         "<p class=\"note\">Not drawn above 400 takes (classify.json has the nearest takes "
         "of each).</p>";
   }
-  html += "</section>\n";
+  *html += "</section>\n";
+}
 
-  html +=
+// One row: clip, label, group, the prediction (with labels; a cross when wrong), nearest takes.
+void AppendClassifyTakeRow(const TakeClassification& r, uint32_t take, std::string* html) {
+  const uint32_t label = r.labels[take];
+  *html += "<tr><td>" + HtmlEscape(r.names[take]) + "</td><td>" +
+           (label == kUnlabelled ? "" : HtmlEscape(r.label_names[label])) +
+           "</td><td><span "
+           "class=\"sw c" +
+           std::to_string(r.groups[take]) + "\"></span>" + std::to_string(r.groups[take]) + "</td>";
+  if (!r.label_names.empty()) {
+    const uint32_t predicted = r.knn.predicted[take];
+    *html += "<td>" +
+             (predicted == kUnlabelled ? std::string() : HtmlEscape(r.label_names[predicted])) +
+             (predicted != kUnlabelled && predicted != label ? " &#10007;" : "") + "</td>";
+  }
+  *html += "<td>";
+  for (size_t idx = 0; idx < r.nearest[take].size(); ++idx) {
+    const uint32_t other = r.nearest[take][idx];
+    *html += (idx ? ", " : "") + HtmlEscape(r.names[other]) + " (" +
+             HtmlNumber("%.3f", r.distances(take, other)) + ")";
+  }
+  *html += "</td></tr>";
+}
+
+void AppendClassifyTakes(const TakeClassification& r, const std::vector<uint32_t>& order,
+                         std::string* html) {
+  const bool labelled = !r.label_names.empty();
+  *html +=
       "<section id=\"takes\"><h2>Takes</h2><table class=\"l\"><tr><th>clip</th><th>label"
       "</th><th>group</th>" +
       std::string(labelled ? "<th>predicted</th>" : "") + "<th>nearest takes (distance)</th></tr>";
-  for (uint32_t take : order) {
-    const uint32_t label = r.labels[take];
-    html += "<tr><td>" + HtmlEscape(r.names[take]) + "</td><td>" +
-            (label == kUnlabelled ? "" : HtmlEscape(r.label_names[label])) +
-            "</td><td><span "
-            "class=\"sw c" +
-            std::to_string(r.groups[take]) + "\"></span>" + std::to_string(r.groups[take]) +
-            "</td>";
-    if (labelled) {
-      const uint32_t predicted = r.knn.predicted[take];
-      html += "<td>" +
-              (predicted == kUnlabelled ? std::string() : HtmlEscape(r.label_names[predicted])) +
-              (predicted != kUnlabelled && predicted != label ? " &#10007;" : "") + "</td>";
-    }
-    html += "<td>";
-    for (size_t idx = 0; idx < r.nearest[take].size(); ++idx) {
-      const uint32_t other = r.nearest[take][idx];
-      html += (idx ? ", " : "") + HtmlEscape(r.names[other]) + " (" +
-              HtmlNumber("%.3f", r.distances(take, other)) + ")";
-    }
-    html += "</td></tr>";
-  }
-  html += "</table></section>\n" + HtmlPageEnd();
+  for (uint32_t take : order) AppendClassifyTakeRow(r, take, html);
+  *html += "</table></section>\n";
+}
+
+}  // namespace
+
+std::string ClassificationHtmlText(const TakeClassification& r, const std::string& archive) {
+  const bool labelled = !r.label_names.empty();
+  std::string html = HtmlPageStart("motifmine classify: " + archive, ClassifyPageCss(r));
+  html +=
+      "<h1>motifmine classify</h1>\n<nav><a href=\"#overview\">overview</a><a "
+      "href=\"#map\">map</a>" +
+      std::string(labelled ? "<a href=\"#confusion\">confusion</a>" : "") +
+      "<a href=\"#matrix\">distances</a><a href=\"#takes\">takes</a></nav>\n";
+  AppendClassifyOverview(r, archive, &html);
+  AppendClassifyMaps(r, &html);
+  if (labelled) AppendClassifyConfusion(r, &html);
+  const std::vector<uint32_t> order = TakesByLabelThenGroup(r);
+  AppendClassifyDistanceMatrix(r, order, &html);
+  AppendClassifyTakes(r, order, &html);
+  html += HtmlPageEnd();
   return html;
 }
 

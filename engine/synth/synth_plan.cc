@@ -45,7 +45,7 @@ uint64_t RoundFrames(double seconds, double fps) {
 // capacity, and finding the roomiest clip, both in O(log clips).
 class CapacityTree {
  public:
-  explicit CapacityTree(const std::vector<uint64_t>& capacities) {
+  explicit CapacityTree(const std::vector<uint64_t>& capacities) : size_(capacities.size()) {
     while (leaf_count_ < capacities.size()) leaf_count_ <<= 1;
     sum_.assign(2 * leaf_count_, 0);
     max_.assign(2 * leaf_count_, 0);
@@ -54,6 +54,7 @@ class CapacityTree {
     }
     for (size_t node = leaf_count_ - 1; node >= 1; --node) Pull(node);
   }
+  size_t size() const { return size_; }
   uint64_t total() const { return sum_[1]; }
   uint64_t largest() const { return max_[1]; }
   uint64_t capacity(size_t idx) const { return sum_[leaf_count_ + idx]; }
@@ -87,10 +88,188 @@ class CapacityTree {
     sum_[node] = sum_[2 * node] + sum_[2 * node + 1];
     max_[node] = std::max(max_[2 * node], max_[2 * node + 1]);
   }
+  size_t size_ = 0;  // clips
   size_t leaf_count_ = 1;
   std::vector<uint64_t> sum_;
   std::vector<uint64_t> max_;
 };
+
+// Clip lengths drawn uniformly from the clip length range; the last clip takes the remainder.
+std::vector<uint64_t> DrawClipLayout(const SynthOptions& options) {
+  const double fps = options.fps;
+  SynthRandom random(DeriveSeed(options.seed, SeedStream::kClipLayout, 0));
+  const uint64_t shortest = std::max<uint64_t>(1, RoundFrames(options.clip_seconds_min, fps));
+  const uint64_t longest = std::max(shortest, RoundFrames(options.clip_seconds_max, fps));
+  std::vector<uint64_t> clip_frames;
+  uint64_t remaining = options.frames;
+  while (remaining > 0) {
+    const uint64_t frames = std::min(remaining, random.UniformInt(shortest, longest));
+    clip_frames.push_back(frames);
+    remaining -= frames;
+  }
+  return clip_frames;
+}
+
+// A smooth monotone map g(x) = x + c1 sin(pi x)/pi + c2 sin(2 pi x)/(2 pi): g(0) = 0,
+// g(1) = 1, g' = 1 + c1 cos(pi x) + c2 cos(2 pi x) >= 0.5: the mean rate is the warp.
+void DrawNonUniformWarp(SynthRandom* random, double* c1_out, double* c2_out) {
+  double c1 = random->Uniform(-0.45, 0.45);
+  double c2 = random->Uniform(-0.3, 0.3);
+  const double total = std::abs(c1) + std::abs(c2);
+  if (total > 0.5) {
+    c1 *= 0.5 / total;
+    c2 *= 0.5 / total;
+  }
+  if (std::max(std::abs(c1), std::abs(c2)) < 0.2) c1 = c1 < 0 ? -0.3 : 0.3;
+  *c1_out = c1;
+  *c2_out = c2;
+}
+
+// Instance `instance_idx` of motif `motif_idx`, from its own seed: its warped length (in
+// truth.end until it is placed), its time map and its noise seed.
+PlannedInstance DrawPlannedInstance(const SynthOptions& options, uint32_t motif_idx,
+                                    uint32_t instance_idx, uint64_t motif_frames) {
+  SynthRandom instance_random(
+      DeriveSeed(DeriveSeed(options.seed, SeedStream::kInstances, motif_idx),
+                 SeedStream::kInstances, instance_idx));
+  const double span = static_cast<double>(motif_frames);
+  const double lowest = std::ceil(span * options.warp_min - 1e-9);
+  const double highest = std::floor(span * options.warp_max + 1e-9);
+  PlannedInstance instance;
+  instance.motif_frames = motif_frames;
+  instance.truth.motif = motif_idx;
+  double frames = std::round(span * instance_random.Uniform(options.warp_min, options.warp_max));
+  if (lowest <= highest) frames = std::clamp(frames, lowest, highest);
+  frames = std::max(2.0, frames);
+  instance.truth.warp = frames / span;
+  instance.truth.end = static_cast<uint64_t>(frames);  // a length until placed
+  instance.truth.nonuniform = instance_random.Bernoulli(0.5);
+  double c1 = 0;
+  double c2 = 0;
+  DrawNonUniformWarp(&instance_random, &c1, &c2);
+  if (instance.truth.nonuniform) {
+    instance.warp_c1 = c1;
+    instance.warp_c2 = c2;
+  }
+  instance.noise_seed = instance_random.Next();
+  return instance;
+}
+
+// Every motif's length and instance count, from its own seed, and its instances.
+std::vector<PlannedInstance> DrawMotifInstances(const SynthOptions& options,
+                                                std::vector<uint64_t>* motif_frames_out) {
+  std::vector<PlannedInstance> instances;
+  for (uint32_t motif_idx = 0; motif_idx < options.motifs; ++motif_idx) {
+    SynthRandom random(DeriveSeed(options.seed, SeedStream::kMotifs, motif_idx));
+    const uint64_t motif_frames = std::max<uint64_t>(
+        2, RoundFrames(random.Uniform(options.motif_seconds_min, options.motif_seconds_max),
+                       options.fps));
+    motif_frames_out->push_back(motif_frames);
+    const uint32_t count =
+        static_cast<uint32_t>(random.UniformInt(options.instances_min, options.instances_max));
+    for (uint32_t instance_idx = 0; instance_idx < count; ++instance_idx) {
+      instances.push_back(DrawPlannedInstance(options, motif_idx, instance_idx, motif_frames));
+    }
+  }
+  return instances;
+}
+
+// InvalidArgument when the planted instances, with their blends and gaps, would take more than
+// kMaxPlantedShare of the frames.
+Status CheckPlantedShare(const SynthOptions& options, const std::vector<PlannedInstance>& instances,
+                         uint64_t crossfade, uint64_t gap) {
+  uint64_t planted_frames = 0;  // with blends and gaps
+  for (const PlannedInstance& instance : instances) {
+    planted_frames += instance.truth.end + 2 * crossfade + gap;
+  }
+  if (static_cast<double>(planted_frames) >
+      kMaxPlantedShare * static_cast<double>(options.frames)) {
+    return Invalid("motifs: " + std::to_string(options.motifs) + " motifs with " +
+                   std::to_string(options.instances_min) + ".." +
+                   std::to_string(options.instances_max) + " instances of " +
+                   Number(options.motif_seconds_min) + ".." + Number(options.motif_seconds_max) +
+                   " s need " + std::to_string(planted_frames) +
+                   " frames of planted motion (with blends and gaps), more than half of the " +
+                   std::to_string(options.frames) +
+                   " frames; plant fewer or shorter motifs, or generate more frames");
+  }
+  return Status::Ok();
+}
+
+// Each instance (longest first) goes to a clip drawn in proportion to its remaining room (16
+// draws, then the roomiest clip); `tree` is left with each clip's slack.
+Status AssignInstancesToClips(uint64_t crossfade, uint64_t gap, SynthRandom* random,
+                              CapacityTree* tree, std::vector<PlannedInstance>* instances) {
+  const size_t clip_count = tree->size();
+  std::vector<size_t> order(instances->size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return (*instances)[a].truth.end > (*instances)[b].truth.end;
+  });
+  for (size_t instance_idx : order) {
+    PlannedInstance& instance = (*instances)[instance_idx];
+    const uint64_t footprint = instance.truth.end + 2 * crossfade + gap;
+    size_t clip_idx = clip_count;
+    for (int attempt = 0; attempt < 16 && clip_idx == clip_count && tree->total() > 0; ++attempt) {
+      const size_t candidate = tree->FindByPrefix(random->UniformInt(0, tree->total() - 1));
+      if (tree->capacity(candidate) >= footprint) clip_idx = candidate;
+    }
+    if (clip_idx == clip_count) {
+      if (tree->largest() < footprint) {
+        return Invalid("motifs: an instance of motif " + std::to_string(instance.truth.motif) +
+                       " (" + std::to_string(instance.truth.end) +
+                       " frames with its blends) does not fit in any clip with room left; "
+                       "plant fewer or shorter motifs, or use longer clips (clip_seconds_min/max)");
+      }
+      clip_idx = tree->Largest();
+    }
+    instance.clip_idx = clip_idx;
+    tree->Set(clip_idx, tree->capacity(clip_idx) - footprint);
+  }
+  return Status::Ok();
+}
+
+// The instances grouped by clip (a counting sort, stable); (*first)[clip] is where a clip's
+// instances begin (clip_count + 1 entries, zero on entry).
+std::vector<PlannedInstance> GroupInstancesByClip(const std::vector<PlannedInstance>& instances,
+                                                  std::vector<uint64_t>* first) {
+  const size_t clip_count = first->size() - 1;
+  for (const PlannedInstance& instance : instances) ++(*first)[instance.clip_idx + 1];
+  for (uint64_t clip_idx = 0; clip_idx < clip_count; ++clip_idx)
+    (*first)[clip_idx + 1] += (*first)[clip_idx];
+  std::vector<PlannedInstance> grouped(instances.size());
+  std::vector<uint64_t> cursor(first->begin(), first->end() - 1);
+  for (const PlannedInstance& instance : instances) grouped[cursor[instance.clip_idx]++] = instance;
+  return grouped;
+}
+
+// One clip's instances, shuffled, then spread over the clip with the slack cut at random points
+// between them; sorted by start.
+void SpreadClipInstances(uint64_t clip_idx, uint64_t slack, uint64_t crossfade, uint64_t gap,
+                         SynthRandom* random, PlannedInstance* clip_instances, size_t count) {
+  for (size_t idx = count - 1; idx > 0; --idx) {  // Fisher-Yates
+    std::swap(clip_instances[idx], clip_instances[random->UniformInt(0, idx)]);
+  }
+  std::vector<uint64_t> cuts(count);
+  for (uint64_t& cut : cuts) cut = random->UniformInt(0, slack);
+  std::sort(cuts.begin(), cuts.end());
+  uint64_t cursor = 0;
+  uint64_t previous_cut = 0;
+  for (size_t idx = 0; idx < count; ++idx) {
+    PlannedInstance& instance = clip_instances[idx];
+    cursor += cuts[idx] - previous_cut;
+    previous_cut = cuts[idx];
+    const uint64_t frames = instance.truth.end;
+    instance.truth.clip = SynthPlan::ClipName(clip_idx);
+    instance.truth.start = cursor + crossfade;
+    instance.truth.end = instance.truth.start + frames;
+    cursor += frames + 2 * crossfade + gap;
+  }
+  std::sort(clip_instances, clip_instances + count,
+            [](const PlannedInstance& a, const PlannedInstance& b) {
+              return a.truth.start < b.truth.start;
+            });
+}
 
 }  // namespace
 
@@ -188,155 +367,33 @@ Result<SynthPlan> SynthPlan::Create(const SynthOptions& options) {
   if (options.crossfade_seconds > 0)
     plan.crossfade_frames_ = std::max<uint64_t>(1, plan.crossfade_frames_);
   plan.gap_frames_ = RoundFrames(options.gap_seconds, fps);
-
-  // Clip layout.
-  {
-    SynthRandom random(DeriveSeed(options.seed, SeedStream::kClipLayout, 0));
-    const uint64_t shortest = std::max<uint64_t>(1, RoundFrames(options.clip_seconds_min, fps));
-    const uint64_t longest = std::max(shortest, RoundFrames(options.clip_seconds_max, fps));
-    uint64_t remaining = options.frames;
-    while (remaining > 0) {
-      const uint64_t frames = std::min(remaining, random.UniformInt(shortest, longest));
-      plan.clip_frames_.push_back(frames);
-      remaining -= frames;
-    }
-  }
+  plan.clip_frames_ = DrawClipLayout(options);
   const uint64_t clip_count = plan.clip_frames_.size();
   plan.clip_first_instance_.assign(clip_count + 1, 0);
   if (options.motifs == 0) return plan;
 
-  // Motifs and their instances.
   const uint64_t crossfade = plan.crossfade_frames_;
   const uint64_t gap = plan.gap_frames_;
-  std::vector<PlannedInstance> instances;
-  uint64_t planted_frames = 0;  // with blends and gaps
-  for (uint32_t motif_idx = 0; motif_idx < options.motifs; ++motif_idx) {
-    SynthRandom random(DeriveSeed(options.seed, SeedStream::kMotifs, motif_idx));
-    const uint64_t motif_frames = std::max<uint64_t>(
-        2, RoundFrames(random.Uniform(options.motif_seconds_min, options.motif_seconds_max), fps));
-    plan.motif_frames_.push_back(motif_frames);
-    const uint32_t count =
-        static_cast<uint32_t>(random.UniformInt(options.instances_min, options.instances_max));
-    const double span = static_cast<double>(motif_frames);
-    const double lowest = std::ceil(span * options.warp_min - 1e-9);
-    const double highest = std::floor(span * options.warp_max + 1e-9);
-    for (uint32_t instance_idx = 0; instance_idx < count; ++instance_idx) {
-      SynthRandom instance_random(
-          DeriveSeed(DeriveSeed(options.seed, SeedStream::kInstances, motif_idx),
-                     SeedStream::kInstances, instance_idx));
-      PlannedInstance instance;
-      instance.motif_frames = motif_frames;
-      instance.truth.motif = motif_idx;
-      double frames =
-          std::round(span * instance_random.Uniform(options.warp_min, options.warp_max));
-      if (lowest <= highest) frames = std::clamp(frames, lowest, highest);
-      frames = std::max(2.0, frames);
-      instance.truth.warp = frames / span;
-      instance.truth.end = static_cast<uint64_t>(frames);  // a length until placed
-      instance.truth.nonuniform = instance_random.Bernoulli(0.5);
-      // A smooth monotone map g(x) = x + c1 sin(pi x)/pi + c2 sin(2 pi x)/(2 pi): g(0) = 0,
-      // g(1) = 1, g' = 1 + c1 cos(pi x) + c2 cos(2 pi x) >= 0.5: the mean rate is the warp.
-      double c1 = instance_random.Uniform(-0.45, 0.45);
-      double c2 = instance_random.Uniform(-0.3, 0.3);
-      const double total = std::abs(c1) + std::abs(c2);
-      if (total > 0.5) {
-        c1 *= 0.5 / total;
-        c2 *= 0.5 / total;
-      }
-      if (std::max(std::abs(c1), std::abs(c2)) < 0.2) c1 = c1 < 0 ? -0.3 : 0.3;
-      if (instance.truth.nonuniform) {
-        instance.warp_c1 = c1;
-        instance.warp_c2 = c2;
-      }
-      instance.noise_seed = instance_random.Next();
-      planted_frames += instance.truth.end + 2 * crossfade + gap;
-      instances.push_back(instance);
-    }
-  }
-  if (static_cast<double>(planted_frames) >
-      kMaxPlantedShare * static_cast<double>(options.frames)) {
-    return Invalid("motifs: " + std::to_string(options.motifs) + " motifs with " +
-                   std::to_string(options.instances_min) + ".." +
-                   std::to_string(options.instances_max) + " instances of " +
-                   Number(options.motif_seconds_min) + ".." + Number(options.motif_seconds_max) +
-                   " s need " + std::to_string(planted_frames) +
-                   " frames of planted motion (with blends and gaps), more than half of the " +
-                   std::to_string(options.frames) +
-                   " frames; plant fewer or shorter motifs, or generate more frames");
-  }
+  std::vector<PlannedInstance> instances = DrawMotifInstances(options, &plan.motif_frames_);
+  MOTIF_RETURN_IF_ERROR(CheckPlantedShare(options, instances, crossfade, gap));
 
-  // Placement: each instance (longest first) goes to a clip drawn in proportion to its remaining
-  // room; then each clip's instances are shuffled and spread with random gaps.
+  // Placement: each instance goes to a clip; then each clip's instances are shuffled and spread
+  // with random gaps, all from one placement stream.
   SynthRandom random(DeriveSeed(options.seed, SeedStream::kPlacement, 0));
   std::vector<uint64_t> capacities(clip_count);
   for (uint64_t clip_idx = 0; clip_idx < clip_count; ++clip_idx) {
     capacities[clip_idx] = plan.clip_frames_[clip_idx] + gap;
   }
   CapacityTree tree(capacities);
-  std::vector<size_t> order(instances.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return instances[a].truth.end > instances[b].truth.end;
-  });
-  for (size_t instance_idx : order) {
-    PlannedInstance& instance = instances[instance_idx];
-    const uint64_t footprint = instance.truth.end + 2 * crossfade + gap;
-    size_t clip_idx = clip_count;
-    for (int attempt = 0; attempt < 16 && clip_idx == clip_count && tree.total() > 0; ++attempt) {
-      const size_t candidate = tree.FindByPrefix(random.UniformInt(0, tree.total() - 1));
-      if (tree.capacity(candidate) >= footprint) clip_idx = candidate;
-    }
-    if (clip_idx == clip_count) {
-      if (tree.largest() < footprint) {
-        return Invalid("motifs: an instance of motif " + std::to_string(instance.truth.motif) +
-                       " (" + std::to_string(instance.truth.end) +
-                       " frames with its blends) does not fit in any clip with room left; "
-                       "plant fewer or shorter motifs, or use longer clips (clip_seconds_min/max)");
-      }
-      clip_idx = tree.Largest();
-    }
-    instance.clip_idx = clip_idx;
-    tree.Set(clip_idx, tree.capacity(clip_idx) - footprint);
-  }
-  // Group by clip (counting sort), then spread each clip's instances.
+  MOTIF_RETURN_IF_ERROR(AssignInstancesToClips(crossfade, gap, &random, &tree, &instances));
   std::vector<uint64_t>& first = plan.clip_first_instance_;
-  for (const PlannedInstance& instance : instances) ++first[instance.clip_idx + 1];
-  for (uint64_t clip_idx = 0; clip_idx < clip_count; ++clip_idx)
-    first[clip_idx + 1] += first[clip_idx];
-  std::vector<PlannedInstance> grouped(instances.size());
-  {
-    std::vector<uint64_t> cursor(first.begin(), first.end() - 1);
-    for (const PlannedInstance& instance : instances)
-      grouped[cursor[instance.clip_idx]++] = instance;
-  }
-  std::vector<uint64_t> cuts;
+  std::vector<PlannedInstance> grouped = GroupInstancesByClip(instances, &first);
   for (uint64_t clip_idx = 0; clip_idx < clip_count; ++clip_idx) {
     const size_t begin = first[clip_idx];
     const size_t count = first[clip_idx + 1] - begin;
     if (count == 0) continue;
-    for (size_t idx = count - 1; idx > 0; --idx) {  // Fisher-Yates
-      std::swap(grouped[begin + idx], grouped[begin + random.UniformInt(0, idx)]);
-    }
-    const uint64_t slack = tree.capacity(clip_idx);
-    cuts.resize(count);
-    for (uint64_t& cut : cuts) cut = random.UniformInt(0, slack);
-    std::sort(cuts.begin(), cuts.end());
-    uint64_t cursor = 0;
-    uint64_t previous_cut = 0;
-    for (size_t idx = 0; idx < count; ++idx) {
-      PlannedInstance& instance = grouped[begin + idx];
-      cursor += cuts[idx] - previous_cut;
-      previous_cut = cuts[idx];
-      const uint64_t frames = instance.truth.end;
-      instance.truth.clip = ClipName(clip_idx);
-      instance.truth.start = cursor + crossfade;
-      instance.truth.end = instance.truth.start + frames;
-      cursor += frames + 2 * crossfade + gap;
-    }
-    std::sort(grouped.begin() + begin, grouped.begin() + begin + count,
-              [](const PlannedInstance& a, const PlannedInstance& b) {
-                return a.truth.start < b.truth.start;
-              });
+    SpreadClipInstances(clip_idx, tree.capacity(clip_idx), crossfade, gap, &random,
+                        grouped.data() + begin, count);
   }
   plan.instances_ = std::move(grouped);
   plan.truth_.reserve(plan.instances_.size());

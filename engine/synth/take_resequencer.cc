@@ -168,86 +168,108 @@ Result<std::unique_ptr<TakeResequencer>> TakeResequencer::Create(const SynthOpti
   return std::unique_ptr<TakeResequencer>(new TakeResequencer(options, std::move(sources), plan));
 }
 
+namespace {
+
+// The root's heading at every frame of `take`, unwrapped (continuous across +-pi).
+std::vector<double> UnwrappedHeadings(const Take& take) {
+  std::vector<double> headings(take.frame_count());
+  for (size_t frame_idx = 0; frame_idx < take.frame_count(); ++frame_idx) {
+    const double heading = HeadingOf(take.rotation(frame_idx, 0).normalized());
+    headings[frame_idx] =
+        frame_idx == 0 ? heading
+                       : headings[frame_idx - 1] + WrapAngle(heading - headings[frame_idx - 1]);
+  }
+  return headings;
+}
+
+// Capture glitches of `take` (a joint turning by more than kGlitchDegrees between two frames,
+// e.g. the 180-degree flips of some converted BVH takes) as source frame ranges [f - 1, f].
+std::vector<std::pair<double, double>> GlitchRanges(const Take& take) {
+  std::vector<std::pair<double, double>> ranges;
+  const double glitch_cos = std::cos(DegreesToRadians(kGlitchDegrees) / 2);
+  for (size_t frame_idx = 1; frame_idx < take.frame_count(); ++frame_idx) {
+    for (size_t joint_idx = 0; joint_idx < take.joint_count(); ++joint_idx) {
+      const double dot = std::abs(take.rotation(frame_idx, joint_idx)
+                                      .normalized()
+                                      .dot(take.rotation(frame_idx - 1, joint_idx).normalized()));
+      if (dot < glitch_cos) {
+        const double frame = static_cast<double>(frame_idx);
+        ranges.emplace_back(frame - 1, frame);
+        break;
+      }
+    }
+  }
+  return ranges;
+}
+
+}  // namespace
+
 TakeResequencer::TakeResequencer(const SynthOptions& options, std::vector<Take> sources,
                                  const SynthPlan& plan)
     : options_(options), plan_(plan), sources_(std::move(sources)) {
   uint64_t total = 0;
   for (const Take& take : sources_) {
-    std::vector<double> headings(take.frame_count());
-    for (size_t frame_idx = 0; frame_idx < take.frame_count(); ++frame_idx) {
-      const double heading = HeadingOf(take.rotation(frame_idx, 0).normalized());
-      headings[frame_idx] =
-          frame_idx == 0 ? heading
-                         : headings[frame_idx - 1] + WrapAngle(heading - headings[frame_idx - 1]);
-    }
-    headings_.push_back(std::move(headings));
+    headings_.push_back(UnwrappedHeadings(take));
     total += take.frame_count();
     cumulative_frames_.push_back(total);
   }
-  // Capture glitches (a joint turning by more than kGlitchDegrees between two frames, e.g. the
-  // 180-degree flips of some converted BVH takes) are kept out of every piece drawn.
+  // Capture glitches are kept out of every piece drawn.
   reserved_.resize(sources_.size());
-  const double glitch_cos = std::cos(DegreesToRadians(kGlitchDegrees) / 2);
   for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
-    const Take& take = sources_[take_idx];
-    for (size_t frame_idx = 1; frame_idx < take.frame_count(); ++frame_idx) {
-      for (size_t joint_idx = 0; joint_idx < take.joint_count(); ++joint_idx) {
-        const double dot = std::abs(take.rotation(frame_idx, joint_idx)
-                                        .normalized()
-                                        .dot(take.rotation(frame_idx - 1, joint_idx).normalized()));
-        if (dot < glitch_cos) {
-          const double frame = static_cast<double>(frame_idx);
-          reserved_[take_idx].emplace_back(frame - 1, frame);
-          break;
-        }
-      }
-    }
+    reserved_[take_idx] = GlitchRanges(sources_[take_idx]);
   }
   // Each motif is a piece of a source, with room around it for the blend ramps when possible,
   // clear of glitches and of the other motifs' pieces.
   const double margin = 2.5 * static_cast<double>(plan.crossfade_frames()) + 2;
   for (size_t motif_idx = 0; motif_idx < plan.motif_frames().size(); ++motif_idx) {
-    SynthRandom random(DeriveSeed(options.seed, SeedStream::kResequenceMotif, motif_idx));
+    const MotifSource source = DrawMotifSource(motif_idx, margin);
     const double motif_frames = static_cast<double>(plan.motif_frames()[motif_idx]);
-    // Takes with room for the motif and its margins, drawn in proportion to that room.
-    std::vector<double> room(sources_.size());
-    double total_room = 0;
-    for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
-      const double frames = static_cast<double>(sources_[take_idx].frame_count());
-      room[take_idx] = std::max(0.0, frames - motif_frames - 2 * margin);
-      total_room += room[take_idx];
-    }
-    MotifSource source;
-    if (total_room > 0) {
-      for (int attempt = 0; attempt < kDrawAttempts; ++attempt) {
-        double target = random.Uniform(0, total_room);
-        source.take_idx = 0;
-        while (source.take_idx + 1 < sources_.size() && target >= room[source.take_idx]) {
-          target -= room[source.take_idx++];
-        }
-        while (room[source.take_idx] == 0) --source.take_idx;  // rounding at the end
-        source.start = std::floor(margin + random.Uniform(0, room[source.take_idx]));
-        if (!OverlapsReserved(source.take_idx, source.start - margin,
-                              source.start + motif_frames + margin)) {
-          break;
-        }
-      }
-    } else {
-      // No take has room for the margins: the longest take, the ramps hold at its ends.
-      for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
-        if (sources_[take_idx].frame_count() > sources_[source.take_idx].frame_count()) {
-          source.take_idx = take_idx;
-        }
-      }
-      const double frames = static_cast<double>(sources_[source.take_idx].frame_count());
-      source.start = std::floor(random.Uniform(0, std::max(0.0, frames - motif_frames) + 1));
-    }
     motif_sources_.push_back(source);
     reserved_[source.take_idx].emplace_back(source.start - margin,
                                             source.start + motif_frames + margin);
     std::sort(reserved_[source.take_idx].begin(), reserved_[source.take_idx].end());
   }
   for (auto& ranges : reserved_) std::sort(ranges.begin(), ranges.end());
+}
+
+TakeResequencer::MotifSource TakeResequencer::DrawMotifSource(size_t motif_idx,
+                                                              double margin) const {
+  SynthRandom random(DeriveSeed(options_.seed, SeedStream::kResequenceMotif, motif_idx));
+  const double motif_frames = static_cast<double>(plan_.motif_frames()[motif_idx]);
+  // Takes with room for the motif and its margins, drawn in proportion to that room.
+  std::vector<double> room(sources_.size());
+  double total_room = 0;
+  for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
+    const double frames = static_cast<double>(sources_[take_idx].frame_count());
+    room[take_idx] = std::max(0.0, frames - motif_frames - 2 * margin);
+    total_room += room[take_idx];
+  }
+  MotifSource source;
+  if (total_room > 0) {
+    for (int attempt = 0; attempt < kDrawAttempts; ++attempt) {
+      double target = random.Uniform(0, total_room);
+      source.take_idx = 0;
+      while (source.take_idx + 1 < sources_.size() && target >= room[source.take_idx]) {
+        target -= room[source.take_idx++];
+      }
+      while (room[source.take_idx] == 0) --source.take_idx;  // rounding at the end
+      source.start = std::floor(margin + random.Uniform(0, room[source.take_idx]));
+      if (!OverlapsReserved(source.take_idx, source.start - margin,
+                            source.start + motif_frames + margin)) {
+        break;
+      }
+    }
+    return source;
+  }
+  // No take has room for the margins: the longest take, the ramps hold at its ends.
+  for (size_t take_idx = 0; take_idx < sources_.size(); ++take_idx) {
+    if (sources_[take_idx].frame_count() > sources_[source.take_idx].frame_count()) {
+      source.take_idx = take_idx;
+    }
+  }
+  const double frames = static_cast<double>(sources_[source.take_idx].frame_count());
+  source.start = std::floor(random.Uniform(0, std::max(0.0, frames - motif_frames) + 1));
+  return source;
 }
 
 bool TakeResequencer::OverlapsReserved(size_t take_idx, double first, double last) const {
@@ -368,90 +390,145 @@ TakeResequencer::SourceSegment TakeResequencer::DrawSegment(int64_t start, int64
   return segment;
 }
 
-Take TakeResequencer::GenerateClip(uint64_t clip_idx) const {
+// The background of a clip: random source segments one after the other, each crossfading into
+// the next; each segment's track keeps its rotations' signs continuous in time.
+class TakeResequencer::SegmentTrack {
+ public:
+  // Draws the first two segments from `random` (which must outlive this object).
+  SegmentTrack(const TakeResequencer& owner, SynthRandom* random)
+      : owner_(owner),
+        random_(random),
+        current_(owner.DrawSegment(0, 0, random)),
+        next_(owner.DrawSegment(current_.frames - current_.crossfade, current_.crossfade, random)) {
+  }
+
+  const SourceSegment& current() const { return current_; }
+
+  // The background motion at clip frame `frame`; frames come in order, from 0.
+  void MotionAt(int64_t frame, FrameMotion* motion) {
+    while (frame >= current_.start + current_.frames) {
+      current_ = std::move(next_);
+      next_ = owner_.DrawSegment(current_.start + current_.frames - current_.crossfade,
+                                 current_.crossfade, random_);
+      last_current_.swap(last_next_);
+    }
+    Evaluate(current_, frame, motion);
+    AlignSigns(last_current_, &motion->rotations);
+    last_current_ = motion->rotations;
+    if (frame >= next_.start) {
+      Evaluate(next_, frame, &other_);
+      // The next track starts on the current one's side.
+      AlignSigns(frame == next_.start ? motion->rotations : last_next_, &other_.rotations);
+      last_next_ = other_.rotations;
+      motion->BlendToward(other_, SmootherStep(static_cast<double>(frame - next_.start + 1) /
+                                               static_cast<double>(current_.crossfade + 1)));
+    }
+  }
+
+ private:
+  void Evaluate(const SourceSegment& segment, int64_t frame, FrameMotion* out) const {
+    const double offset = static_cast<double>(frame - segment.start);
+    const double source_frame = segment.source_start + offset * segment.rate;
+    owner_.SampleMotion(segment.take_idx, source_frame, source_frame - segment.rate, out);
+    segment.noise.Apply(offset / owner_.options_.fps, &out->rotations);
+  }
+
+  const TakeResequencer& owner_;
+  SynthRandom* random_;
+  SourceSegment current_;
+  SourceSegment next_;
+  FrameMotion other_;
+  // Each track's rotations at its previous frame, for sign continuity.
+  std::vector<Eigen::Quaterniond> last_current_;
+  std::vector<Eigen::Quaterniond> last_next_;
+};
+
+// The planted instances of a clip, in order: each (its motif's source piece, time-warped, with
+// its own noise) blended over the background, with its ramps.
+class TakeResequencer::InstanceTrack {
+ public:
+  InstanceTrack(const TakeResequencer& owner, uint64_t clip_idx)
+      : owner_(owner),
+        crossfade_(static_cast<int64_t>(owner.plan_.crossfade_frames())),
+        joint_count_(owner.sources_[0].joint_count()) {
+    owner.plan_.ClipInstances(clip_idx, &first_instance_, &instance_count_);
+  }
+
+  // Blends the instance whose range (with its ramps) holds clip frame `frame`, if any, into
+  // *motion; frames come in order.
+  void BlendInto(int64_t frame, FrameMotion* motion) {
+    const std::vector<PlannedInstance>& instances = owner_.plan_.instances();
+    while (cursor_ < instance_count_ &&
+           frame >=
+               static_cast<int64_t>(instances[first_instance_ + cursor_].truth.end) + crossfade_) {
+      ++cursor_;
+    }
+    if (cursor_ >= instance_count_) return;
+    const PlannedInstance& instance = instances[first_instance_ + cursor_];
+    const int64_t offset = frame - static_cast<int64_t>(instance.truth.start);
+    if (offset < -crossfade_) return;
+    if (noise_owner_ != cursor_) {
+      noise_ = RotationNoise(instance.noise_seed, joint_count_, owner_.options_.noise_degrees);
+      noise_owner_ = cursor_;
+    }
+    const MotifSource& source = owner_.motif_sources_[instance.truth.motif];
+    const double motif_time = instance.MotifTime(static_cast<double>(offset));
+    const double previous_time = instance.MotifTime(static_cast<double>(offset - 1));
+    owner_.SampleMotion(source.take_idx, source.start + motif_time, source.start + previous_time,
+                        &other_);
+    noise_.Apply(static_cast<double>(offset) / owner_.options_.fps, &other_.rotations);
+    // An instance's track starts on the background's side.
+    AlignSigns(offset == -crossfade_ ? motion->rotations : last_instance_, &other_.rotations);
+    last_instance_ = other_.rotations;
+    motion->BlendToward(
+        other_, InstanceBlendWeight(offset, static_cast<int64_t>(instance.frames()), crossfade_));
+  }
+
+ private:
+  const TakeResequencer& owner_;
+  const int64_t crossfade_;
+  const size_t joint_count_;
+  size_t first_instance_ = 0;
+  size_t instance_count_ = 0;
+  size_t cursor_ = 0;  // the clip's instance now or next
+  RotationNoise noise_;
+  size_t noise_owner_ = SIZE_MAX;  // the instance noise_ was drawn for
+  FrameMotion other_;
+  std::vector<Eigen::Quaterniond> last_instance_;
+};
+
+Take TakeResequencer::EmptyClipTake(uint64_t clip_idx, size_t skeleton_take_idx) const {
   const double fps = options_.fps;
   const size_t frame_count = plan_.clip_frames()[clip_idx];
-  const size_t joint_count = sources_[0].joint_count();
-  SynthRandom random(DeriveSeed(options_.seed, SeedStream::kClip, clip_idx));
-  SourceSegment current = DrawSegment(0, 0, &random);
-  SourceSegment next = DrawSegment(current.frames - current.crossfade, current.crossfade, &random);
-
   Take take;
   take.name = SynthPlan::ClipName(clip_idx);
   take.source_path = "synthetic";
   take.fps = fps;
   take.source_fps = fps;
   take.meters_per_unit = sources_[0].meters_per_unit;
-  take.skeleton = sources_[current.take_idx].skeleton;
+  take.skeleton = sources_[skeleton_take_idx].skeleton;
   take.root_positions.resize(frame_count);
-  take.rotations.resize(frame_count * joint_count);
+  take.rotations.resize(frame_count * sources_[0].joint_count());
+  return take;
+}
 
+Take TakeResequencer::GenerateClip(uint64_t clip_idx) const {
+  const size_t frame_count = plan_.clip_frames()[clip_idx];
+  const size_t joint_count = sources_[0].joint_count();
+  // The clip's draws in this order: its first two segments, its start heading and position,
+  // then a segment whenever one ends.
+  SynthRandom random(DeriveSeed(options_.seed, SeedStream::kClip, clip_idx));
+  SegmentTrack background(*this, &random);
+  Take take = EmptyClipTake(clip_idx, background.current().take_idx);
   double heading = random.Uniform(-kPi, kPi);
   Eigen::Vector3d position(random.Uniform(-100, 100), 0, random.Uniform(-100, 100));
-
-  size_t first_instance = 0;
-  size_t instance_count = 0;
-  plan_.ClipInstances(clip_idx, &first_instance, &instance_count);
-  const int64_t crossfade = static_cast<int64_t>(plan_.crossfade_frames());
-  size_t cursor = 0;
-  RotationNoise instance_noise;
-  size_t noise_owner = SIZE_MAX;
-
+  InstanceTrack instances(*this, clip_idx);
   FrameMotion motion;
-  FrameMotion other;
-  // Each track's rotations at its previous frame, for sign continuity.
-  std::vector<Eigen::Quaterniond> last_current;
-  std::vector<Eigen::Quaterniond> last_next;
-  std::vector<Eigen::Quaterniond> last_instance;
-  auto evaluate = [&](const SourceSegment& segment, int64_t frame, FrameMotion* out) {
-    const double offset = static_cast<double>(frame - segment.start);
-    const double source_frame = segment.source_start + offset * segment.rate;
-    SampleMotion(segment.take_idx, source_frame, source_frame - segment.rate, out);
-    segment.noise.Apply(offset / fps, &out->rotations);
-  };
   for (size_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
     const int64_t frame = static_cast<int64_t>(frame_idx);
-    while (frame >= current.start + current.frames) {
-      current = std::move(next);
-      next = DrawSegment(current.start + current.frames - current.crossfade, current.crossfade,
-                         &random);
-      last_current.swap(last_next);
-    }
-    evaluate(current, frame, &motion);
-    AlignSigns(last_current, &motion.rotations);
-    last_current = motion.rotations;
-    if (frame >= next.start) {
-      evaluate(next, frame, &other);
-      AlignSigns(frame == next.start ? motion.rotations : last_next, &other.rotations);
-      last_next = other.rotations;
-      motion.BlendToward(other, SmootherStep(static_cast<double>(frame - next.start + 1) /
-                                             static_cast<double>(current.crossfade + 1)));
-    }
-    while (cursor < instance_count &&
-           frame >= static_cast<int64_t>(plan_.instances()[first_instance + cursor].truth.end) +
-                        crossfade) {
-      ++cursor;
-    }
-    if (cursor < instance_count) {
-      const PlannedInstance& instance = plan_.instances()[first_instance + cursor];
-      const int64_t offset = frame - static_cast<int64_t>(instance.truth.start);
-      if (offset >= -crossfade) {
-        if (noise_owner != cursor) {
-          instance_noise = RotationNoise(instance.noise_seed, joint_count, options_.noise_degrees);
-          noise_owner = cursor;
-        }
-        const MotifSource& source = motif_sources_[instance.truth.motif];
-        const double motif_time = instance.MotifTime(static_cast<double>(offset));
-        const double previous_time = instance.MotifTime(static_cast<double>(offset - 1));
-        SampleMotion(source.take_idx, source.start + motif_time, source.start + previous_time,
-                     &other);
-        instance_noise.Apply(static_cast<double>(offset) / fps, &other.rotations);
-        AlignSigns(offset == -crossfade ? motion.rotations : last_instance, &other.rotations);
-        last_instance = other.rotations;
-        motion.BlendToward(
-            other, InstanceBlendWeight(offset, static_cast<int64_t>(instance.frames()), crossfade));
-      }
-    }
+    background.MotionAt(frame, &motion);
+    instances.BlendInto(frame, &motion);
+    // The root integrates the blended increments from the clip's start heading and position.
     if (frame_idx > 0) {
       heading += motion.heading_delta;
       position += AxisRotation(Axis::kY, heading) * motion.local_delta;

@@ -48,6 +48,8 @@ class TakeResequencer {
   struct FrameMotion;
   struct SourceSegment;
   class RotationNoise;
+  class SegmentTrack;   // a clip's background segments, blended one into the next
+  class InstanceTrack;  // a clip's planted instances, blended over the background
 
   TakeResequencer(const SynthOptions& options, std::vector<Take> sources, const SynthPlan& plan);
 
@@ -60,6 +62,13 @@ class TakeResequencer {
   // A random background segment starting at clip frame `start`, whose first `overlap` frames
   // are the previous segment's crossfade.
   SourceSegment DrawSegment(int64_t start, int64_t overlap, SynthRandom* random) const;
+  // Clip `clip_idx` named and sized, in the skeleton of take `skeleton_take_idx`, its frames
+  // still to fill.
+  Take EmptyClipTake(uint64_t clip_idx, size_t skeleton_take_idx) const;
+  // Where motif `motif_idx` comes from: a random start in a take drawn by its room for the motif
+  // and `margin` frames either side, clear of what is reserved so far (a few draws), or the
+  // longest take when none has room.
+  MotifSource DrawMotifSource(size_t motif_idx, double margin) const;
   // Whether source frames [first, last] of take `take_idx` touch a motif's piece or a glitch.
   bool OverlapsReserved(size_t take_idx, double first, double last) const;
   // The source frame where the reserved range after `first` begins (the take's last frame if

@@ -60,6 +60,50 @@ struct EmbeddingStage {
   uint64_t identity = 0;
 };
 
+// The checkpoint's state, when it is of this training (same key and parameter count) and not
+// past its epochs: training goes on after its last epoch.
+void ResumeFromCheckpoint(const std::string& checkpoint_path, uint64_t key, uint32_t epochs,
+                          const WordsOptions& options, TrainingState* state, WordsReport* report) {
+  Result<TensorFile> checkpoint_file = ReadTensorFile(checkpoint_path, kCheckpointKind);
+  if (!checkpoint_file.ok()) return;
+  EmbeddingModel stored;
+  Result<TrainingState> stored_state = CheckpointFromTensorFile(*checkpoint_file, &stored);
+  if (stored_state.ok() && stored.training_key == key &&
+      stored_state->parameters.size() == state->parameters.size() &&
+      stored_state->epochs_done <= epochs) {
+    *state = std::move(stored_state.value());
+    report->resumed_from_epoch = state->epochs_done;
+    if (options.note) {
+      options.note("resuming training after epoch " + std::to_string(state->epochs_done) +
+                   " from " + checkpoint_path);
+    }
+  }
+}
+
+// Trains the network from its initial (or checkpointed) state, writing a checkpoint after each
+// epoch, then the embedding file; the checkpoint goes once the embedding is written.
+Status TrainAndWriteEmbedding(const EmbeddingTrainer& trainer, const WordsPaths& paths,
+                              const WordsOptions& options, uint32_t epochs, EmbeddingStage* stage,
+                              WordsReport* report) {
+  EmbeddingModel& model = stage->model;
+  TrainingState state = trainer.InitialState();
+  const std::string checkpoint_path = paths.embedding + ".checkpoint";
+  ResumeFromCheckpoint(checkpoint_path, model.training_key, epochs, options, &state, report);
+  MOTIF_RETURN_IF_ERROR(trainer.Train(&state, [&](const TrainingState& done) {
+    MOTIF_RETURN_IF_ERROR(WriteTensorFile(checkpoint_path, CheckpointToTensorFile(model, done)));
+    return options.after_epoch ? options.after_epoch(done.epochs_done) : Status::Ok();
+  }));
+  model.net = trainer.NetOf(state);
+  model.epoch_loss = state.epoch_loss;
+  model.epoch_active = state.epoch_active;
+  model.accuracy = trainer.HeldOutAccuracy(model.net);
+  MOTIF_RETURN_IF_ERROR(WriteTensorFile(paths.embedding, EmbeddingToTensorFile(model),
+                                        PosixFileSystem(), &stage->identity));
+  std::error_code ignored;  // a left-over checkpoint is harmless: its key no longer matters
+  std::filesystem::remove(checkpoint_path, ignored);
+  return Status::Ok();
+}
+
 Result<EmbeddingStage> TrainEmbedding(const FrameFileReader& reader,
                                       const std::vector<float>& weights, const WordsPaths& paths,
                                       const WordsOptions& options, uint64_t key,
@@ -99,37 +143,9 @@ Result<EmbeddingStage> TrainEmbedding(const FrameFileReader& reader,
   model.training_key = key;
   model.seed = options.seed;
   model.pool_words = pool.size();
-
-  TrainingState state = trainer.InitialState();
-  const std::string checkpoint_path = paths.embedding + ".checkpoint";
-  Result<TensorFile> checkpoint_file = ReadTensorFile(checkpoint_path, kCheckpointKind);
-  if (checkpoint_file.ok()) {
-    EmbeddingModel stored;
-    Result<TrainingState> stored_state = CheckpointFromTensorFile(*checkpoint_file, &stored);
-    if (stored_state.ok() && stored.training_key == key &&
-        stored_state->parameters.size() == state.parameters.size() &&
-        stored_state->epochs_done <= train.epochs) {
-      state = std::move(stored_state.value());
-      report->resumed_from_epoch = state.epochs_done;
-      if (options.note) {
-        options.note("resuming training after epoch " + std::to_string(state.epochs_done) +
-                     " from " + checkpoint_path);
-      }
-    }
-  }
-  MOTIF_RETURN_IF_ERROR(trainer.Train(&state, [&](const TrainingState& done) {
-    MOTIF_RETURN_IF_ERROR(WriteTensorFile(checkpoint_path, CheckpointToTensorFile(model, done)));
-    return options.after_epoch ? options.after_epoch(done.epochs_done) : Status::Ok();
-  }));
-  model.net = trainer.NetOf(state);
-  model.epoch_loss = state.epoch_loss;
-  model.epoch_active = state.epoch_active;
-  model.accuracy = trainer.HeldOutAccuracy(model.net);
+  MOTIF_RETURN_IF_ERROR(
+      TrainAndWriteEmbedding(trainer, paths, options, train.epochs, &stage, report));
   report->seconds_train = SecondsSince(start);
-  MOTIF_RETURN_IF_ERROR(WriteTensorFile(paths.embedding, EmbeddingToTensorFile(model),
-                                        PosixFileSystem(), &stage.identity));
-  std::error_code ignored;  // a left-over checkpoint is harmless: its key no longer matters
-  std::filesystem::remove(checkpoint_path, ignored);
   return stage;
 }
 
@@ -174,177 +190,255 @@ uint64_t TrainingKey(uint64_t archive_identity, const std::vector<float>& joint_
   return Checksum64(text.data(), text.size());
 }
 
-Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths& paths,
-                               const WordsOptions& in) {
-  WordsOptions options = Resolve(in);
-  MOTIF_RETURN_IF_ERROR(Validate(options));
-  ExclusiveFileLock lock;
-  MOTIF_RETURN_IF_ERROR(lock.Acquire(paths.signatures + ".lock",
-                                     "another `motifmine words` is working on this archive; "
-                                     "nothing was changed",
-                                     /*create=*/true));
-  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> reader,
-                         FrameFileReader::Open(archive_path));
-  MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
-                         LoadDistanceWeights(reader->skeleton(), options.weights_path));
-  const uint64_t archive_identity = reader->summary().identity;
+namespace {
+
+// What the stages of one BuildWords run share: the archive and its weights, the report being
+// filled, and each stage's product.
+struct WordsBuild {
+  std::string archive_path;
+  WordsPaths paths;
+  WordsOptions options;  // resolved; `words` replaced by a loaded embedding's
+  std::unique_ptr<FrameFileReader> reader;
+  std::vector<float> weights;
+  uint64_t archive_identity = 0;
   WordsReport report;
-  report.archive_generation = reader->summary().generation;
-  report.paths = paths;
-
-  // An embedding from elsewhere fixes the word geometry.
   EmbeddingStage embedding;
-  if (!options.embedding_in.empty()) {
-    MOTIF_ASSIGN_OR_RETURN(embedding, LoadEmbedding(options.embedding_in));
-    report.embedding_loaded = true;
-    options.words = embedding.model.words;  // the words the network was trained on
-  }
-
-  // The archive's words, counted first: bad options fail before anything is trained or written.
-  const std::vector<ClipInfo>& clips = reader->clips();
+  MotifSet motifs;
+  uint64_t motifs_identity = 0;
   SignatureSet signatures;
-  signatures.archive_identity = archive_identity;
-  signatures.words = options.words;
+};
+
+// The archive's words, counted first: bad options fail before anything is trained or written.
+Status CountArchiveWords(WordsBuild* build) {
+  const std::vector<ClipInfo>& clips = build->reader->clips();
+  WordsReport& report = build->report;
+  SignatureSet& signatures = build->signatures;
+  signatures.archive_identity = build->archive_identity;
+  signatures.words = build->options.words;
   for (size_t clip = 0; clip < clips.size(); ++clip) {
-    const uint64_t words = ClipWordGrid(*reader, clip, options.words).word_count();
+    const uint64_t words = ClipWordGrid(*build->reader, clip, build->options.words).word_count();
     signatures.clip_words.push_back(words);
     report.words += words;
     report.takes += words > 0;
   }
   report.clips = clips.size();
-  if (report.words < options.motifs) {
-    return Status::InvalidArgument(archive_path + ": " + std::to_string(report.words) +
-                                   " words, fewer than the " + std::to_string(options.motifs) +
-                                   " asked for (motifs)")
+  if (report.words < build->options.motifs) {
+    return Status::InvalidArgument(build->archive_path + ": " + std::to_string(report.words) +
+                                   " words, fewer than the " +
+                                   std::to_string(build->options.motifs) + " asked for (motifs)")
         .WithOption("motifs");
   }
+  return Status::Ok();
+}
 
-  // Stage 1: the embedding.
+// Stage 1, unless the embedding was loaded: the stored one when its training key is this run's,
+// else trained (or resumed).
+Status ObtainEmbedding(WordsBuild* build) {
+  WordsReport& report = build->report;
   if (!report.embedding_loaded) {
-    const uint64_t key = TrainingKey(archive_identity, weights, options);
-    Result<EmbeddingStage> stored = LoadEmbedding(paths.embedding);
+    const uint64_t key = TrainingKey(build->archive_identity, build->weights, build->options);
+    Result<EmbeddingStage> stored = LoadEmbedding(build->paths.embedding);
     if (stored.ok() && stored->model.training_key == key) {
-      embedding = std::move(stored.value());
+      build->embedding = std::move(stored.value());
       report.embedding_reused = true;
     } else {
-      MOTIF_ASSIGN_OR_RETURN(embedding,
-                             TrainEmbedding(*reader, weights, paths, options, key, &report));
+      MOTIF_ASSIGN_OR_RETURN(build->embedding,
+                             TrainEmbedding(*build->reader, build->weights, build->paths,
+                                            build->options, key, &report));
     }
   }
-  const EmbeddingModel& model = embedding.model;
+  const EmbeddingModel& model = build->embedding.model;
   report.epoch_loss = model.epoch_loss;
   report.accuracy = model.accuracy;
   report.pool_words = model.pool_words;
+  return Status::Ok();
+}
+
+// Stage 2's reuse: the stored motifs, if made from this embedding and archive with these
+// options.
+void ReuseStoredMotifs(WordsBuild* build) {
+  Result<TensorFile> file = ReadTensorFile(build->paths.motifs, kMotifsKind);
+  if (!file.ok()) return;
+  Result<MotifSet> stored = MotifsFromTensorFile(*file);
+  if (stored.ok() && stored->embedding_identity == build->embedding.identity &&
+      stored->archive_identity == build->archive_identity && stored->seed == build->options.seed &&
+      stored->motif_count() == build->options.motifs &&
+      stored->centroids.cols() == static_cast<Eigen::Index>(build->report.dims)) {
+    build->motifs = std::move(stored.value());
+    build->motifs_identity = file->identity();
+    build->report.motifs_reused = true;
+  }
+}
+
+// Stage 3's reuse: the stored signatures, if made from the reused motifs on this archive with
+// this word geometry.
+void ReuseStoredSignatures(WordsBuild* build) {
+  Result<TensorFile> file = ReadTensorFile(build->paths.signatures, kSignaturesKind);
+  if (!file.ok()) return;
+  Result<SignatureSet> stored = SignaturesFromTensorFile(*file);
+  const WordOptions& words = build->options.words;
+  if (stored.ok() && stored->motifs_identity == build->motifs_identity &&
+      stored->archive_identity == build->archive_identity &&
+      stored->clip_words == build->signatures.clip_words &&
+      stored->words.word_frames == words.word_frames &&
+      stored->words.stride_frames == words.stride_frames &&
+      stored->words.word_fps == words.word_fps) {
+    build->report.signatures_reused = true;
+    build->signatures = std::move(stored.value());
+  }
+}
+
+// Every word embedded, streamed from the archive a batch at a time.
+Result<RowMatrixXf> EmbedArchiveWords(const WordsBuild& build, const WordEmbedder& embedder) {
+  const WordsOptions& options = build.options;
+  const uint64_t word_count = build.report.words;
+  RowMatrixXf embedded(static_cast<Eigen::Index>(word_count), build.report.dims);
+  WordStreamOptions stream_options;
+  stream_options.words = options.words;
+  stream_options.batch_words = options.batch_words;
+  stream_options.keep_rows = true;
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<WordStream> stream,
+                         WordStream::Create(*build.reader, build.weights, stream_options));
+  WordBatch batch;
+  Eigen::Index row = 0;
+  for (;;) {
+    MOTIF_ASSIGN_OR_RETURN(bool more, stream->Next(&batch));
+    if (!more) break;
+    embedder.Embed(batch, &embedded, row);
+    row += static_cast<Eigen::Index>(batch.size());
+    if (options.progress) options.progress("embed", row, word_count, "words");
+  }
+  MOTIF_CHECK(row == static_cast<Eigen::Index>(word_count));
+  return embedded;
+}
+
+// Stage 2 proper: k-means of the embedded words, written as the motifs file.
+Status ClusterWordMotifs(const RowMatrixXf& embedded, WordsBuild* build) {
+  const WordsOptions& options = build->options;
+  if (options.progress) options.progress("k-means", 0, 1, "runs");
+  KMeansOptions kmeans;
+  kmeans.k = options.motifs;
+  kmeans.seed = options.seed;
+  kmeans.max_iterations = options.kmeans_iterations;
+  kmeans.threads = options.threads;
+  Result<KMeansResult> clustered = RunKMeans(embedded, kmeans);
+  if (!clustered.ok()) return clustered.status().WithContext(build->archive_path + ": motifs");
+  MotifSet& motifs = build->motifs;
+  motifs.centroids = std::move(clustered->centroids);
+  motifs.cluster_sizes = std::move(clustered->cluster_sizes);
+  motifs.inertia = clustered->inertia;
+  motifs.iterations = clustered->iterations;
+  motifs.embedding_identity = build->embedding.identity;
+  motifs.archive_identity = build->archive_identity;
+  motifs.seed = options.seed;
+  build->signatures.word_motifs.assign(clustered->assignments.begin(),
+                                       clustered->assignments.end());
+  MOTIF_RETURN_IF_ERROR(WriteTensorFile(build->paths.motifs, MotifsToTensorFile(motifs),
+                                        PosixFileSystem(), &build->motifs_identity));
+  if (options.progress) options.progress("k-means", 1, 1, "runs");
+  return Status::Ok();
+}
+
+// Stage 3 proper: each take's TF-IDF signature over the words' motifs, written as the
+// signatures file (a clip without words keeps a zero row).
+Status WriteTakeSignatures(WordsBuild* build) {
+  const std::vector<ClipInfo>& clips = build->reader->clips();
+  SignatureSet& signatures = build->signatures;
+  signatures.motifs_identity = build->motifs_identity;
+  signatures.motif_count = build->motifs.motif_count();
+  std::vector<std::vector<uint32_t>> takes;
+  const std::vector<uint64_t> first_words = signatures.ClipFirstWords();
+  for (size_t clip = 0; clip < clips.size(); ++clip) {
+    if (signatures.clip_words[clip] == 0) continue;
+    const auto begin =
+        signatures.word_motifs.begin() + static_cast<std::ptrdiff_t>(first_words[clip]);
+    takes.emplace_back(begin, begin + static_cast<std::ptrdiff_t>(signatures.clip_words[clip]));
+  }
+  MOTIF_ASSIGN_OR_RETURN(TfIdf tf_idf, TfIdf::Fit(takes, signatures.motif_count));
+  signatures.take_count = tf_idf.take_count();
+  signatures.document_frequencies = tf_idf.document_frequencies();
+  signatures.signatures.assign(clips.size() * signatures.motif_count, 0.0);
+  size_t take = 0;
+  for (size_t clip = 0; clip < clips.size(); ++clip) {
+    if (signatures.clip_words[clip] == 0) continue;
+    MOTIF_ASSIGN_OR_RETURN(std::vector<double> signature, tf_idf.Signature(takes[take++]));
+    std::copy(
+        signature.begin(), signature.end(),
+        signatures.signatures.begin() + static_cast<std::ptrdiff_t>(clip * signatures.motif_count));
+  }
+  return WriteTensorFile(build->paths.signatures, SignaturesToTensorFile(signatures));
+}
+
+// Stages 2 and 3 when the signatures cannot be reused: every word embedded, its motif (k-means,
+// or the reused motifs' nearest), then the signatures.
+Status MakeMotifsAndSignatures(const WordEmbedder& embedder, WordsBuild* build) {
+  WordsReport& report = build->report;
+  Clock::time_point start = Clock::now();
+  MOTIF_ASSIGN_OR_RETURN(RowMatrixXf embedded, EmbedArchiveWords(*build, embedder));
+  report.seconds_embed = SecondsSince(start);
+
+  start = Clock::now();
+  if (!report.motifs_reused) {
+    MOTIF_RETURN_IF_ERROR(ClusterWordMotifs(embedded, build));
+  } else {
+    build->signatures.word_motifs =
+        NearestMotifs(embedded, build->motifs.centroids, build->options.threads);
+  }
+  report.seconds_kmeans = SecondsSince(start);
+
+  start = Clock::now();
+  MOTIF_RETURN_IF_ERROR(WriteTakeSignatures(build));
+  report.seconds_signatures = SecondsSince(start);
+  return Status::Ok();
+}
+
+// Locks the archive's words files, opens it and reads its weights, and loads the embedding
+// from elsewhere, if any (it fixes the word geometry).
+Status OpenWordsBuild(const std::string& archive_path, const WordsPaths& paths,
+                      const WordsOptions& in, ExclusiveFileLock* lock, WordsBuild* build) {
+  build->archive_path = archive_path;
+  build->paths = paths;
+  build->options = Resolve(in);
+  WordsOptions& options = build->options;
+  MOTIF_RETURN_IF_ERROR(Validate(options));
+  MOTIF_RETURN_IF_ERROR(lock->Acquire(paths.signatures + ".lock",
+                                      "another `motifmine words` is working on this archive; "
+                                      "nothing was changed",
+                                      /*create=*/true));
+  MOTIF_ASSIGN_OR_RETURN(build->reader, FrameFileReader::Open(archive_path));
+  MOTIF_ASSIGN_OR_RETURN(build->weights,
+                         LoadDistanceWeights(build->reader->skeleton(), options.weights_path));
+  build->archive_identity = build->reader->summary().identity;
+  build->report.archive_generation = build->reader->summary().generation;
+  build->report.paths = paths;
+  if (!options.embedding_in.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(build->embedding, LoadEmbedding(options.embedding_in));
+    build->report.embedding_loaded = true;
+    options.words = build->embedding.model.words;  // the words the network was trained on
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<WordsReport> BuildWords(const std::string& archive_path, const WordsPaths& paths,
+                               const WordsOptions& in) {
+  ExclusiveFileLock lock;
+  WordsBuild build;
+  MOTIF_RETURN_IF_ERROR(OpenWordsBuild(archive_path, paths, in, &lock, &build));
+  MOTIF_RETURN_IF_ERROR(CountArchiveWords(&build));
+  MOTIF_RETURN_IF_ERROR(ObtainEmbedding(&build));
   MOTIF_ASSIGN_OR_RETURN(WordEmbedder embedder,
-                         WordEmbedder::Create(model, reader->layout(), weights, options.threads));
+                         WordEmbedder::Create(build.embedding.model, build.reader->layout(),
+                                              build.weights, build.options.threads));
+  WordsReport& report = build.report;
   report.dims = embedder.dims();
-
-  // Stage 2: the motifs (reused if made from this embedding and archive with these options).
-  MotifSet motifs;
-  uint64_t motifs_identity = 0;
-  if (Result<TensorFile> file = ReadTensorFile(paths.motifs, kMotifsKind); file.ok()) {
-    Result<MotifSet> stored = MotifsFromTensorFile(*file);
-    if (stored.ok() && stored->embedding_identity == embedding.identity &&
-        stored->archive_identity == archive_identity && stored->seed == options.seed &&
-        stored->motif_count() == options.motifs &&
-        stored->centroids.cols() == static_cast<Eigen::Index>(report.dims)) {
-      motifs = std::move(stored.value());
-      motifs_identity = file->identity();
-      report.motifs_reused = true;
-    }
-  }
-  if (report.motifs_reused) {
-    if (Result<TensorFile> file = ReadTensorFile(paths.signatures, kSignaturesKind); file.ok()) {
-      Result<SignatureSet> stored = SignaturesFromTensorFile(*file);
-      if (stored.ok() && stored->motifs_identity == motifs_identity &&
-          stored->archive_identity == archive_identity &&
-          stored->clip_words == signatures.clip_words &&
-          stored->words.word_frames == options.words.word_frames &&
-          stored->words.stride_frames == options.words.stride_frames &&
-          stored->words.word_fps == options.words.word_fps) {
-        report.signatures_reused = true;
-        signatures = std::move(stored.value());
-      }
-    }
-  }
-  if (!report.signatures_reused) {
-    // Every word embedded, streamed from the archive a batch at a time.
-    Clock::time_point start = Clock::now();
-    RowMatrixXf embedded(static_cast<Eigen::Index>(report.words), report.dims);
-    WordStreamOptions stream_options;
-    stream_options.words = options.words;
-    stream_options.batch_words = options.batch_words;
-    stream_options.keep_rows = true;
-    MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<WordStream> stream,
-                           WordStream::Create(*reader, weights, stream_options));
-    WordBatch batch;
-    Eigen::Index row = 0;
-    for (;;) {
-      MOTIF_ASSIGN_OR_RETURN(bool more, stream->Next(&batch));
-      if (!more) break;
-      embedder.Embed(batch, &embedded, row);
-      row += static_cast<Eigen::Index>(batch.size());
-      if (options.progress) options.progress("embed", row, report.words, "words");
-    }
-    MOTIF_CHECK(row == static_cast<Eigen::Index>(report.words));
-    report.seconds_embed = SecondsSince(start);
-
-    start = Clock::now();
-    if (!report.motifs_reused) {
-      if (options.progress) options.progress("k-means", 0, 1, "runs");
-      KMeansOptions kmeans;
-      kmeans.k = options.motifs;
-      kmeans.seed = options.seed;
-      kmeans.max_iterations = options.kmeans_iterations;
-      kmeans.threads = options.threads;
-      Result<KMeansResult> clustered = RunKMeans(embedded, kmeans);
-      if (!clustered.ok()) return clustered.status().WithContext(archive_path + ": motifs");
-      motifs.centroids = std::move(clustered->centroids);
-      motifs.cluster_sizes = std::move(clustered->cluster_sizes);
-      motifs.inertia = clustered->inertia;
-      motifs.iterations = clustered->iterations;
-      motifs.embedding_identity = embedding.identity;
-      motifs.archive_identity = archive_identity;
-      motifs.seed = options.seed;
-      signatures.word_motifs.assign(clustered->assignments.begin(), clustered->assignments.end());
-      MOTIF_RETURN_IF_ERROR(WriteTensorFile(paths.motifs, MotifsToTensorFile(motifs),
-                                            PosixFileSystem(), &motifs_identity));
-      if (options.progress) options.progress("k-means", 1, 1, "runs");
-    } else {
-      signatures.word_motifs = NearestMotifs(embedded, motifs.centroids, options.threads);
-    }
-    report.seconds_kmeans = SecondsSince(start);
-
-    // Stage 3: the signatures.
-    start = Clock::now();
-    signatures.motifs_identity = motifs_identity;
-    signatures.motif_count = motifs.motif_count();
-    std::vector<std::vector<uint32_t>> takes;
-    const std::vector<uint64_t> first_words = signatures.ClipFirstWords();
-    for (size_t clip = 0; clip < clips.size(); ++clip) {
-      if (signatures.clip_words[clip] == 0) continue;
-      const auto begin =
-          signatures.word_motifs.begin() + static_cast<std::ptrdiff_t>(first_words[clip]);
-      takes.emplace_back(begin, begin + static_cast<std::ptrdiff_t>(signatures.clip_words[clip]));
-    }
-    MOTIF_ASSIGN_OR_RETURN(TfIdf tf_idf, TfIdf::Fit(takes, signatures.motif_count));
-    signatures.take_count = tf_idf.take_count();
-    signatures.document_frequencies = tf_idf.document_frequencies();
-    signatures.signatures.assign(clips.size() * signatures.motif_count, 0.0);
-    size_t take = 0;
-    for (size_t clip = 0; clip < clips.size(); ++clip) {
-      if (signatures.clip_words[clip] == 0) continue;
-      MOTIF_ASSIGN_OR_RETURN(std::vector<double> signature, tf_idf.Signature(takes[take++]));
-      std::copy(signature.begin(), signature.end(),
-                signatures.signatures.begin() +
-                    static_cast<std::ptrdiff_t>(clip * signatures.motif_count));
-    }
-    MOTIF_RETURN_IF_ERROR(WriteTensorFile(paths.signatures, SignaturesToTensorFile(signatures)));
-    report.seconds_signatures = SecondsSince(start);
-  }
-  report.motifs = motifs.motif_count();
-  report.kmeans_inertia = motifs.inertia;
-  report.kmeans_iterations = motifs.iterations;
+  ReuseStoredMotifs(&build);
+  if (report.motifs_reused) ReuseStoredSignatures(&build);
+  if (!report.signatures_reused) MOTIF_RETURN_IF_ERROR(MakeMotifsAndSignatures(embedder, &build));
+  report.motifs = build.motifs.motif_count();
+  report.kmeans_inertia = build.motifs.inertia;
+  report.kmeans_iterations = build.motifs.iterations;
   return report;
 }
 

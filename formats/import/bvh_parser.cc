@@ -31,6 +31,13 @@ struct JointLayout {
   std::array<int, 3> rotation_channel{};  // index into the frame's values
 };
 
+// Where each value of a frame line goes.
+struct BvhFrameLayout {
+  std::vector<JointLayout> joints;
+  std::array<int, 3> root_position_channel = {-1, -1, -1};  // -1: the root's OFFSET
+  int channel_count = 0;
+};
+
 // State of a joint while its braces are open.
 struct OpenJoint {
   int joint_idx = 0;
@@ -287,114 +294,145 @@ class BvhParser {
     return false;
   }
 
-  Status ParseMotion(double fps_override, Take* take) {
-    // Precompute the frame layout.
-    std::vector<JointLayout> layouts(joints_.size());
-    std::array<int, 3> root_position_channel = {-1, -1, -1};
-    int channel_count = 0;
+  // The channels in the order of a frame line: rotations per joint, the root's position.
+  BvhFrameLayout BuildFrameLayout() const {
+    BvhFrameLayout frame;
+    frame.joints.resize(joints_.size());
     for (size_t joint_idx = 0; joint_idx < joints_.size(); ++joint_idx) {
       for (ChannelType type : joints_[joint_idx].channels) {
         if (IsRotation(type)) {
-          JointLayout& layout = layouts[joint_idx];
+          JointLayout& layout = frame.joints[joint_idx];
           layout.rotation_axes[layout.rotation_count] = AxisOf(type);
-          layout.rotation_channel[layout.rotation_count] = channel_count;
+          layout.rotation_channel[layout.rotation_count] = frame.channel_count;
           ++layout.rotation_count;
         } else if (joint_idx == 0) {
-          root_position_channel[static_cast<int>(AxisOf(type))] = channel_count;
+          frame.root_position_channel[static_cast<int>(AxisOf(type))] = frame.channel_count;
         }
-        ++channel_count;
+        ++frame.channel_count;
       }
     }
-    if (channel_count == 0) return Error(motion_line_, "the hierarchy declares no channels");
+    return frame;
+  }
 
-    LineCursor lines(tokenizer_.Rest(), motion_line_);
+  // The rest of the MOTION line (blank), then 'Frames: <count>'.
+  Status ReadFrameCount(LineCursor* lines, int64_t* frame_count) const {
     std::string_view line;
-    lines.Next(&line);  // the rest of the MOTION line
+    lines->Next(&line);  // the rest of the MOTION line
     if (!IsBlankLine(line)) {
       return Error(motion_line_, "unexpected " + Quoted(line) + " after MOTION");
     }
     std::string_view value;
-    if (!NextNonBlank(&lines, &line)) {
-      return Error(lines.line_number(), "file ends after MOTION: expected 'Frames:'");
+    if (!NextNonBlank(lines, &line)) {
+      return Error(lines->line_number(), "file ends after MOTION: expected 'Frames:'");
     }
-    int64_t frame_count = 0;
     if (!MatchLabel(line, {"Frames"}, &value)) {
-      return Error(lines.line_number(), "expected 'Frames: <count>', found " + Quoted(line));
+      return Error(lines->line_number(), "expected 'Frames: <count>', found " + Quoted(line));
     }
-    if (!ParseInt64(value, &frame_count) || frame_count < 0) {
-      return Error(lines.line_number(),
+    if (!ParseInt64(value, frame_count) || *frame_count < 0) {
+      return Error(lines->line_number(),
                    "'Frames:' needs a non-negative integer, found " + Quoted(value));
     }
-    if (frame_count == 0) return Error(lines.line_number(), "'Frames: 0': the take has no frames");
-    const int frames_line = lines.line_number();
-    if (!NextNonBlank(&lines, &line)) {
-      return Error(lines.line_number(), "file ends after 'Frames:': expected 'Frame Time:'");
+    if (*frame_count == 0) {
+      return Error(lines->line_number(), "'Frames: 0': the take has no frames");
+    }
+    return Status::Ok();
+  }
+
+  // 'Frame Time: <seconds>' as a rate (a near-integer rate rounded), unless overridden.
+  Status ReadFrameRate(LineCursor* lines, double fps_override, double* fps_out) const {
+    std::string_view line;
+    std::string_view value;
+    if (!NextNonBlank(lines, &line)) {
+      return Error(lines->line_number(), "file ends after 'Frames:': expected 'Frame Time:'");
     }
     double frame_time = 0;
     if (!MatchLabel(line, {"Frame", "Time"}, &value)) {
-      return Error(lines.line_number(), "expected 'Frame Time: <seconds>', found " + Quoted(line));
+      return Error(lines->line_number(), "expected 'Frame Time: <seconds>', found " + Quoted(line));
     }
     if (!ParseDouble(value, &frame_time)) {
-      return Error(lines.line_number(),
+      return Error(lines->line_number(),
                    "'Frame Time:' needs a finite number, found " + Quoted(value));
     }
     if (frame_time <= 0) {
-      return Error(lines.line_number(), "'Frame Time: " + Printable(value) + "': must be > 0");
+      return Error(lines->line_number(), "'Frame Time: " + Printable(value) + "': must be > 0");
     }
     // A take is resampled to the archive's rate on import: a frame time of hours would turn a
     // few bytes of motion into millions of frames.
     if (frame_time < kMinBvhFrameTime || frame_time > kMaxBvhFrameTime) {
-      return Error(lines.line_number(), "'Frame Time: " + Printable(value) +
-                                            "': must be between 1e-06 and 1 second (1 to "
-                                            "1000000 frames per second)");
+      return Error(lines->line_number(), "'Frame Time: " + Printable(value) +
+                                             "': must be between 1e-06 and 1 second (1 to "
+                                             "1000000 frames per second)");
     }
     double fps = 1.0 / frame_time;
     const double rounded = std::round(fps);
     if (rounded >= 1 && std::abs(fps - rounded) <= 1e-4 * fps) fps = rounded;
     if (fps_override > 0) fps = fps_override;
-    take->fps = fps;
-    take->source_fps = fps;
+    *fps_out = fps;
+    return Status::Ok();
+  }
 
+  // One frame's values as the root position and every joint's rotation.
+  void AppendPose(const BvhFrameLayout& frame, const std::vector<double>& values,
+                  Take* take) const {
+    const std::array<double, 3>& root_offset = joints_[0].offset;
+    Eigen::Vector3d position;
+    for (int axis = 0; axis < 3; ++axis) {
+      const int channel = frame.root_position_channel[axis];
+      position[axis] = channel >= 0 ? values[channel] : root_offset[axis];
+    }
+    take->root_positions.push_back(position);
+    for (size_t joint_idx = 0; joint_idx < joints_.size(); ++joint_idx) {
+      const JointLayout& layout = frame.joints[joint_idx];
+      Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+      for (int rotation_idx = 0; rotation_idx < layout.rotation_count; ++rotation_idx) {
+        rotation = rotation *
+                   AxisRotation(layout.rotation_axes[rotation_idx],
+                                DegreesToRadians(values[layout.rotation_channel[rotation_idx]]));
+      }
+      take->rotations.push_back(rotation);
+    }
+  }
+
+  // The `frame_count` frame lines declared at line `frames_line`, and not one more.
+  Status ReadFrames(const BvhFrameLayout& frame, int64_t frame_count, int frames_line,
+                    LineCursor* lines, Take* take) const {
     // Never trust the declared count for memory: a damaged header may claim billions.
-    const size_t joint_count = joints_.size();
-    const size_t max_plausible = tokenizer_.Rest().size() / (2 * channel_count) + 1;
+    const size_t max_plausible = tokenizer_.Rest().size() / (2 * frame.channel_count) + 1;
     const size_t reserve_frames = std::min<size_t>(static_cast<size_t>(frame_count), max_plausible);
     take->root_positions.reserve(reserve_frames);
-    take->rotations.reserve(reserve_frames * joint_count);
-
-    std::vector<double> values(channel_count);
-    const std::array<double, 3>& root_offset = joints_[0].offset;
+    take->rotations.reserve(reserve_frames * joints_.size());
+    std::string_view line;
+    std::vector<double> values(frame.channel_count);
     for (int64_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
-      if (!NextNonBlank(&lines, &line)) {
-        return Error(lines.line_number(), "file ends after " + std::to_string(frame_idx) +
-                                              " of the " + std::to_string(frame_count) +
-                                              " frames declared at line " +
-                                              std::to_string(frames_line) + " (truncated file?)");
+      if (!NextNonBlank(lines, &line)) {
+        return Error(lines->line_number(), "file ends after " + std::to_string(frame_idx) +
+                                               " of the " + std::to_string(frame_count) +
+                                               " frames declared at line " +
+                                               std::to_string(frames_line) + " (truncated file?)");
       }
-      MOTIF_RETURN_IF_ERROR(ParseFrameLine(line, lines.line_number(), frame_idx, &values));
-      Eigen::Vector3d position;
-      for (int axis = 0; axis < 3; ++axis) {
-        const int channel = root_position_channel[axis];
-        position[axis] = channel >= 0 ? values[channel] : root_offset[axis];
-      }
-      take->root_positions.push_back(position);
-      for (size_t joint_idx = 0; joint_idx < joint_count; ++joint_idx) {
-        const JointLayout& layout = layouts[joint_idx];
-        Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
-        for (int rotation_idx = 0; rotation_idx < layout.rotation_count; ++rotation_idx) {
-          rotation = rotation *
-                     AxisRotation(layout.rotation_axes[rotation_idx],
-                                  DegreesToRadians(values[layout.rotation_channel[rotation_idx]]));
-        }
-        take->rotations.push_back(rotation);
-      }
+      MOTIF_RETURN_IF_ERROR(ParseFrameLine(line, lines->line_number(), frame_idx, &values));
+      AppendPose(frame, values, take);
     }
-    if (NextNonBlank(&lines, &line)) {
-      return Error(lines.line_number(), "more frame lines than the " + std::to_string(frame_count) +
-                                            " declared by 'Frames:' at line " +
-                                            std::to_string(frames_line));
+    if (NextNonBlank(lines, &line)) {
+      return Error(lines->line_number(),
+                   "more frame lines than the " + std::to_string(frame_count) +
+                       " declared by 'Frames:' at line " + std::to_string(frames_line));
     }
     return Status::Ok();
+  }
+
+  Status ParseMotion(double fps_override, Take* take) {
+    const BvhFrameLayout frame = BuildFrameLayout();
+    if (frame.channel_count == 0) return Error(motion_line_, "the hierarchy declares no channels");
+    LineCursor lines(tokenizer_.Rest(), motion_line_);
+    int64_t frame_count = 0;
+    MOTIF_RETURN_IF_ERROR(ReadFrameCount(&lines, &frame_count));
+    const int frames_line = lines.line_number();
+    double fps = 0;
+    MOTIF_RETURN_IF_ERROR(ReadFrameRate(&lines, fps_override, &fps));
+    take->fps = fps;
+    take->source_fps = fps;
+    return ReadFrames(frame, frame_count, frames_line, &lines, take);
   }
 
   Status ParseFrameLine(std::string_view line, int line_number, int64_t frame_idx,

@@ -71,6 +71,141 @@ Status ZstdError(const char* what, size_t code) {
   return Status::IOError(std::string("zstd ") + what + ": " + ZSTD_getErrorName(code));
 }
 
+// The id section: per column its run count, then per run the start (the first run's zigzagged
+// against `reference`, the column's expected first frame; a later run's as the gap after the
+// previous run) and length - 1.
+void EncodeIdSection(uint64_t first_column, const std::vector<std::vector<Neighbour>>& columns,
+                     std::string* ids) {
+  ids->clear();
+  uint64_t reference = first_column;
+  for (const std::vector<Neighbour>& column : columns) {
+    uint64_t run_count = 0;
+    for (size_t entry_idx = 0; entry_idx < column.size(); ++entry_idx) {
+      if (entry_idx == 0 || column[entry_idx].frame != column[entry_idx - 1].frame + 1) {
+        ++run_count;
+      }
+    }
+    PutVarint(ids, run_count);
+    uint64_t previous_last = 0;
+    for (size_t run_begin = 0; run_begin < column.size();) {
+      size_t run_end = run_begin + 1;
+      while (run_end < column.size() && column[run_end].frame == column[run_end - 1].frame + 1) {
+        ++run_end;
+      }
+      const uint64_t start = column[run_begin].frame;
+      if (run_begin == 0) {
+        PutVarint(ids, ZigZag64(static_cast<int64_t>(start) - static_cast<int64_t>(reference)));
+      } else {
+        PutVarint(ids, start - (previous_last + 2));
+      }
+      PutVarint(ids, run_end - run_begin - 1);
+      previous_last = column[run_end - 1].frame;
+      run_begin = run_end;
+    }
+    reference = (column.empty() ? reference : column[0].frame) + 1;
+  }
+}
+
+// The distance section: zigzagged prediction residuals as a low-byte plane and a high-byte plane.
+void EncodeDistanceSection(const std::vector<std::vector<Neighbour>>& columns, float eps,
+                           uint64_t neighbour_count, std::string* distances) {
+  distances->assign(2 * neighbour_count, '\0');
+  char* low = distances->data();
+  char* high = low + neighbour_count;
+  size_t out_idx = 0;
+  for (const std::vector<Neighbour>& column : columns) {
+    uint16_t previous = 0, before_previous = 0;
+    uint32_t run = 0;
+    for (size_t entry_idx = 0; entry_idx < column.size(); ++entry_idx, ++out_idx) {
+      run = (entry_idx > 0 && column[entry_idx].frame == column[entry_idx - 1].frame + 1) ? run + 1
+                                                                                          : 1;
+      const uint16_t code = QuantizeDistance(column[entry_idx].distance, eps);
+      const uint16_t residual =
+          static_cast<uint16_t>(code - Predict(run, entry_idx, previous, before_previous));
+      const uint16_t zigzag = ZigZag16(residual);
+      low[out_idx] = static_cast<char>(zigzag & 0xFF);
+      high[out_idx] = static_cast<char>(zigzag >> 8);
+      before_previous = previous;
+      previous = code;
+    }
+  }
+}
+
+// What can be wrong with a run of the id section.
+enum class RunProblem { kNone, kTruncated, kFirstFrameOutside, kFrameOutside, kRunTooLong };
+
+// Reads run `run_idx`'s start and length - 1 and checks them against the archive's frames and
+// the block's neighbours left. Inline: it is the decoder's inner loop.
+inline RunProblem ReadIdRun(const uint8_t** cursor, const uint8_t* end, uint64_t run_idx,
+                            uint64_t reference, uint64_t previous_last, uint64_t frame_count,
+                            uint64_t neighbours_left, uint64_t* start, uint64_t* length_code) {
+  uint64_t start_code = 0;
+  if (!GetVarint(cursor, end, &start_code) || !GetVarint(cursor, end, length_code)) {
+    return RunProblem::kTruncated;
+  }
+  if (run_idx == 0) {
+    const int64_t delta = UnZigZag64(start_code);
+    // reference < 2^33: the sum cannot overflow for any delta that leads to a valid frame.
+    if (delta < -static_cast<int64_t>(reference) || delta >= static_cast<int64_t>(frame_count)) {
+      return RunProblem::kFirstFrameOutside;
+    }
+    *start = reference + static_cast<uint64_t>(delta);
+  } else {
+    if (start_code >= frame_count) return RunProblem::kFrameOutside;
+    *start = previous_last + 2 + start_code;
+  }
+  if (*length_code >= neighbours_left || *start >= frame_count ||
+      *length_code >= frame_count - *start) {
+    return RunProblem::kRunTooLong;
+  }
+  return RunProblem::kNone;
+}
+
+Status RunCorruption(RunProblem problem, const std::string& where, uint64_t start,
+                     uint64_t length_code) {
+  switch (problem) {
+    case RunProblem::kTruncated:
+      return Status::Corruption(where + "truncated");
+    case RunProblem::kFirstFrameOutside:
+      return Status::Corruption(where + "first frame outside the archive");
+    case RunProblem::kFrameOutside:
+      return Status::Corruption(where + "frame outside the archive");
+    default:
+      return Status::Corruption(where + "run [" + std::to_string(start) + ", +" +
+                                std::to_string(length_code + 1) +
+                                ") runs past the archive or the block's neighbours");
+  }
+}
+
+// A run's neighbours with their distances from the planes: inside a run the first two entries
+// are predicted by the entry before them, the others linearly. *previous, *before_previous: the
+// column's last two codes.
+inline void DecodeRunWithDistances(const uint8_t* run_low, const uint8_t* run_high,
+                                   uint32_t first_frame, uint32_t length, const float* table,
+                                   uint16_t* previous_code, uint16_t* before_previous_code,
+                                   Neighbour* run_out) {
+  uint16_t previous = *previous_code;
+  uint16_t before_previous = *before_previous_code;
+  uint32_t offset = 0;
+  for (; offset < length && offset < 2; ++offset) {
+    const uint16_t code = static_cast<uint16_t>(
+        previous + UnZigZag16(static_cast<uint16_t>(run_low[offset] | run_high[offset] << 8)));
+    run_out[offset] = Neighbour{first_frame + offset, table[code]};
+    before_previous = previous;
+    previous = code;
+  }
+  for (; offset < length; ++offset) {
+    const uint16_t code = static_cast<uint16_t>(
+        2u * previous - before_previous +
+        UnZigZag16(static_cast<uint16_t>(run_low[offset] | run_high[offset] << 8)));
+    run_out[offset] = Neighbour{first_frame + offset, table[code]};
+    before_previous = previous;
+    previous = code;
+  }
+  *previous_code = previous;
+  *before_previous_code = before_previous;
+}
+
 }  // namespace
 
 uint16_t QuantizeDistance(float distance, float eps) {
@@ -106,57 +241,8 @@ Status BlockEncoder::Encode(uint64_t first_column,
   for (const std::vector<Neighbour>& column : columns) neighbour_count += column.size();
   MOTIF_CHECK(neighbour_count <= kMaxBlockNeighbours && columns.size() <= kMaxBlockColumns);
 
-  // Id section: runs of consecutive frames.
-  ids_.clear();
-  uint64_t reference = first_column;
-  for (const std::vector<Neighbour>& column : columns) {
-    uint64_t run_count = 0;
-    for (size_t entry_idx = 0; entry_idx < column.size(); ++entry_idx) {
-      if (entry_idx == 0 || column[entry_idx].frame != column[entry_idx - 1].frame + 1) {
-        ++run_count;
-      }
-    }
-    PutVarint(&ids_, run_count);
-    uint64_t previous_last = 0;
-    for (size_t run_begin = 0; run_begin < column.size();) {
-      size_t run_end = run_begin + 1;
-      while (run_end < column.size() && column[run_end].frame == column[run_end - 1].frame + 1) {
-        ++run_end;
-      }
-      const uint64_t start = column[run_begin].frame;
-      if (run_begin == 0) {
-        PutVarint(&ids_, ZigZag64(static_cast<int64_t>(start) - static_cast<int64_t>(reference)));
-      } else {
-        PutVarint(&ids_, start - (previous_last + 2));
-      }
-      PutVarint(&ids_, run_end - run_begin - 1);
-      previous_last = column[run_end - 1].frame;
-      run_begin = run_end;
-    }
-    reference = (column.empty() ? reference : column[0].frame) + 1;
-  }
-
-  // Distance section: zigzagged prediction residuals as a low-byte plane and a high-byte plane.
-  distances_.assign(2 * neighbour_count, '\0');
-  char* low = distances_.data();
-  char* high = low + neighbour_count;
-  size_t out_idx = 0;
-  for (const std::vector<Neighbour>& column : columns) {
-    uint16_t previous = 0, before_previous = 0;
-    uint32_t run = 0;
-    for (size_t entry_idx = 0; entry_idx < column.size(); ++entry_idx, ++out_idx) {
-      run = (entry_idx > 0 && column[entry_idx].frame == column[entry_idx - 1].frame + 1) ? run + 1
-                                                                                          : 1;
-      const uint16_t code = QuantizeDistance(column[entry_idx].distance, eps);
-      const uint16_t residual =
-          static_cast<uint16_t>(code - Predict(run, entry_idx, previous, before_previous));
-      const uint16_t zigzag = ZigZag16(residual);
-      low[out_idx] = static_cast<char>(zigzag & 0xFF);
-      high[out_idx] = static_cast<char>(zigzag >> 8);
-      before_previous = previous;
-      previous = code;
-    }
-  }
+  EncodeIdSection(first_column, columns, &ids_);
+  EncodeDistanceSection(columns, eps, neighbour_count, &distances_);
 
   BlockHeader header;
   header.column_count = static_cast<uint32_t>(columns.size());
@@ -321,54 +407,19 @@ Status BlockDecoder::DecodeColumns(const BlockHandle& handle, const BlockLimits&
     uint64_t previous_last = 0;
     uint16_t previous = 0, before_previous = 0;  // codes; the column's first prediction is 0
     for (uint64_t run_idx = 0; run_idx < run_count; ++run_idx) {
-      uint64_t start_code = 0, length_code = 0;
-      if (!GetVarint(&cursor, end, &start_code) || !GetVarint(&cursor, end, &length_code)) {
-        return Status::Corruption(where() + "truncated");
-      }
-      uint64_t start = 0;
-      if (run_idx == 0) {
-        const int64_t delta = UnZigZag64(start_code);
-        // reference < 2^33: the sum cannot overflow for any delta that leads to a valid frame.
-        if (delta < -static_cast<int64_t>(reference) ||
-            delta >= static_cast<int64_t>(limits.frame_count)) {
-          return Status::Corruption(where() + "first frame outside the archive");
-        }
-        start = reference + static_cast<uint64_t>(delta);
-      } else {
-        if (start_code >= limits.frame_count) {
-          return Status::Corruption(where() + "frame outside the archive");
-        }
-        start = previous_last + 2 + start_code;
-      }
-      if (length_code >= neighbour_count - filled || start >= limits.frame_count ||
-          length_code >= limits.frame_count - start) {
-        return Status::Corruption(where() + "run [" + std::to_string(start) + ", +" +
-                                  std::to_string(length_code + 1) +
-                                  ") runs past the archive or the block's neighbours");
+      uint64_t start = 0, length_code = 0;
+      const RunProblem problem =
+          ReadIdRun(&cursor, end, run_idx, reference, previous_last, limits.frame_count,
+                    neighbour_count - filled, &start, &length_code);
+      if (problem != RunProblem::kNone) {
+        return RunCorruption(problem, where(), start, length_code);
       }
       const uint32_t first_frame = static_cast<uint32_t>(start);
       const uint32_t length = static_cast<uint32_t>(length_code + 1);
       Neighbour* run_out = out + filled;
       if constexpr (kDistances) {
-        const uint8_t* run_low = low + filled;
-        const uint8_t* run_high = high + filled;
-        uint32_t offset = 0;
-        for (; offset < length && offset < 2; ++offset) {
-          const uint16_t code = static_cast<uint16_t>(
-              previous +
-              UnZigZag16(static_cast<uint16_t>(run_low[offset] | run_high[offset] << 8)));
-          run_out[offset] = Neighbour{first_frame + offset, table[code]};
-          before_previous = previous;
-          previous = code;
-        }
-        for (; offset < length; ++offset) {
-          const uint16_t code = static_cast<uint16_t>(
-              2u * previous - before_previous +
-              UnZigZag16(static_cast<uint16_t>(run_low[offset] | run_high[offset] << 8)));
-          run_out[offset] = Neighbour{first_frame + offset, table[code]};
-          before_previous = previous;
-          previous = code;
-        }
+        DecodeRunWithDistances(low + filled, high + filled, first_frame, length, table, &previous,
+                               &before_previous, run_out);
       } else {
         for (uint32_t offset = 0; offset < length; ++offset) {
           run_out[offset] = Neighbour{first_frame + offset, 0.0f};
