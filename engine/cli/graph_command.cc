@@ -149,9 +149,19 @@ Status EnsureGraphTrellis(const FrameFileReader& archive, const std::string& arc
   return status;
 }
 
-}  // namespace
+// The command line of a run, checked.
+struct GraphArgs {
+  std::string start;
+  std::string out;
+  std::string prefix;
+  double seconds = 0;
+  double window_seconds = 0;
+  double min_piece_seconds = 0;
+  uint64_t seed = 1;
+  int threads = 0;
+};
 
-int RunGraph(const std::vector<std::string>& args) {
+CommandSpec GraphCommandSpec() {
   CommandSpec spec;
   spec.name = "graph";
   spec.usage =
@@ -180,121 +190,113 @@ int RunGraph(const std::vector<std::string>& args) {
       "threads", po::value<int>()->default_value(0), "threads (0: all cores)");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
-  po::variables_map vm;
-  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
-  const auto fail = [](const Status& status) { return ReportError("graph", status); };
-  GraphRun run;
-  run.archive = vm["archive"].as<std::string>();
-  run.constrained = !vm["unconstrained"].as<bool>();
-  const double seconds = vm["seconds"].as<double>();
-  const double window_seconds = vm["window"].as<double>();
-  const uint64_t seed = vm["seed"].as<uint64_t>();
-  const int threads = vm["threads"].as<int>();
-  if (!(seconds > 0 && seconds <= 86400)) {
-    return fail(Status::InvalidArgument("--seconds must be in (0, 86400]"));
+  return spec;
+}
+
+Status ReadGraphArgs(const po::variables_map& vm, GraphArgs* args, GraphRun* run) {
+  run->archive = vm["archive"].as<std::string>();
+  run->constrained = !vm["unconstrained"].as<bool>();
+  run->trellis = vm["trellis"].as<std::string>();
+  if (run->trellis.empty()) run->trellis = DefaultTrellisPath(run->archive);
+  args->start = vm["start"].as<std::string>();
+  args->out = vm["out"].as<std::string>();
+  args->prefix = vm["prefix"].as<std::string>();
+  args->seconds = vm["seconds"].as<double>();
+  args->window_seconds = vm["window"].as<double>();
+  args->min_piece_seconds = vm["min-piece"].as<double>();
+  args->seed = vm["seed"].as<uint64_t>();
+  args->threads = vm["threads"].as<int>();
+  if (!(args->seconds > 0 && args->seconds <= 86400)) {
+    return Status::InvalidArgument("--seconds must be in (0, 86400]");
   }
-  if (!(vm["min-piece"].as<double>() >= 0 && vm["min-piece"].as<double>() <= 3600)) {
-    return fail(Status::InvalidArgument("--min-piece must be in [0, 3600] seconds"));
+  if (!(args->min_piece_seconds >= 0 && args->min_piece_seconds <= 3600)) {
+    return Status::InvalidArgument("--min-piece must be in [0, 3600] seconds");
   }
-  if (!(window_seconds > 0 && window_seconds <= 5)) {
-    return fail(Status::InvalidArgument("--window must be in (0, 5] seconds"));
+  if (!(args->window_seconds > 0 && args->window_seconds <= 5)) {
+    return Status::InvalidArgument("--window must be in (0, 5] seconds");
   }
-  Result<std::unique_ptr<FrameFileReader>> opened = FrameFileReader::Open(run.archive);
-  if (!opened.ok()) return fail(opened.status());
-  const FrameFileReader& reader = **opened;
-  const std::string start = vm["start"].as<std::string>();
-  uint32_t start_clip = UINT32_MAX;
+  return Status::Ok();
+}
+
+Result<uint32_t> StartClip(const FrameFileReader& reader, const std::string& start) {
   for (uint32_t clip = 0; clip < reader.clips().size(); ++clip) {
-    if (reader.clips()[clip].name == start) start_clip = clip;
+    if (reader.clips()[clip].name == start) return clip;
   }
-  if (start_clip == UINT32_MAX) {
-    return fail(
-        Status::NotFound("--start: no clip named '" + start + "' (motifmine info lists them)"));
-  }
-  const auto window = static_cast<uint32_t>(std::lround(window_seconds * reader.fps()));
-  if (window < 2) return fail(Status::InvalidArgument("--window is less than 2 frames"));
-  const std::string out = vm["out"].as<std::string>();
-  std::error_code error;
-  std::filesystem::create_directories(out, error);
-  if (error) return fail(Status::IOError("cannot create " + out + ": " + error.message()));
-  ProgressReporter progress(ProgressModeFrom(vm));
-  const auto stage = [&](const std::string& name, const std::string& unit) {
-    return [&, name, unit](uint64_t done, uint64_t total) {
-      progress.StageUpdate(name, done, total, unit);
-    };
-  };
+  return Status::NotFound("--start: no clip named '" + start + "' (motifmine info lists them)");
+}
 
-  // The trellis, reused when it is up to date.
+// The trellis (reused when it is up to date), its transitions, kept by their signatures when
+// constrained, and the graph of them.
+Result<MotionGraph> BuildGraph(const FrameFileReader& reader, const GraphArgs& args,
+                               uint32_t window, GraphRun* run, ProgressReporter* progress) {
   auto clock = std::chrono::steady_clock::now();
-  run.trellis = vm["trellis"].as<std::string>();
-  if (run.trellis.empty()) run.trellis = DefaultTrellisPath(run.archive);
-  if (Status status = EnsureGraphTrellis(reader, run.archive, run.trellis, threads, &progress);
-      !status.ok()) {
-    return fail(status);
-  }
-  Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(run.trellis);
-  if (!trellis.ok()) return fail(trellis.status());
-  run.seconds_trellis = SecondsSince(clock);
-
+  MOTIF_RETURN_IF_ERROR(
+      EnsureGraphTrellis(reader, run->archive, run->trellis, args.threads, progress));
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,
+                         TrellisFileReader::Open(run->trellis));
+  run->seconds_trellis = SecondsSince(clock);
   clock = std::chrono::steady_clock::now();
   const ClipBounds clips = ClipBoundsOf(reader);
   TransitionOptions transition_options;
   transition_options.window_frames = window;
-  transition_options.threads = threads;
-  transition_options.progress = stage("transitions", "frames");
-  Result<TransitionSearch> found = FindTransitions(**trellis, clips, transition_options);
-  progress.EndStages();
-  if (!found.ok()) return fail(found.status());
-  run.candidates = found->candidates;
+  transition_options.threads = args.threads;
+  transition_options.progress = [progress](uint64_t done, uint64_t total) {
+    progress->StageUpdate("transitions", done, total, "frames");
+  };
+  Result<TransitionSearch> found = FindTransitions(*trellis, clips, transition_options);
+  progress->EndStages();
+  MOTIF_RETURN_IF_ERROR(found.status());
+  run->candidates = found->candidates;
   std::vector<GraphTransition> transitions;
   for (const Transition& t : found->transitions) transitions.push_back({t});
-  run.seconds_transitions = SecondsSince(clock);
-
-  if (run.constrained) {
+  run->seconds_transitions = SecondsSince(clock);
+  if (run->constrained) {
     clock = std::chrono::steady_clock::now();
-    const std::string prefix = vm["prefix"].as<std::string>();
-    const WordsPaths paths = DefaultWordsPaths(prefix.empty() ? run.archive : prefix + ".mfs");
-    Result<LoadedWords> words =
-        LoadOrBuildWords(run.archive, reader, paths, seed, threads, progress);
-    if (!words.ok()) return fail(words.status());
-    Result<SignatureConstraint> constraint =
-        MeasureTransitionSignatures(reader, *words, clips, &transitions, threads);
-    if (!constraint.ok()) return fail(constraint.status());
-    run.constraint = *constraint;
-    PruneBySignature(constraint->threshold, &transitions);
-    run.seconds_signatures = SecondsSince(clock);
+    const WordsPaths paths =
+        DefaultWordsPaths(args.prefix.empty() ? run->archive : args.prefix + ".mfs");
+    MOTIF_ASSIGN_OR_RETURN(LoadedWords words, LoadOrBuildWords(run->archive, reader, paths,
+                                                               args.seed, args.threads, *progress));
+    MOTIF_ASSIGN_OR_RETURN(run->constraint, MeasureTransitionSignatures(
+                                                reader, words, clips, &transitions, args.threads));
+    PruneBySignature(run->constraint.threshold, &transitions);
+    run->seconds_signatures = SecondsSince(clock);
   }
   clock = std::chrono::steady_clock::now();
-  const MotionGraph graph = BuildMotionGraph(clips, std::move(transitions), window);
-  run.seconds_graph = SecondsSince(clock);
+  MotionGraph graph = BuildMotionGraph(clips, std::move(transitions), window);
+  run->seconds_graph = SecondsSince(clock);
+  return graph;
+}
 
-  // graph.json first: it explains a walk that cannot start.
-  const std::filesystem::path dir(out);
-  if (Status status =
-          AtomicWriteFile((dir / "graph.json").string(), GraphJson(graph, reader, clips, run));
-      !status.ok()) {
-    return fail(status);
-  }
-  const auto frames = static_cast<uint64_t>(std::llround(seconds * reader.fps()));
+// DIR/graph.json first (it explains a walk that cannot start), then the walk: DIR/walk.bvh and
+// DIR/walk.json. The walk's pieces.
+Result<std::vector<WalkPiece>> WriteGraphAndWalk(const FrameFileReader& reader,
+                                                 const MotionGraph& graph, const GraphArgs& args,
+                                                 uint32_t start_clip, uint32_t window,
+                                                 const GraphRun& run) {
+  const std::filesystem::path dir(args.out);
+  const ClipBounds clips = ClipBoundsOf(reader);
+  MOTIF_RETURN_IF_ERROR(
+      AtomicWriteFile((dir / "graph.json").string(), GraphJson(graph, reader, clips, run)));
   WalkOptions walk_options;
-  walk_options.frames = frames;
-  walk_options.seed = seed;
+  walk_options.frames = static_cast<uint64_t>(std::llround(args.seconds * reader.fps()));
+  walk_options.seed = args.seed;
   walk_options.min_piece_frames =
-      static_cast<uint64_t>(std::llround(vm["min-piece"].as<double>() * reader.fps()));
-  Result<std::vector<WalkPiece>> pieces = RandomWalk(graph, clips, start_clip, walk_options);
-  if (!pieces.ok()) return fail(pieces.status());
-  Result<Take> walk = WalkTake(reader, *pieces, window);
-  if (!walk.ok()) return fail(walk.status());
-  if (Status status = WriteBvh(*walk, (dir / "walk.bvh").string()); !status.ok()) {
-    return fail(status);
-  }
-  if (Status status = AtomicWriteFile(
-          (dir / "walk.json").string(),
-          WalkJson(*pieces, reader, start, seconds, seed, window, run.constrained).dump(2) + "\n");
-      !status.ok()) {
-    return fail(status);
-  }
+      static_cast<uint64_t>(std::llround(args.min_piece_seconds * reader.fps()));
+  MOTIF_ASSIGN_OR_RETURN(std::vector<WalkPiece> pieces,
+                         RandomWalk(graph, clips, start_clip, walk_options));
+  MOTIF_ASSIGN_OR_RETURN(Take walk, WalkTake(reader, pieces, window));
+  MOTIF_RETURN_IF_ERROR(WriteBvh(walk, (dir / "walk.bvh").string()));
+  MOTIF_RETURN_IF_ERROR(AtomicWriteFile(
+      (dir / "walk.json").string(),
+      WalkJson(pieces, reader, args.start, args.seconds, args.seed, window, run.constrained)
+              .dump(2) +
+          "\n"));
+  return pieces;
+}
 
+void PrintGraphSummary(const FrameFileReader& reader, const MotionGraph& graph,
+                       const GraphArgs& args, const GraphRun& run, uint32_t window, size_t pieces) {
+  const std::filesystem::path dir(args.out);
   const FateCounts fates = CountFates(graph.transitions);
   std::printf("motifmine graph: %s (%s frames in %zu clips)\n", run.archive.c_str(),
               WithCommas(reader.frame_count()).c_str(), reader.clips().size());
@@ -316,13 +318,44 @@ int RunGraph(const std::vector<std::string>& args) {
       WithCommas(graph.component_sizes.empty() ? 0 : graph.component_sizes[0]).c_str(),
       WithCommas(graph.nodes.size()).c_str(), WithCommas(fates.component).c_str(),
       WithCommas(fates.kept).c_str());
-  std::printf("  walk         %.1f s from %s in %zu pieces (seed %llu)\n", seconds, start.c_str(),
-              pieces->size(), static_cast<unsigned long long>(seed));
+  std::printf("  walk         %.1f s from %s in %zu pieces (seed %llu)\n", args.seconds,
+              args.start.c_str(), pieces, static_cast<unsigned long long>(args.seed));
   std::printf("  time         trellis %.1fs, transitions %.1fs, signatures %.1fs, graph %.1fs\n",
               run.seconds_trellis, run.seconds_transitions, run.seconds_signatures,
               run.seconds_graph);
   std::printf("  wrote        %s, %s, %s\n", (dir / "walk.bvh").c_str(),
               (dir / "walk.json").c_str(), (dir / "graph.json").c_str());
+}
+
+}  // namespace
+
+int RunGraph(const std::vector<std::string>& args) {
+  CommandSpec spec = GraphCommandSpec();
+  po::variables_map vm;
+  if (int code = ParseCommand(spec, args, &vm); code >= 0) return code;
+  const auto fail = [](const Status& status) { return ReportError("graph", status); };
+  GraphArgs graph_args;
+  GraphRun run;
+  if (Status status = ReadGraphArgs(vm, &graph_args, &run); !status.ok()) return fail(status);
+  Result<std::unique_ptr<FrameFileReader>> opened = FrameFileReader::Open(run.archive);
+  if (!opened.ok()) return fail(opened.status());
+  const FrameFileReader& reader = **opened;
+  Result<uint32_t> start_clip = StartClip(reader, graph_args.start);
+  if (!start_clip.ok()) return fail(start_clip.status());
+  const auto window = static_cast<uint32_t>(std::lround(graph_args.window_seconds * reader.fps()));
+  if (window < 2) return fail(Status::InvalidArgument("--window is less than 2 frames"));
+  std::error_code error;
+  std::filesystem::create_directories(graph_args.out, error);
+  if (error) {
+    return fail(Status::IOError("cannot create " + graph_args.out + ": " + error.message()));
+  }
+  ProgressReporter progress(ProgressModeFrom(vm));
+  Result<MotionGraph> graph = BuildGraph(reader, graph_args, window, &run, &progress);
+  if (!graph.ok()) return fail(graph.status());
+  Result<std::vector<WalkPiece>> pieces =
+      WriteGraphAndWalk(reader, *graph, graph_args, *start_clip, window, run);
+  if (!pieces.ok()) return fail(pieces.status());
+  PrintGraphSummary(reader, *graph, graph_args, run, window, pieces->size());
   return kExitOk;
 }
 
