@@ -7,6 +7,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/cli/take_labels.h"
 #include "engine/distance/pose_features.h"
 #include "engine/report/words_report_html.h"
@@ -61,10 +62,8 @@ void AddClassifyOptions(CommandSpec& spec) {
       "top", po::value<uint32_t>()->default_value(defaults.top),
       "takes retrieved per take for the precision")(
       "dtw-step", po::value<uint32_t>()->default_value(1),
-      "dtw: compare every n-th frame (1: every frame)")(
-      "weights", po::value<std::string>()->default_value(""),
-      "dtw: per-joint weights file (default: the skeleton's)")(
-      "seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of k-means");
+      "dtw: compare every n-th frame (1: every frame)");
+  AddTableFlags(spec, {"weights", "seed"});
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "classify");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
@@ -86,15 +85,17 @@ Result<ClassifyCommandOptions> ReadClassifyOptions(const po::variables_map& vm) 
   classify.dims = vm["dims"].as<uint32_t>();
   classify.knn = vm["knn"].as<uint32_t>();
   classify.top = vm["top"].as<uint32_t>();
-  classify.seed = vm["seed"].as<uint64_t>();
-  classify.threads = vm["threads"].as<int>();
+  motifmine::MineOptions table;
+  ReadTableFlags(vm, {"weights", "seed", "threads"}, &table);
+  classify.seed = table.seed;
+  classify.threads = table.threads;
   options.dtw_step = vm["dtw-step"].as<uint32_t>();
   if (classify.dims == 0 || classify.knn == 0 || classify.top == 0 || options.dtw_step == 0) {
     return Status::InvalidArgument("--dims, --knn, --top and --dtw-step must be at least 1");
   }
   MOTIF_ASSIGN_OR_RETURN(options.output, WordsReaderOutputFrom(vm, options.archive, "classify"));
   options.labels_path = vm["labels"].as<std::string>();
-  options.weights_path = vm["weights"].as<std::string>();
+  options.weights_path = table.weights_path;
   options.progress_mode = ProgressModeFrom(vm);
   return options;
 }

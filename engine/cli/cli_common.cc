@@ -1,6 +1,7 @@
 #include "engine/cli/cli_common.h"
 #include "engine/report/report_html.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -88,6 +89,12 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
   }
   po::options_description all;
   all.add(spec.options).add(hidden);
+  // Hidden: the options as JSON, for the test that holds them against the option table and
+  // for other tools (shell completion).
+  if (std::find(args.begin(), args.end(), "--options-json") != args.end()) {
+    std::printf("%s\n", OptionsJson(spec).c_str());
+    return kExitOk;
+  }
   auto print_help = [&](FILE* out) {
     std::fprintf(out, "usage: %s\n\n%s\n\n", spec.usage.c_str(), spec.summary.c_str());
     std::ostringstream text;
@@ -183,8 +190,8 @@ void AddWordsReaderOptions(CommandSpec& spec, const std::string& files_read,
   spec.options.add_options()("prefix", po::value<std::string>()->default_value(""),
                              ("read " + files_read + " (default: ARCHIVE without .mfs)").c_str())(
       "out", po::value<std::string>()->default_value(""),
-      ("output folder (default: the archive's): " + name + ".json, " + name + ".html").c_str())(
-      "threads", po::value<int>()->default_value(0), "threads (0: all cores)");
+      ("output folder (default: the archive's): " + name + ".json, " + name + ".html").c_str());
+  AddTableFlags(spec, {"threads"});
 }
 
 Result<WordsReaderOutput> WordsReaderOutputFrom(const po::variables_map& vm,

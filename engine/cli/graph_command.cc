@@ -9,6 +9,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/cli/words_on_demand.h"
 #include "engine/graph/motion_graph.h"
 #include "engine/graph/transition_search.h"
@@ -179,15 +180,14 @@ CommandSpec GraphCommandSpec() {
       "seconds", po::value<double>()->required(), "length of the walk")(
       "out", po::value<std::string>()->required(), "output folder")(
       "unconstrained", po::bool_switch(), "keep transitions whatever their signatures")(
-      "seed", po::value<uint64_t>()->default_value(1), "seed of the walk (and of a words build)")(
       "min-piece", po::value<double>()->default_value(1.0),
       "seconds the walk plays after arriving by a transition before it may take another")(
       "window", po::value<double>()->default_value(0.25),
       "seconds of the window matched and blended at a transition")(
       "trellis", po::value<std::string>()->default_value(""), "default: ARCHIVE.mtr")(
       "prefix", po::value<std::string>()->default_value(""),
-      "read PREFIX.mwm and PREFIX.mws (default: ARCHIVE without .mfs)")(
-      "threads", po::value<int>()->default_value(0), "threads (0: all cores)");
+      "read PREFIX.mwm and PREFIX.mws (default: ARCHIVE without .mfs)");
+  AddTableFlags(spec, kRunFlags);
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
   return spec;
@@ -204,8 +204,10 @@ Status ReadGraphArgs(const po::variables_map& vm, GraphArgs* args, GraphRun* run
   args->seconds = vm["seconds"].as<double>();
   args->window_seconds = vm["window"].as<double>();
   args->min_piece_seconds = vm["min-piece"].as<double>();
-  args->seed = vm["seed"].as<uint64_t>();
-  args->threads = vm["threads"].as<int>();
+  motifmine::MineOptions table;
+  ReadTableFlags(vm, kRunFlags, &table);
+  args->seed = table.seed;
+  args->threads = table.threads;
   if (!(args->seconds > 0 && args->seconds <= 86400)) {
     return Status::InvalidArgument("--seconds must be in (0, 86400]");
   }

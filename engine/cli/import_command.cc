@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/ingest/archive_import.h"
 #include "formats/import/take_descriptions.h"
 
@@ -31,13 +32,9 @@ void AddImportOptions(CommandSpec& spec) {
       "override every BVH file's Frame Time with this rate")(
       "first-frame", po::value<std::string>()->default_value("auto"),
       "auto: drop a first frame that is a converter's T-pose (discontinuous with the take); "
-      "keep; drop")("skip-bad",
-                    "import the good takes and report the bad ones (default: all or nothing)")(
-      "block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")(
-      "descriptions", po::value<std::string>()->default_value(""),
-      "a tab-separated index with 'file' and 'description' columns (a take's stem is matched); "
-      "the clips keep their descriptions")("threads", po::value<int>()->default_value(0),
-                                           "parser threads (0: all cores)");
+      "keep; drop")("block-frames", po::value<uint32_t>()->default_value(4096),
+                    "frames per column block");
+  AddTableFlags(spec, {"skip-bad", "descriptions", "threads"});
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}, {"paths", -1}};
 }
@@ -72,8 +69,10 @@ int ReadImportOptions(const CommandSpec& spec, const po::variables_map& vm,
   if (options.fps < 0 || options.import.amc_fps <= 0 || options.import.bvh_fps < 0) {
     return ReportError("import", Status::InvalidArgument("frame rates must be positive"));
   }
-  options.skip_bad = vm.count("skip-bad") > 0;
-  if (const std::string index = vm["descriptions"].as<std::string>(); !index.empty()) {
+  motifmine::MineOptions table;
+  ReadTableFlags(spec, vm, &table);
+  options.skip_bad = table.skip_bad;
+  if (const std::string index = table.descriptions_path; !index.empty()) {
     Result<std::unordered_map<std::string, std::string>> descriptions = ReadTakeDescriptions(index);
     if (!descriptions.ok()) return ReportError("import", descriptions.status());
     options.import.descriptions = std::move(*descriptions);
@@ -82,7 +81,7 @@ int ReadImportOptions(const CommandSpec& spec, const po::variables_map& vm,
   if (options.block_frames == 0) {
     return ReportError("import", Status::InvalidArgument("--block-frames must be at least 1"));
   }
-  options.threads = vm["threads"].as<int>();
+  options.threads = table.threads;
   command->archive = vm["archive"].as<std::string>();
   command->paths = vm["paths"].as<std::vector<std::string>>();
   command->progress_mode = ProgressModeFrom(vm);

@@ -8,6 +8,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/distance/pose_features.h"
 #include "engine/report/words_report_html.h"
 #include "engine/signature/clip_words.h"
@@ -143,9 +144,8 @@ void AddSearchOptions(CommandSpec& spec) {
       "end", po::value<uint64_t>(), "end of the query range (exclusive)")(
       "query", po::value<std::string>()->default_value(""),
       "query: a BVH (or ASF/AMC) file, embedded with the archive's embedding")(
-      "top", po::value<uint32_t>()->default_value(10), "matches to keep")(
-      "weights", po::value<std::string>()->default_value(""),
-      "per-joint weights file (as given to `motifmine words`)");
+      "top", po::value<uint32_t>()->default_value(10), "matches to keep");
+  AddTableFlags(spec, {"weights"});
   AddWordsReaderOptions(spec, "PREFIX.mwe, .mwm, .mws", "search");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
@@ -160,7 +160,9 @@ int ReadSearchOptions(const CommandSpec& spec, const po::variables_map& vm,
   options->clip_name = vm["clip"].as<std::string>();
   options->query_file = vm["query"].as<std::string>();
   options->top = vm["top"].as<uint32_t>();
-  options->threads = vm["threads"].as<int>();
+  motifmine::MineOptions table;
+  ReadTableFlags(spec, vm, &table);
+  options->threads = table.threads;
   if (options->clip_name.empty() == options->query_file.empty()) {
     std::fprintf(stderr, "motifmine search: give either --clip NAME or --query FILE\nusage: %s\n",
                  spec.usage.c_str());
@@ -178,7 +180,7 @@ int ReadSearchOptions(const CommandSpec& spec, const po::variables_map& vm,
     options->start = vm["start"].as<uint64_t>();
     options->end = vm["end"].as<uint64_t>();
   }
-  options->weights_path = vm["weights"].as<std::string>();
+  options->weights_path = table.weights_path;
   if (options->top == 0) return fail(Status::InvalidArgument("--top must be at least 1"));
   Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, options->archive, "search");
   if (!output.ok()) return fail(output.status());

@@ -9,6 +9,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/cli/take_labels.h"
 #include "engine/cli/words_on_demand.h"
 #include "engine/report/segments_html.h"
@@ -155,11 +156,8 @@ void AddSegmentOptions(CommandSpec& spec) {
       "what the K neighbours are: windows (the K nearest windows) or takes (the K nearest "
       "labelled takes, each at its nearest window)")(
       "dtw-step", po::value<uint32_t>()->default_value(defaults.dtw_step),
-      "dtw: compare every n-th frame")("weights", po::value<std::string>()->default_value(""),
-                                       "dtw and word signatures: per-joint weights file "
-                                       "(default: the skeleton's)")(
-      "seed", po::value<uint64_t>()->default_value(1),
-      "seed of the words build when the words files are missing");
+      "dtw: compare every n-th frame");
+  AddTableFlags(spec, {"weights", "seed"});
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "segments");
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
@@ -206,15 +204,17 @@ Result<SegmentCommandOptions> ReadSegmentOptions(const po::variables_map& vm) {
                                    "'");
   }
   segment.one_per_take = neighbours == "takes";
-  segment.threads = vm["threads"].as<int>();
+  motifmine::MineOptions table;
+  ReadTableFlags(vm, {"weights", "seed", "threads"}, &table);
+  segment.threads = table.threads;
   if (segment.window == 0 || segment.knn == 0 || segment.dtw_step == 0) {
     return Status::InvalidArgument("--window, --knn and --dtw-step must be at least 1");
   }
   MOTIF_ASSIGN_OR_RETURN(options.output, WordsReaderOutputFrom(vm, options.archive, "segments"));
   options.clip_names =
       vm.count("clip") ? vm["clip"].as<std::vector<std::string>>() : std::vector<std::string>{};
-  options.weights_path = vm["weights"].as<std::string>();
-  options.seed = vm["seed"].as<uint64_t>();
+  options.weights_path = table.weights_path;
+  options.seed = table.seed;
   options.progress_mode = ProgressModeFrom(vm);
   return options;
 }

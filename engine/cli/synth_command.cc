@@ -4,6 +4,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "engine/synth/synthetic_archive.h"
 #include "engine/synth/truth_json_reader.h"
@@ -53,7 +54,6 @@ void AddSynthOptions(CommandSpec& spec) {
   SynthOptions defaults;
   spec.options.add_options()("frames", po::value<uint64_t>()->required(), "total frames")(
       "motifs", po::value<uint32_t>()->default_value(defaults.motifs), "planted motifs")(
-      "seed", po::value<uint64_t>()->default_value(defaults.seed), "random seed")(
       "fps", po::value<double>()->default_value(defaults.fps), "frame rate")(
       "from", po::value<std::vector<std::string>>()->multitoken(),
       "re-sequence these real takes (BVH/ASF/AMC files or folders)")(
@@ -73,10 +73,9 @@ void AddSynthOptions(CommandSpec& spec) {
       "background does not repeat")("gap-seconds",
                                     po::value<double>()->default_value(defaults.gap_seconds),
                                     "least untouched background between planted instances")(
-      "threads", po::value<uint32_t>()->default_value(0),
-      "generator threads (0: all cores); the output is the same for any count")(
       "block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")(
       "force", "replace OUT.mfs if it exists");
+  AddTableFlags(spec, kRunFlags);
   AddProgressOptions(spec);
   spec.positional = {{"out", 1}};
 }
@@ -96,7 +95,9 @@ SynthCommandOptions ReadSynthOptions(const po::variables_map& vm) {
   SynthOptions& options = command.synth;
   options.frames = vm["frames"].as<uint64_t>();
   options.motifs = vm["motifs"].as<uint32_t>();
-  options.seed = vm["seed"].as<uint64_t>();
+  motifmine::MineOptions table;
+  ReadTableFlags(vm, kRunFlags, &table);
+  options.seed = table.seed;
   options.fps = vm["fps"].as<double>();
   options.clip_seconds_min = vm["clip-seconds-min"].as<double>();
   options.clip_seconds_max = vm["clip-seconds-max"].as<double>();
@@ -107,7 +108,7 @@ SynthCommandOptions ReadSynthOptions(const po::variables_map& vm) {
   options.noise_degrees = vm["noise-degrees"].as<double>();
   options.gap_seconds = vm["gap-seconds"].as<double>();
   options.background_variation_degrees = vm["background-variation"].as<double>();
-  options.threads = vm["threads"].as<uint32_t>();
+  options.threads = static_cast<uint32_t>(table.threads);
   command.out = vm["out"].as<std::string>();
   command.force = vm.count("force") > 0;
   if (vm.count("from")) command.from = vm["from"].as<std::vector<std::string>>();

@@ -1,6 +1,9 @@
 #include "engine/cli/table_options.h"
 
 #include <algorithm>
+#include <optional>
+
+#include <nlohmann/json.hpp>
 
 #include "engine/pipeline/option_table.h"
 
@@ -45,6 +48,18 @@ const OptionSpec& SpecNamed(const std::string& name) {
   return *spec;
 }
 
+void ReadNamedFlags(const po::variables_map& vm, const std::vector<std::string>& names,
+                    motifmine::MineOptions* options, std::set<std::string>* given) {
+  for (const std::string& name : names) {
+    if (!vm.count(name)) continue;
+    const bool is_switch = SpecNamed(name).type == OptionType::kSwitch;
+    const std::string text = is_switch ? "true" : vm[name].as<std::string>();
+    // CheckTableFlags accepted every value already, and a default is the table's own.
+    (void)SetOptionFromText(options, name, text);
+    if (given != nullptr && !vm[name].defaulted()) given->insert(name);
+  }
+}
+
 std::string RecordedHelp(const OptionSpec& spec) {
   return spec.info.help + " (default: the recorded value; at the first run " +
          (spec.type == OptionType::kSwitch ? std::string("not given") : spec.info.default_value) +
@@ -74,14 +89,12 @@ void AddTableFlags(CommandSpec& spec, const std::vector<std::string>& names,
 
 void ReadTableFlags(const CommandSpec& spec, const po::variables_map& vm,
                     motifmine::MineOptions* options, std::set<std::string>* given) {
-  for (const std::string& name : spec.table_flags) {
-    if (!vm.count(name)) continue;
-    const bool is_switch = SpecNamed(name).type == OptionType::kSwitch;
-    const std::string text = is_switch ? "true" : vm[name].as<std::string>();
-    // CheckTableFlags accepted every value already, and a default is the table's own.
-    (void)SetOptionFromText(options, name, text);
-    if (given != nullptr && !vm[name].defaulted()) given->insert(name);
-  }
+  ReadNamedFlags(vm, spec.table_flags, options, given);
+}
+
+void ReadTableFlags(const po::variables_map& vm, const std::vector<std::string>& names,
+                    motifmine::MineOptions* options) {
+  ReadNamedFlags(vm, names, options, nullptr);
 }
 
 Status CheckTableFlags(const CommandSpec& spec, const po::variables_map& vm) {
@@ -93,6 +106,44 @@ Status CheckTableFlags(const CommandSpec& spec, const po::variables_map& vm) {
     if (!status.ok()) return Status::InvalidArgument(FlagMessage(status));
   }
   return Status::Ok();
+}
+
+namespace {
+
+const char* ValueTypeName(const po::value_semantic* semantic) {
+  if (semantic->max_tokens() == 0) return "switch";
+  if (dynamic_cast<const po::typed_value<std::string>*>(semantic)) return "string";
+  if (dynamic_cast<const po::typed_value<uint32_t>*>(semantic)) return "uint32";
+  if (dynamic_cast<const po::typed_value<uint64_t>*>(semantic)) return "uint64";
+  if (dynamic_cast<const po::typed_value<int>*>(semantic)) return "int";
+  if (dynamic_cast<const po::typed_value<double>*>(semantic)) return "double";
+  if (dynamic_cast<const po::typed_value<float>*>(semantic)) return "float";
+  if (dynamic_cast<const po::typed_value<bool>*>(semantic)) return "bool";
+  return "other";
+}
+
+// "arg (=256)" -> "256"; no "(=": none.
+std::optional<std::string> ShownDefault(const po::option_description& option) {
+  const std::string text = option.format_parameter();
+  const size_t at = text.find("(=");
+  if (at == std::string::npos || text.back() != ')') return std::nullopt;
+  return text.substr(at + 2, text.size() - at - 3);
+}
+
+}  // namespace
+
+std::string OptionsJson(const CommandSpec& spec) {
+  nlohmann::json options = nlohmann::json::array();
+  for (const auto& option : spec.options.options()) {
+    const std::string name = option->long_name();
+    const std::optional<std::string> shown = ShownDefault(*option);
+    options.push_back({{"name", name},
+                       {"type", ValueTypeName(option->semantic().get())},
+                       {"default", shown ? nlohmann::json(*shown) : nlohmann::json(nullptr)},
+                       {"table", std::find(spec.table_flags.begin(), spec.table_flags.end(),
+                                           name) != spec.table_flags.end()}});
+  }
+  return options.dump();
 }
 
 std::string FlagMessage(const Status& status) {

@@ -42,9 +42,18 @@ void AddTableFlags(CommandSpec& spec, const std::vector<std::string>& names,
 void ReadTableFlags(const CommandSpec& spec, const boost::program_options::variables_map& vm,
                     motifmine::MineOptions* options, std::set<std::string>* given = nullptr);
 
+// The same for the table flags `names` only (a command's own reading step, without its spec).
+void ReadTableFlags(const boost::program_options::variables_map& vm,
+                    const std::vector<std::string>& names, motifmine::MineOptions* options);
+
 // Called by ParseCommand: each table flag given on the command line is one the table accepts;
 // otherwise the message naming the flag ("--kmax must be ...").
 Status CheckTableFlags(const CommandSpec& spec, const boost::program_options::variables_map& vm);
+
+// `spec`'s options as a JSON array, one object each: "name", "type" (the value's C++ type:
+// "string", "uint32", "uint64", "int", "double", "float", "bool"; "switch" without a value),
+// "default" (the text the help shows; null without one) and "table" (declared by AddTableFlags).
+std::string OptionsJson(const CommandSpec& spec);
 
 // A status's message as the tool prints it: an option named by the table ("kmax must be ...")
 // as its flag ("--kmax must be ...").

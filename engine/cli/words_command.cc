@@ -6,6 +6,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/table_options.h"
 #include "engine/cli/words_on_demand.h"
 #include "engine/words/words_builder.h"
 
@@ -67,10 +68,6 @@ void AddWordsCommandOptions(CommandSpec& spec) {
       "use this trained embedding (.mwe) instead of training one")(
       "prefix", po::value<std::string>()->default_value(""),
       "write PREFIX.mwe, PREFIX.mwm, PREFIX.mws (default: ARCHIVE without .mfs)")(
-      "seed", po::value<uint64_t>()->default_value(defaults.seed), "seed of every random choice")(
-      "threads", po::value<int>()->default_value(0), "threads (0: all cores)")(
-      "weights", po::value<std::string>()->default_value(""),
-      "per-joint weights file (default: the skeleton's)")(
       "word-frames", po::value<uint32_t>()->default_value(defaults.words.word_frames),
       "frames per word")("stride",
                          po::value<uint32_t>()->default_value(defaults.words.stride_frames),
@@ -94,6 +91,7 @@ void AddWordsCommandOptions(CommandSpec& spec) {
       "channels", po::value<uint32_t>()->default_value(defaults.train.shape.conv1_channels),
       "channels of both convolutions")("json", po::value<std::string>()->default_value(""),
                                        "also write this summary as JSON");
+  AddTableFlags(spec, {"seed", "threads", "weights"});
   AddProgressOptions(spec);
   spec.positional = {{"archive", 1}};
 }
@@ -113,9 +111,11 @@ WordsCommandOptions ReadWordsCommandOptions(const po::variables_map& vm) {
   WordsOptions& options = command.build;
   options.motifs = vm["motifs"].as<uint32_t>();
   options.embedding_in = vm["embedding"].as<std::string>();
-  options.seed = vm["seed"].as<uint64_t>();
-  options.threads = vm["threads"].as<int>();
-  options.weights_path = vm["weights"].as<std::string>();
+  motifmine::MineOptions table;
+  ReadTableFlags(vm, {"seed", "threads", "weights"}, &table);
+  options.seed = table.seed;
+  options.threads = table.threads;
+  options.weights_path = table.weights_path;
   options.words.word_frames = vm["word-frames"].as<uint32_t>();
   options.words.stride_frames = vm["stride"].as<uint32_t>();
   options.words.word_fps = vm["word-fps"].as<double>();

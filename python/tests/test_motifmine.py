@@ -162,6 +162,28 @@ def test_errors_raise_with_message_and_code(tmp_path):
                        synth_motifs=3, write_report=False)
 
 
+def test_keywords_are_the_tools_flags_from_one_table(tmp_path):
+    rows = motifmine.option_table()
+    flags = {o["name"]: o for o in json.loads(tool("mine", "--options-json"))}
+    assert len(rows) >= 37
+    for row in rows:
+        assert row["keyword"] == row["name"].replace("-", "_")
+        flag = flags[row["name"]]  # every keyword is a flag of `motifmine mine`
+        assert flag["table"]
+        if row["type"] != "switch":
+            assert (flag["default"] or "") == row["default"], row["name"]
+        # A value no option takes (a list), or text for a switch.
+        wrong = "yes" if row["type"] == "switch" else [1]
+        with pytest.raises(TypeError) as refused:
+            motifmine.mine(out_dir=str(tmp_path / "out"), **{row["keyword"]: wrong})
+        assert row["keyword"] in str(refused.value)
+    with pytest.raises(motifmine.Error) as bad:
+        motifmine.mine(out_dir=str(tmp_path / "out"), pause_seconds=0)
+    assert bad.value.code == 13
+    assert "pause-seconds must be a number in (0, 3600], not '0'" in str(bad.value)
+    assert not (tmp_path / "out").exists()
+
+
 def fail_at_once(stage, done, total):
     raise ValueError("stop")
 

@@ -6,14 +6,19 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <set>
 #include <utility>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "common/file_util.h"
 #include "engine/cli/clip_range_take.h"
 #include "engine/cluster/motifs_json.h"
+#include "engine/pipeline/option_table.h"
+#include "engine/pipeline/stage_options.h"
 #include "engine/reindex/mined_version.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/export/bvh_writer.h"
@@ -203,6 +208,65 @@ TEST_F(ReindexFailureTest, AFullFileSystemGivesAClearErrorAndLeavesTheVersionInt
   auto next = Reindex(Options(root));
   ASSERT_TRUE(next.ok()) << next.status().ToString();
   ExpectIntact(root, 2);
+}
+
+}  // namespace
+}  // namespace motif
+
+namespace motif {
+namespace {
+
+// The reindex manifest's parameters are the option table's (engine/pipeline/option_table.h): each
+// field is an option's name ('_' for '-') or one of the few the run records beside them, of the
+// option's kind, and a first run with no option given records the table's defaults (resolved:
+// λ in frames, eps as the joint-angle rule made it).
+TEST_F(ReindexFailureTest, TheManifestsParametersAreTheOptionTablesWithItsDefaults) {
+  testing::TempDir dir;
+  const std::string root = dir.File("root");
+  Arrive(root, "batch1");
+  ASSERT_TRUE(Reindex(Options(root)).ok());
+  const nlohmann::json manifest =
+      nlohmann::json::parse(ReadFileToString(root + "/out/manifest.json").value());
+  const nlohmann::json& params = manifest["params"];
+  const std::set<std::string> recorded_only = {"eps_estimated", "mu",           "sigma",
+                                               "weights_hash",  "block_columns", "lsh"};
+  const motifmine::MineOptions defaults;
+  for (const auto& [key, value] : params.items()) {
+    if (recorded_only.count(key)) continue;
+    std::string name = key;
+    std::replace(name.begin(), name.end(), '_', '-');
+    const OptionSpec* spec = FindMineOption(name);
+    ASSERT_NE(spec, nullptr) << "params." << key << " is not an option";
+    ASSERT_EQ(spec->info.name, name) << "params." << key;
+    if (spec->type == OptionType::kChoice || spec->type == OptionType::kText) {
+      EXPECT_TRUE(value.is_string()) << key;
+    } else {
+      EXPECT_TRUE(value.is_number()) << key;
+    }
+    if (key == "eps" || key == "exclusion" || key == "search") continue;  // resolved by the build
+    if (key == "min_length") {  // in frames at the archive's rate
+      auto archive = FrameFileReader::Open(root + "/archive.mfs");
+      ASSERT_TRUE(archive.ok());
+      EXPECT_EQ(value.get<uint64_t>(), ResolvedMinLengthFrames(defaults, (*archive)->fps()));
+      continue;
+    }
+    const std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+    motifmine::MineOptions read;
+    ASSERT_TRUE(SetOptionFromText(&read, name, key == "groups" && text == "0" ? "auto" : text).ok())
+        << key << " " << text;
+    EXPECT_EQ(OptionAsText(read, name), spec->info.default_value) << key;
+  }
+  for (const char* key : {"kmax", "branch", "groups", "similarity", "pause_speed", "eps_rule",
+                          "eps_angle", "seed", "max_length_ratio"}) {
+    EXPECT_TRUE(params.contains(key)) << key;
+  }
+  const nlohmann::json& lsh = params["lsh"];
+  for (const char* key : {"tables", "probes", "max_candidates", "chain", "chain_sweeps"}) {
+    std::string name = key;
+    std::replace(name.begin(), name.end(), '_', '-');
+    ASSERT_NE(FindMineOption(name), nullptr) << "params.lsh." << key;
+    EXPECT_EQ(lsh[key].dump(), FindMineOption(name)->info.default_value) << key;
+  }
 }
 
 }  // namespace
