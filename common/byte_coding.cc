@@ -55,21 +55,4 @@ std::string Hex(uint64_t value) {
   return buffer;
 }
 
-Status CheckMagicAndMajor(const uint8_t* bytes, size_t size, const uint8_t* magic,
-                          const std::string& what, uint16_t major) {
-  if (size == 0) return Status::Corruption("empty file");
-  if (size < 8 || std::memcmp(bytes, magic, 8) != 0) {
-    return Status::Corruption("bad magic at offset 0x0: not a " + what);
-  }
-  if (size < 10) {
-    return Status::Corruption("file of " + std::to_string(size) + " bytes: truncated header");
-  }
-  const uint16_t found = LoadU16(bytes + 8);
-  if (found != major) {
-    return Status::NotSupported("unsupported format major version " + std::to_string(found) +
-                                " (this reader knows " + std::to_string(major) + ")");
-  }
-  return Status::Ok();
-}
-
 }  // namespace motif

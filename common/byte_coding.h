@@ -1,6 +1,7 @@
 // Little-endian byte coding and checksums shared by every on-disk format (the archive, the
 // trellis and the paths file; docs/formats/): fixed-width appends and loads, the XXH3-64
-// checksum of every structure, and hexadecimal offsets for error messages.
+// checksum of every structure, and hexadecimal offsets for error messages. The checks a reader
+// makes of a format's structure (magic, footer, sections) are formats/format_checks.
 // Thread-safety: pure functions.
 #pragma once
 
@@ -32,13 +33,5 @@ uint64_t LoadU64(const uint8_t* bytes);
 
 // "0x3f000"
 std::string Hex(uint64_t value);
-
-// The first checks of a file format's reader, in this order: the file is not empty, starts with
-// the 8-byte `magic` (Corruption "bad magic at offset 0x0: not a <what>"), holds the u16 major
-// version at offset 8, and that version is `major` (NotSupported "unsupported format major
-// version N (this reader knows M)": exit code 15, a newer tool's file). `size` bytes are available
-// at `bytes`.
-Status CheckMagicAndMajor(const uint8_t* bytes, size_t size, const uint8_t* magic,
-                          const std::string& what, uint16_t major);
 
 }  // namespace motif

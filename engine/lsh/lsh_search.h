@@ -30,6 +30,11 @@
 // Each column depends only on the index, f_t and the other columns of its aligned chain (the
 // whole chain is computed whenever a range asks for one of its columns), so columns are the same
 // for any thread count and any split of the archive into ranges.
+// The steps have their own files, each testable alone: ProbeSequence (1), BucketScanner (the
+// breadth-first reading of 2), CandidateVerifier (the verification and the k_max nearest of 2),
+// PositionCodeRanker (LshRanking::kPositionCode's order), ColumnQuery (0-3 for one column),
+// ChainSweep (4) and ReversePass (SearchColumnsAndReverse's reverse scan); this class validates
+// the options, owns the index and runs one task per aligned chain.
 // Thread-safety: SearchColumns is const and may run from many threads at once.
 #pragma once
 
@@ -44,31 +49,10 @@
 #include "engine/lsh/hash_family.h"
 #include "engine/lsh/lsh_index.h"
 #include "engine/lsh/lsh_options.h"
+#include "engine/lsh/lsh_query_context.h"
+#include "engine/lsh/lsh_query_stats.h"
 
 namespace motif {
-
-// LSH-specific work counters, summed over columns.
-struct LshQueryStats {
-  uint64_t probes = 0;                 // buckets looked up
-  uint64_t entries_examined = 0;       // bucket entries read (including repeats and excluded)
-  uint64_t bucket_scans_capped = 0;    // buckets left early by max_bucket_scan
-  uint64_t columns_budget_capped = 0;  // columns stopped by max_candidates
-  uint64_t columns_bound_stopped = 0;  // columns stopped because nothing left could enter
-  uint64_t extensions = 0;             // extra probing stages of sparse columns
-  uint64_t seed_evaluations = 0;       // evaluations of chained columns' seeds (in the total)
-  uint64_t sweep_evaluations = 0;      // evaluations of the chain sweeps (in the total)
-
-  void Add(const LshQueryStats& other) {
-    probes += other.probes;
-    entries_examined += other.entries_examined;
-    bucket_scans_capped += other.bucket_scans_capped;
-    columns_budget_capped += other.columns_budget_capped;
-    columns_bound_stopped += other.columns_bound_stopped;
-    extensions += other.extensions;
-    seed_evaluations += other.seed_evaluations;
-    sweep_evaluations += other.sweep_evaluations;
-  }
-};
 
 class LshSearch final : public NeighbourSearch {
  public:
@@ -128,6 +112,10 @@ class LshSearch final : public NeighbourSearch {
   const LshIndex& index() const { return index_; }
   // DescribeLshOptions(options()): the trellis file's search_params.
   std::string DescribeParams() const { return DescribeLshOptions(options_); }
+  // What the steps of a query read (ColumnQuery, ReversePass, ...): valid while the search is.
+  LshQueryContext context() const {
+    return {features_, rules_, options_, family_, index_, extension_radius_};
+  }
 
  private:
   LshSearch(const PoseFeatures& features, NeighbourRules rules, LshOptions options,
@@ -136,7 +124,6 @@ class LshSearch final : public NeighbourSearch {
   static Result<std::unique_ptr<LshSearch>> Make(const PoseFeatures& features, NeighbourRules rules,
                                                  const LshOptions& options, LshIndex* index,
                                                  RankGroup* ranks);
-  class Query;
   // Every search; `reverse_query` and `reverse` null for the columns alone.
   Status Search(uint64_t first_column, uint64_t count, const ReverseQuery* reverse_query,
                 std::vector<std::vector<Neighbour>>* columns,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "formats/format_checks/format_checks.h"
+
 namespace motif::frame_file {
 namespace {
 
@@ -31,8 +33,8 @@ Status LoadCommit(const uint8_t* data, uint64_t size, int slot_idx, const Commit
     return Status::Corruption("footer at offset " + Hex(slot.footer_offset) + ": generation " +
                               std::to_string(footer.generation) + ", " + where);
   }
-  if (footer.metadata_offset < kHeaderBytes || footer.metadata_offset > slot.footer_offset ||
-      footer.metadata_bytes != slot.footer_offset - footer.metadata_offset) {
+  if (!SectionEndsAt(footer.metadata_offset, footer.metadata_bytes, 1, kHeaderBytes,
+                     slot.footer_offset)) {
     return Status::Corruption("footer at offset " + Hex(slot.footer_offset) + ": metadata at " +
                               Hex(footer.metadata_offset) + " (" +
                               std::to_string(footer.metadata_bytes) +

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "formats/format_checks/format_checks.h"
+
 namespace motif::frame_file {
 bool ByteReader::GetU8(uint8_t* value) {
   if (remaining() < 1) return false;
@@ -184,22 +186,9 @@ void Footer::EncodeTo(std::string* out) const {
 }
 
 Status Footer::DecodeFrom(const uint8_t* bytes, Footer* footer) {
-  if (std::memcmp(bytes, kFooterMagic.data(), kFooterMagic.size()) != 0) {
-    return Status::Corruption("bad footer magic");
-  }
-  if (LoadU64(bytes + 56) != Checksum64(bytes, 56)) {
-    return Status::Corruption("footer checksum mismatch");
-  }
-  footer->format_major = LoadU16(bytes + 8);
-  footer->format_minor = LoadU16(bytes + 10);
-  if (footer->format_major != kFormatMajor) {
-    return Status::Corruption("footer has unsupported format major version " +
-                              std::to_string(footer->format_major));
-  }
-  if (LoadU32(bytes + 12) != kFooterBytes) {
-    return Status::Corruption("footer size " + std::to_string(LoadU32(bytes + 12)) + ", expected " +
-                              std::to_string(kFooterBytes));
-  }
+  constexpr FooterFrame kFrame{kFooterMagic, kFormatMajor, kFooterBytes, "bad footer magic"};
+  MOTIF_RETURN_IF_ERROR(
+      CheckFooterFrame(bytes, kFrame, &footer->format_major, &footer->format_minor));
   if (LoadU64(bytes + 48) != 0) return Status::Corruption("footer reserved field is not zero");
   footer->generation = LoadU64(bytes + 16);
   footer->metadata_offset = LoadU64(bytes + 24);

@@ -3,6 +3,8 @@
 #include <cstring>
 #include <tuple>
 
+#include "formats/format_checks/format_checks.h"
+
 namespace motif::paths_file {
 
 namespace {
@@ -138,11 +140,7 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
   MOTIF_RETURN_IF_ERROR(
       CheckMagicAndMajor(bytes, size, kFileMagic.data(), "paths file", kFormatMajor));
   header->format_major = LoadU16(bytes + 8);
-  if (size < kHeaderBytes) {
-    return Status::Corruption("file of " + std::to_string(size) +
-                              " bytes is shorter than the header (" + std::to_string(kHeaderBytes) +
-                              " bytes): truncated");
-  }
+  MOTIF_RETURN_IF_ERROR(CheckFileHoldsHeader(size, kHeaderBytes));
   header->format_minor = LoadU16(bytes + 10);
   header->header_bytes = LoadU32(bytes + 12);
   if (header->header_bytes < kHeaderBytes || header->header_bytes > kMaxHeaderBytes ||
@@ -152,11 +150,7 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
         " is not in [" + std::to_string(kHeaderBytes) + ", min(" + std::to_string(kMaxHeaderBytes) +
         ", file size " + std::to_string(size) + ")]");
   }
-  const size_t checksum_offset = header->header_bytes - 8;
-  if (Checksum64(bytes, checksum_offset) != LoadU64(bytes + checksum_offset)) {
-    return Status::Corruption("header at offset 0x0: checksum mismatch (stored at " +
-                              Hex(checksum_offset) + ")");
-  }
+  MOTIF_RETURN_IF_ERROR(CheckHeaderChecksum(bytes, header->header_bytes));
   header->params.trellis_identity = LoadU64(bytes + 16);
   header->params.archive_identity = LoadU64(bytes + 24);
   header->params.frame_count = LoadU64(bytes + 32);
@@ -173,7 +167,7 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
   header->records_checksum = LoadU64(bytes + 80);
   const std::string problem = ParamsProblem(header->params);
   if (!problem.empty()) return Status::Corruption("header: " + problem);
-  if (header->records_bytes != size - header->header_bytes) {
+  if (!SectionEndsAt(header->header_bytes, header->records_bytes, 1, header->header_bytes, size)) {
     return Status::Corruption("header: a records section of " +
                               std::to_string(header->records_bytes) + " bytes at " +
                               Hex(header->header_bytes) + " does not end the file of " +

@@ -20,7 +20,7 @@
 #include "common/byte_coding.h"
 #include "common/status.h"
 #include "formats/paths_file/path_candidate.h"
-#include "formats/paths_file/paths_file_writer.h"
+#include "formats/paths_file/paths_params.h"
 
 namespace motif::paths_file {
 

@@ -19,15 +19,9 @@
 
 #include "common/status.h"
 #include "common/writable_file.h"
+#include "formats/tensor_file/tensor_type.h"
 
 namespace motif {
-
-enum class TensorType : uint8_t { kU8 = 1, kU16 = 2, kU32 = 3, kU64 = 4, kF32 = 5, kF64 = 6 };
-
-// Bytes of one element; 0 for an unknown type.
-size_t TensorTypeBytes(TensorType type);
-// "u8", "u16", "u32", "u64", "f32", "f64".
-const char* TensorTypeName(TensorType type);
 
 struct Tensor {
   std::string name;  // 1 to 31 characters of [a-z0-9_.]

@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "formats/format_checks/format_checks.h"
+
 namespace motif::tensor_file {
 
 namespace {
@@ -78,11 +80,7 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
   MOTIF_RETURN_IF_ERROR(
       CheckMagicAndMajor(bytes, size, kFileMagic.data(), "tensor file", kFormatMajor));
   header->format_major = LoadU16(bytes + 8);
-  if (size < kHeaderBytes) {
-    return Status::Corruption("file of " + std::to_string(size) +
-                              " bytes is shorter than the header (" + std::to_string(kHeaderBytes) +
-                              " bytes): truncated");
-  }
+  MOTIF_RETURN_IF_ERROR(CheckFileHoldsHeader(size, kHeaderBytes));
   header->format_minor = LoadU16(bytes + 10);
   header->header_bytes = LoadU32(bytes + 12);
   if (header->header_bytes < kHeaderBytes || header->header_bytes > kMaxHeaderBytes ||
@@ -92,12 +90,7 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
         " is not a multiple of 8 in [" + std::to_string(kHeaderBytes) + ", min(" +
         std::to_string(kMaxHeaderBytes) + ", file size " + std::to_string(size) + ")]");
   }
-  const size_t checksum_offset = header->header_bytes - 8;
-  *header_checksum = LoadU64(bytes + checksum_offset);
-  if (Checksum64(bytes, checksum_offset) != *header_checksum) {
-    return Status::Corruption("header at offset 0x0: checksum mismatch (stored at " +
-                              Hex(checksum_offset) + ")");
-  }
+  MOTIF_RETURN_IF_ERROR(CheckHeaderChecksum(bytes, header->header_bytes, header_checksum));
   if (!ReadPadded(bytes + 16, kKindBytes, &header->kind) || !KindProblem(header->kind).empty()) {
     return Status::Corruption(
         "header: kind at 0x10 is not 1 to 15 characters of [a-z0-9_.-] "
@@ -114,7 +107,7 @@ Status FileHeader::DecodeFrom(const uint8_t* bytes, size_t size, FileHeader* hea
   }
   const uint64_t data_start =
       header->header_bytes + static_cast<uint64_t>(header->tensor_count) * kEntryBytes;
-  if (data_start > size || header->data_bytes != size - data_start) {
+  if (!SectionEndsAt(data_start, header->data_bytes, 1, 0, size)) {
     return Status::Corruption(
         "header: " + std::to_string(header->tensor_count) + " table entries and " +
         std::to_string(header->data_bytes) + " data bytes after a header of " +

@@ -18,7 +18,7 @@
 
 #include "common/byte_coding.h"
 #include "common/status.h"
-#include "formats/tensor_file/tensor_file.h"
+#include "formats/tensor_file/tensor_type.h"
 
 namespace motif::tensor_file {
 

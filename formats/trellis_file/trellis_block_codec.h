@@ -25,9 +25,9 @@
 #include <vector>
 
 #include "common/status.h"
+#include "formats/trellis_file/trellis_block.h"
 #include "formats/trellis_file/trellis_column.h"
 #include "formats/trellis_file/trellis_file_format.h"
-#include "formats/trellis_file/trellis_file_reader.h"
 
 struct ZSTD_CCtx_s;
 struct ZSTD_DCtx_s;

@@ -24,7 +24,7 @@
 
 #include "common/byte_coding.h"
 #include "common/status.h"
-#include "formats/trellis_file/trellis_file_writer.h"
+#include "formats/trellis_file/trellis_params.h"
 
 namespace motif::trellis_file {
 

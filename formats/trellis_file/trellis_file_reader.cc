@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "common/mapped_file.h"
+#include "formats/format_checks/format_checks.h"
 #include "formats/trellis_file/trellis_block_codec.h"
 #include "formats/trellis_file/trellis_file_format.h"
 
@@ -63,10 +64,8 @@ class TrellisFileReader::Impl {
       return Corrupt("the header's checksum differs from the footer's copy");
     }
     // The index lies between the last block and the footer, exactly.
-    if (footer.index_offset < header_bytes || footer.index_offset > footer_offset ||
-        (footer_offset - footer.index_offset) % trellis_file::kBlockEntryBytes != 0 ||
-        (footer_offset - footer.index_offset) / trellis_file::kBlockEntryBytes !=
-            footer.block_count) {
+    if (!SectionEndsAt(footer.index_offset, footer.block_count, trellis_file::kBlockEntryBytes,
+                       header_bytes, footer_offset)) {
       return Corrupt("block index at " + Hex(footer.index_offset) + " of " +
                      std::to_string(footer.block_count) + " entries does not end at the footer (" +
                      Hex(footer_offset) + ")");

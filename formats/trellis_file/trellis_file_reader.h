@@ -14,18 +14,11 @@
 #include <vector>
 
 #include "common/status.h"
+#include "formats/trellis_file/trellis_block.h"
 #include "formats/trellis_file/trellis_column.h"
 #include "formats/trellis_file/trellis_file_writer.h"
 
 namespace motif {
-
-// One decoded block: columns [first_column, first_column + column_count).
-struct TrellisBlock {
-  uint64_t first_column = 0;
-  uint32_t column_count = 0;
-  std::vector<uint32_t> offsets;      // column_count + 1 entries into `neighbours`
-  std::vector<Neighbour> neighbours;  // column c: [offsets[c], offsets[c + 1])
-};
 
 class TrellisFileReader {
  public:

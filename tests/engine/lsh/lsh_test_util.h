@@ -1,6 +1,7 @@
 // Helpers for the LSH tests: archives as PoseFeatures (synthetic with planted motifs, or the real
 // CMU BVH takes), eps = mu - 2 sigma of sampled pair distances, the exact column by a direct
-// double loop with the scalar PoseDistance, and recall against it.
+// double loop with the scalar PoseDistance, recall against it, and the parts of a query
+// (QueryParts) for the tests of its steps alone.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -13,6 +14,10 @@
 
 #include "engine/distance/neighbour_search.h"
 #include "engine/distance/pose_features.h"
+#include "engine/lsh/hash_family.h"
+#include "engine/lsh/lsh_index.h"
+#include "engine/lsh/lsh_options.h"
+#include "engine/lsh/lsh_query_context.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/import/take_importer.h"
 #include "formats/motion/canonical_skeleton.h"
@@ -131,6 +136,24 @@ inline std::vector<Neighbour> ExactColumn(const PoseFeatures& features, const Ne
   return found;
 }
 
+// The first `count` columns from `first` on, in steps of 97, with at least `at_least` exact
+// neighbours below `frame_limit` (new frames with older neighbours, for the reverse queries).
+inline std::vector<uint64_t> ColumnsWithOlderNeighbours(const PoseFeatures& features,
+                                                        const NeighbourRules& rules, uint64_t first,
+                                                        uint64_t frame_limit, size_t at_least,
+                                                        size_t count) {
+  std::vector<uint64_t> columns;
+  for (uint64_t column = first; column < features.frame_count() && columns.size() < count;
+       column += 97) {
+    const std::vector<Neighbour> exact = ExactColumn(features, rules, column);
+    const size_t older = std::count_if(exact.begin(), exact.end(),
+                                       [&](const Neighbour& n) { return n.frame < frame_limit; });
+    if (older >= at_least) columns.push_back(column);
+  }
+  EXPECT_EQ(columns.size(), count) << "columns with older neighbours";
+  return columns;
+}
+
 // Seeded sample of distinct columns, ascending.
 inline std::vector<uint64_t> SampleColumns(uint64_t frame_count, uint32_t count, uint64_t seed) {
   std::vector<uint64_t> columns;
@@ -176,6 +199,50 @@ inline RecallStats Recall(const std::vector<std::vector<Neighbour>>& exact,
   }
   stats.column_mean = exact.empty() ? 1.0 : share_sum / exact.size();
   return stats;
+}
+
+// The parts an LshQueryContext refers to, owned together, for the tests of a query's steps
+// (ColumnQuery, ReversePass, ...). Not to be moved once context() has been taken.
+struct QueryParts {
+  PoseFeatures features;
+  NeighbourRules rules;
+  LshOptions options;
+  HashFamily family;
+  LshIndex index;
+  float extension_radius = 0;
+
+  LshQueryContext context() const {
+    return {features, rules, options, family, index, extension_radius};
+  }
+};
+
+// Parts whose query is exhaustive: a cell a million times wider than the archive's spread puts
+// every frame in one bucket of each table, and the budgets and scan depths exceed the frame
+// count, so a column's query verifies every frame within reach of its radius and finds the exact
+// column. No chaining.
+inline QueryParts ExhaustiveParts(PoseFeatures features, NeighbourRules rules,
+                                  LshRanking ranking = LshRanking::kSortValue) {
+  QueryParts parts;
+  parts.features = std::move(features);
+  parts.rules = std::move(rules);
+  const uint32_t frames = static_cast<uint32_t>(parts.features.frame_count());
+  parts.options.tables = 2;
+  parts.options.hashes_per_table = 4;
+  parts.options.bucket_width = 1e6f;
+  parts.options.probes_per_table = 3;
+  parts.options.max_candidates = frames + 64;
+  parts.options.max_entries = frames + 64;
+  parts.options.max_bucket_scan = frames + 64;
+  parts.options.ranking = ranking;
+  parts.options.chain_columns = 0;
+  parts.family = HashFamily::Draw(parts.features.weights(), parts.options.tables,
+                                  parts.options.hashes_per_table, parts.options.bucket_width, 5);
+  auto index =
+      LshIndex::Build(parts.features, parts.family, 1024, 1, ranking == LshRanking::kPositionCode);
+  EXPECT_TRUE(index.ok()) << index.status().ToString();
+  if (index.ok()) parts.index = std::move(*index);
+  parts.extension_radius = parts.rules.eps;
+  return parts;
 }
 
 }  // namespace motif::testing
