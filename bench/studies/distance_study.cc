@@ -1,6 +1,6 @@
 // Study: which distance between short stretches of motion tells two performances of one
-// movement from two different movements, measured before mining with it (the motif-quality
-// issue; docs/design/motion_distance.md has the definitions, the results and the commands).
+// movement from two different movements, measured before mining with it
+// (docs/design/motion_distance.md has the definitions, the results and the commands).
 //
 // For each annotated occurrence of one labelled take (the query), every other stretch of the
 // same take is ranked by each candidate distance, trivial overlaps excluded (stretch_ranking.h
