@@ -4,11 +4,11 @@
 #
 #   scripts/test_sanitizers.sh [asan|tsan|all]     (default: all)
 #
-# asan: the library tests (asan_targets below: every test program but those that run the built
-#       tool or a browser, MPI or Python) built with AddressSanitizer (with LeakSanitizer) and
-#       UndefinedBehaviorSanitizer, every report fatal, in build-asan/. The tool, its CLI tests and
-#       the study programs are not built there: the CLI tests check what a user sees (messages,
-#       exit codes, files) of the same library code the unit tests run under the sanitizers. The
+# asan: the tests of the code that reads what a user hands it and of the engine's index-heavy
+#       kernels (asan_targets below) built with AddressSanitizer (with LeakSanitizer) and
+#       UndefinedBehaviorSanitizer, every report fatal, in build-asan/. The tool, its CLI tests,
+#       the orchestration (pipeline, reindex, report, the words and graph commands) and the
+#       study programs are not built there (docs/reliability.md, "Sanitizers"). The
 #       scale tests listed in asan_skip below are left out too (they run the same code as the
 #       tests kept, on archives 10 to 100 times larger, and take 20 s to 6 min each under ASan);
 #       MOTIF_SANITIZE_ALL=1 builds and runs every test.
@@ -64,12 +64,14 @@ asan_skip=(
   'WordsCliTest\.SegmentWritesItsDocumentAndPageWithAndWithoutLabels'
   'SegmentCli\.BuildsTheWordsItNeedsWhenTheyAreMissing'  # 38 s: 30 epochs (WordsCliTest.Words*)
 )
-# The test programs built and run under ASan + UBSan: the libraries' own tests.
+# The test programs built and run under ASan + UBSan: the code that reads what a user hands it
+# (the file formats, the importers, their fuzz regressions) and the index-heavy kernels of the
+# engine (distance, LSH, the trellis and its update, the grower, the clustering, the transport
+# problems of the signatures), with the synthetic archives they run on.
 asan_targets=(common_test motion_test frame_file_test import_test export_test trellis_file_test
               paths_file_test tensor_file_test format_checks_test ingest_test distance_test
-              lsh_test trellis_test trellis_update_test grow_test cluster_test evaluation_test
-              synth_test signature_test embedding_test words_test graph_test report_test
-              reindexer_test option_table_test progress_line_test
+              lsh_test trellis_test trellis_update_test grow_test cluster_test synth_test
+              signature_test
               fuzz_amc_parser_regression_test fuzz_asf_parser_regression_test
               fuzz_bvh_parser_regression_test fuzz_frame_file_reader_regression_test
               fuzz_paths_file_reader_regression_test fuzz_trellis_file_reader_regression_test)
@@ -77,7 +79,7 @@ asan_targets=(common_test motion_test frame_file_test import_test export_test tr
 # that hold them (tests/*/CMakeLists.txt).
 tsan_tests='ThreadCount|Threads|ManyThreads|Concurrent|Sharded|OneAndTwoThreads|OneOrTwoThreads'
 tsan_targets=(lsh_test distance_test ingest_test trellis_test trellis_update_test signature_test
-              cluster_test frame_file_test trellis_file_test embedding_test words_test)
+              cluster_test frame_file_test trellis_file_test)
 
 source "$root/scripts/cmake_generator.sh"
 configure() {  # configure DIR FLAG...

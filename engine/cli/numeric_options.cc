@@ -13,6 +13,8 @@ namespace po = boost::program_options;
 // The highest frame rate accepted: capture systems record at up to a few thousand frames a
 // second; 5e7 made the resampler allocate until the process was killed.
 constexpr double kMaxFps = 10000.0;
+// synth --frames: as the option table's --synth-frames (engine/pipeline/option_table.cc).
+constexpr uint64_t kMaxSynthFrames = 100000000;
 
 bool IsUnsigned(const std::type_info& type) {
   return type == typeid(uint32_t) || type == typeid(uint64_t) || type == typeid(size_t) ||
@@ -33,8 +35,10 @@ Status CheckOne(const std::string& flag, const std::string& given, const boost::
   if (IsUnsigned(type) && given.find('-') != std::string::npos) {
     return Bad(flag, given, "a whole number >= 0");
   }
-  if (type == typeid(int) && flag == "threads" && boost::any_cast<int>(value) < 0) {
-    return Bad(flag, given, ">= 0 (0: all cores)");
+  // synth: the largest archive the project measures; more would write until the disk is full.
+  if (flag == "frames" && type == typeid(uint64_t) &&
+      boost::any_cast<uint64_t>(value) > kMaxSynthFrames) {
+    return Bad(flag, given, "at most 100000000 (10^8 frames, about 7 GB)");
   }
   if (type != typeid(double) && type != typeid(float)) return Status::Ok();
   const double number = AsDouble(value);
@@ -43,10 +47,7 @@ Status CheckOne(const std::string& flag, const std::string& given, const boost::
   if (is_rate && number != 0 && (number < 1 || number > kMaxFps)) {
     return Bad(flag, given, "between 1 and 10000 frames a second");
   }
-  if (flag == "pause-speed" && number < 0) return Bad(flag, given, ">= 0 (0: no trimming)");
-  if (flag == "pause-seconds" && !(number > 0 && number <= 3600)) {
-    return Bad(flag, given, "in (0, 3600] seconds");
-  }
+  if (flag == "min-age" && number < 0) return Bad(flag, given, ">= 0 seconds");
   return Status::Ok();
 }
 

@@ -74,6 +74,21 @@ TEST(MotifmineTool, NumbersOutOfRangeAreUsageErrorsNamingTheFlag) {
        "--playback-mb must be a whole number in [0, 4096], not '4097'"},
       {"export " + archive + " --clip c --names x --out " + dir.File("x.bvh"),
        "--names must be source or canonical, not 'x'"},
+      // Bounds that a run would otherwise find out the hard way: TBB fails beyond the threads a
+      // process may create, and a synthetic archive writes until the disk is full.
+      {mine + "--threads 65537", "--threads must be a whole number in [0, 4096], not '65537'"},
+      {"trellis " + archive + " --threads 65537",
+       "--threads must be a whole number in [0, 4096], not '65537'"},
+      {"reindex " + archive + " --watch " + dir.path() + " --out " + out + " --threads 65537",
+       "--threads must be a whole number in [0, 4096], not '65537'"},
+      {"synth " + archive + " --frames 99999999999",
+       "--frames must be at most 100000000 (10^8 frames, about 7 GB), not '99999999999'"},
+      {"mine --out " + out + " --synth-frames 99999999999",
+       "--synth-frames must be a whole number in [1, 100000000], not '99999999999'"},
+      {"reindex " + archive + " --watch " + dir.path() + " --out " + out + " --min-age -1",
+       "--min-age must be >= 0 seconds, not '-1'"},
+      {"reindex " + archive + " --watch " + dir.path() + " --out " + out + " --min-similarity -5",
+       "--min-similarity must be a number in (0, 1], not '-5'"},
   };
   for (const auto& [args, message] : cases) {
     const RunResult result = RunTool(args);

@@ -1,8 +1,11 @@
 // Every byte of the header, the metadata and the footers of a two-commit archive flipped in turn,
-// and the tool run on it as a user would: `verify`, `info`, `mine` and a following `import` either
-// work on the newest version, intact, or refuse with a damage code, and no commit that verified
-// before the flip is lost. (The frame blocks are swept by FrameFileCorruption.DetectsEveryFlipped*
-// in tests/formats/frame_file.)
+// and the tool run on it as a user would: `verify` and `info` on every flip, `mine` and a
+// following `import` on the flips of each range's first and last 16 bytes and of every 5th byte
+// between (5: prime to the shard count, so each shard gets its share; they open the archive
+// through the reader and older-version policy `info` uses, and running them on every byte was
+// four fifths of the sweep's time). Each works on the newest version, intact, or refuses with a
+// damage code, and no commit that verified before the flip is lost. (The frame blocks are swept
+// by FrameFileCorruption.DetectsEveryFlipped* in tests/formats/frame_file.)
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -109,6 +112,7 @@ TEST_P(DamageSweep, EveryFlippedMetadataByteIsReadIntactOrRefusedAndLosesNoCommi
         EXPECT_EQ(json["clips"].size(), 2u) << info.output;
       }
 
+      if (offset - begin >= 16 && end - offset > 16 && (offset - begin) % 5 != 0) continue;
       const std::string out = dir.File("m" + std::to_string(offset));
       const RunResult mine = RunTool("mine " + archive + " --out " + out + " --quiet --no-report");
       ASSERT_TRUE(mine.exit_code == 0 || RefusedAsDamaged(mine.exit_code)) << mine.output;
