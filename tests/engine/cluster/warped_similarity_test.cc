@@ -176,7 +176,9 @@ TEST(WarpedSimilarityTest, APairFartherApartThanThreeScalesLosesItsEdge) {
         ++same_motif_pairs;
         EXPECT_GT(weight, 0) << "repetitions " << a << " and " << b << " lost their edge";
       }
-      if (weight > 0) EXPECT_GE(weight, std::exp(-9.0));
+      if (weight > 0) {
+        EXPECT_GE(weight, std::exp(-9.0));
+      }
     }
   }
   // The planted motifs are far apart on their own scales: most pairs of different motifs go.

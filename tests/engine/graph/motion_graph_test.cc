@@ -66,7 +66,9 @@ TEST(MotionGraph, AWalkStaysInItsComponentAndPlaysTheFramesAskedFor) {
     for (size_t idx = 0; idx + 1 < walk->size(); ++idx) {
       const WalkPiece& piece = (*walk)[idx];
       EXPECT_EQ(piece.clip, idx % 2 == 0 ? 0u : 1u);
-      if (idx > 0) EXPECT_EQ(piece.start, piece.clip == 0 ? 100u : 200u);
+      if (idx > 0) {
+        EXPECT_EQ(piece.start, piece.clip == 0 ? 100u : 200u);
+      }
       EXPECT_EQ(piece.end, piece.clip == 0 ? 530u : 830u);
     }
     auto again = RandomWalk(graph, c.clips, 0, options);
