@@ -28,6 +28,39 @@ void Check(const motifmine::Status& status) {
   if (!status.ok()) throw StatusError{status};
 }
 
+// A keyword out of range on its way to Python: motifmine.OptionError, which is both a
+// motifmine.Error and a ValueError.
+struct OptionFailure {
+  motifmine::Status status;
+};
+
+// A path goes on to C as text, which ends at a NUL: a path holding one is a ValueError rather
+// than another, shorter path.
+const std::string& CheckPath(const std::string& path, const std::string& argument) {
+  if (path.find('\0') != std::string::npos) {
+    throw py::value_error(argument + " holds a NUL character, which no file name can: '" +
+                          path.substr(0, path.find('\0')) + "\\0...'");
+  }
+  return path;
+}
+
+void CheckPaths(const std::vector<std::string>& paths, const std::string& argument) {
+  for (const std::string& path : paths) CheckPath(path, argument);
+}
+
+// allow_older=True for one call: this thread may work on an archive's previous version when
+// its newest commit is damaged (motifmine::AllowOlderVersions); refused otherwise.
+class OlderVersions {
+ public:
+  explicit OlderVersions(bool allow) : before_(motifmine::AllowOlderVersions(allow)) {}
+  ~OlderVersions() { motifmine::AllowOlderVersions(before_); }
+  OlderVersions(const OlderVersions&) = delete;
+  OlderVersions& operator=(const OlderVersions&) = delete;
+
+ private:
+  bool before_;
+};
+
 // A Python progress callback called from C++: with the GIL, and never throwing into the engine
 // (the first Python error is kept and raised when the call returns).
 class PythonProgress {
@@ -110,7 +143,7 @@ std::string OptionText(const std::string& key, const std::string& type, py::hand
 }
 
 // Sets one option from a keyword argument through the option table; TypeError for an unknown
-// keyword or a value of the wrong kind, motifmine.Error (code 13) for one out of range.
+// keyword or a value of the wrong kind, motifmine.OptionError (code 13) for one out of range.
 void SetMineOption(motifmine::MineOptions* options, const std::string& key, py::handle value) {
   // Older names the table knows as aliases that are not the option itself.
   static const std::vector<std::pair<std::string, std::string>> kTranslated = {
@@ -124,23 +157,28 @@ void SetMineOption(motifmine::MineOptions* options, const std::string& key, py::
     if (!row) throw py::type_error("mine() got an unexpected keyword argument '" + key + "'");
     type = row->type;
   }
-  Check(motifmine::SetMineOption(options, key, OptionText(key, type, value)));
+  const motifmine::Status set = motifmine::SetMineOption(options, key, OptionText(key, type, value));
+  if (!set.ok()) throw OptionFailure{set};
 }
 
 motifmine::MineResult Mine(const std::vector<std::string>& inputs, const std::string& out_dir,
-                           const py::object& progress, const py::kwargs& kwargs) {
+                           const py::object& progress, bool allow_older,
+                           const py::kwargs& kwargs) {
+  CheckPaths(inputs, "inputs");
   motifmine::MineOptions options;
-  options.out_dir = out_dir;
+  options.out_dir = CheckPath(out_dir, "out_dir");
   for (const auto& [key, value] : kwargs) SetMineOption(&options, key.cast<std::string>(), value);
   motifmine::MineResult result;
+  const OlderVersions older(allow_older);
   Check(WithoutGil(progress, &options.progress,
                    [&] { return motifmine::Mine(inputs, options, &result); }));
   return result;
 }
 
-std::unique_ptr<motifmine::Archive> OpenArchive(const std::string& path) {
+std::unique_ptr<motifmine::Archive> OpenArchive(const std::string& path, bool allow_older) {
   std::unique_ptr<motifmine::Archive> archive;
-  Check(motifmine::Archive::Open(path, &archive));
+  const OlderVersions older(allow_older);
+  Check(motifmine::Archive::Open(CheckPath(path, "path"), &archive));
   return archive;
 }
 
@@ -163,6 +201,8 @@ py::array_t<float> Rotations(const motifmine::Archive& archive, const std::strin
 motifmine::ImportResult ImportTakes(const std::string& archive,
                                     const std::vector<std::string>& paths, bool skip_bad,
                                     int threads) {
+  CheckPath(archive, "archive");
+  CheckPaths(paths, "paths");
   motifmine::ImportOptions options;
   options.skip_bad = skip_bad;
   options.threads = threads;
@@ -177,7 +217,9 @@ motifmine::ImportResult ImportTakes(const std::string& archive,
 }
 
 motifmine::WordsResult BuildWords(const std::string& archive, uint32_t motifs, uint64_t seed,
-                                  int threads, const py::object& progress) {
+                                  int threads, const py::object& progress, bool allow_older) {
+  CheckPath(archive, "archive");
+  const OlderVersions older(allow_older);
   motifmine::WordsOptions options;
   options.motifs = motifs;
   options.seed = seed;
@@ -189,7 +231,9 @@ motifmine::WordsResult BuildWords(const std::string& archive, uint32_t motifs, u
 }
 
 // (clip names, float64 array clips x motifs).
-py::tuple Signatures(const std::string& archive) {
+py::tuple Signatures(const std::string& archive, bool allow_older) {
+  CheckPath(archive, "archive");
+  const OlderVersions older(allow_older);
   auto signatures = std::make_unique<motifmine::Signatures>();
   motifmine::Status status;
   {
@@ -207,7 +251,10 @@ py::tuple Signatures(const std::string& archive) {
 }
 
 std::vector<motifmine::SearchMatch> Search(const std::string& archive, const std::string& clip,
-                                           uint64_t start, uint64_t end, uint32_t top) {
+                                           uint64_t start, uint64_t end, uint32_t top,
+                                           bool allow_older) {
+  CheckPath(archive, "archive");
+  const OlderVersions older(allow_older);
   std::vector<motifmine::SearchMatch> matches;
   motifmine::Status status;
   {
@@ -229,13 +276,22 @@ PYBIND11_MODULE(motifmine, m) {
   m.doc() = "motifmine: motion motifs mined from motion-capture archives (docs/python.md)";
 
   static py::exception<StatusError> error(m, "Error", PyExc_RuntimeError);
+  // Both a motifmine.Error and a ValueError; kept for the interpreter's life, as `error` is.
+  static PyObject* option_error = PyErr_NewException(
+      "motifmine.OptionError", py::make_tuple(error, py::handle(PyExc_ValueError)).ptr(), nullptr);
+  m.attr("OptionError") = py::handle(option_error);
   py::register_exception_translator([](std::exception_ptr thrown) {
+    const auto raise = [](PyObject* type, const motifmine::Status& status) {
+      py::object instance = py::handle(type)(status.message());
+      instance.attr("code") = static_cast<int>(status.code());
+      PyErr_SetObject(type, instance.ptr());
+    };
     try {
       if (thrown) std::rethrow_exception(thrown);
+    } catch (const OptionFailure& failed) {
+      raise(option_error, failed.status);
     } catch (const StatusError& failed) {
-      py::object instance = py::handle(error.ptr())(failed.status.message());
-      instance.attr("code") = static_cast<int>(failed.status.code());
-      PyErr_SetObject(error.ptr(), instance.ptr());
+      raise(error.ptr(), failed.status);
     }
   });
 
@@ -286,13 +342,14 @@ PYBIND11_MODULE(motifmine, m) {
       .def_readonly("skipped", &motifmine::ImportResult::skipped);
 
   m.def("mine", &Mine, py::arg("inputs") = std::vector<std::string>{}, py::kw_only(),
-        py::arg("out_dir"), py::arg("progress") = py::none(),
+        py::arg("out_dir"), py::arg("progress") = py::none(), py::arg("allow_older") = false,
         "Mines takes, folders or an archive (the built-in synthetic archive when `inputs` is "
         "empty) into out_dir, as `motifmine mine` does; options as keyword arguments named as "
         "the tool's flags with '_' for '-' (kmax, min_length, eps_angle, ...: "
         "motifmine.option_table() lists them), and the older k_max, eps_angle_degrees, "
         "min_length_seconds, min_length_frames and write_report. "
-        "progress(stage, done, total) is called as it goes.");
+        "progress(stage, done, total) is called as it goes. An archive whose newest commit is "
+        "damaged is refused (motifmine.Error, code 12) unless allow_older=True.");
   m.def(
       "option_table",
       [] {
@@ -344,17 +401,19 @@ PYBIND11_MODULE(motifmine, m) {
   m.def("build_words", &BuildWords, py::arg("archive"), py::kw_only(),
         py::arg("motifs") = words_defaults.motifs, py::arg("seed") = words_defaults.seed,
         py::arg("threads") = words_defaults.threads, py::arg("progress") = py::none(),
+        py::arg("allow_older") = false,
         "The archive's motion words, their embedding, motifs and signatures, written beside it "
         "(reused when up to date), as `motifmine words` does.");
-  m.def("signatures", &Signatures, py::arg("archive"),
+  m.def("signatures", &Signatures, py::arg("archive"), py::kw_only(),
+        py::arg("allow_older") = false,
         "(clip names, float64 array clips x motifs): every clip's TF-IDF signature.");
   m.def("search", &Search, py::arg("archive"), py::arg("clip"), py::arg("start"), py::arg("end"),
-        py::kw_only(), py::arg("top") = 10,
+        py::kw_only(), py::arg("top") = 10, py::arg("allow_older") = false,
         "The takes with a window most like frames [start, end) of clip, best first, as "
         "`motifmine search` finds them.");
 
   py::class_<motifmine::Archive>(m, "Archive")
-      .def(py::init(&OpenArchive), py::arg("path"))
+      .def(py::init(&OpenArchive), py::arg("path"), py::kw_only(), py::arg("allow_older") = false)
       .def_property_readonly("path", &motifmine::Archive::path)
       .def_property_readonly("frames", &motifmine::Archive::frames)
       .def_property_readonly("fps", &motifmine::Archive::fps)

@@ -34,6 +34,16 @@ using frame_file::LoadedArchive;
 
 namespace {
 
+// A new archive's folder must exist; said of the archive, as `export` says it of its file, not
+// of the temporary file the archive is first written to.
+Status CheckFolderExists(const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code error;
+  if (folder.empty() || std::filesystem::is_directory(folder, error)) return Status::Ok();
+  return Status::IOError(path + ": cannot create the archive: the folder " + folder.string() +
+                         " does not exist");
+}
+
 // Maps `path` read-only just long enough to validate it and copy out what an append needs.
 Result<LoadedArchive> LoadArchiveFile(const std::string& path) {
   std::error_code error;
@@ -129,6 +139,7 @@ class FrameFileWriter::Impl {
   }
 
   Status OpenFile() {
+    if (mode_ == Mode::kCreate) MOTIF_RETURN_IF_ERROR(CheckFolderExists(path_));
     const OpenMode open_mode =
         mode_ == Mode::kCreate ? OpenMode::kCreateExclusive : OpenMode::kExisting;
     MOTIF_ASSIGN_OR_RETURN(file_, fs_->OpenWritable(write_path_, open_mode));

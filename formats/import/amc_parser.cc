@@ -1,6 +1,7 @@
 #include "formats/import/amc_parser.h"
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -178,6 +179,11 @@ class AmcParser {
       const AsfDof dof = entity.dofs[dof_idx];
       const double value = values[dof_idx];
       if (IsRotationDof(dof)) {
+        // As in the BVH parser: far beyond 10^6 degrees a float angle is noise, not motion.
+        if (std::abs(degrees_ ? value : value * 180 / M_PI) > 1e6) {
+          return Error("bone " + Quoted(name) + ", value " + std::to_string(dof_idx + 1) +
+                       ": a rotation beyond the 1e6 degrees a take can hold");
+        }
         const Axis axis = static_cast<Axis>(static_cast<int>(dof) - static_cast<int>(AsfDof::kRx));
         // The first-listed dof is applied first: later ones multiply from the left.
         motion = AxisRotation(axis, degrees_ ? DegreesToRadians(value) : value) * motion;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -37,6 +38,11 @@ struct BvhFrameLayout {
   std::array<int, 3> root_position_channel = {-1, -1, -1};  // -1: the root's OFFSET
   int channel_count = 0;
 };
+
+// The largest rotation a channel may hold, in degrees. A take's frames are stored as float
+// quaternions of the angle: at 10^6 degrees a float still places it within 0.06 degrees; far
+// beyond, as at 1e308, the angle is noise and the pose cannot be motion, so the take is bad.
+constexpr double kMaxRotationDegrees = 1e6;
 
 // State of a joint while its braces are open.
 struct OpenJoint {
@@ -393,6 +399,23 @@ class BvhParser {
     }
   }
 
+  // Every rotation channel of one frame within kMaxRotationDegrees.
+  Status CheckRotations(const BvhFrameLayout& frame, const std::vector<double>& values,
+                        int line_number, int64_t frame_idx) const {
+    for (const JointLayout& layout : frame.joints) {
+      for (int rotation_idx = 0; rotation_idx < layout.rotation_count; ++rotation_idx) {
+        const int channel = layout.rotation_channel[rotation_idx];
+        if (std::abs(values[channel]) <= kMaxRotationDegrees) continue;
+        char degrees[32];
+        std::snprintf(degrees, sizeof degrees, "%g", values[channel]);
+        return Error(line_number, "frame " + std::to_string(frame_idx) + ", value " +
+                                      std::to_string(channel + 1) + ": a rotation of " + degrees +
+                                      " degrees, beyond the 1e6 degrees a take can hold");
+      }
+    }
+    return Status::Ok();
+  }
+
   // The `frame_count` frame lines declared at line `frames_line`, and not one more.
   Status ReadFrames(const BvhFrameLayout& frame, int64_t frame_count, int frames_line,
                     LineCursor* lines, Take* take) const {
@@ -411,6 +434,7 @@ class BvhParser {
                                                std::to_string(frames_line) + " (truncated file?)");
       }
       MOTIF_RETURN_IF_ERROR(ParseFrameLine(line, lines->line_number(), frame_idx, &values));
+      MOTIF_RETURN_IF_ERROR(CheckRotations(frame, values, lines->line_number(), frame_idx));
       AppendPose(frame, values, take);
     }
     if (NextNonBlank(lines, &line)) {

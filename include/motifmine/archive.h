@@ -21,10 +21,18 @@ struct Clip {
   double fps = 0;
 };
 
+// Whether this thread's calls (Archive::Open, Mine, BuildWords, LoadSignatures,
+// SearchClipRange, ImportTakes) may work on an archive at its previous version when its newest
+// commit is damaged. By default they may not: they fail with Corruption, naming the damage, as
+// the motifmine tool does without --allow-older (docs/guide.md, "Damaged archives"). Returns
+// the setting it replaces.
+MOTIFMINE_API bool AllowOlderVersions(bool allow);
+
 class MOTIFMINE_API Archive {
  public:
   // Opens the newest version of the archive at `path` (memory-mapped, read-only). NotFound,
-  // Corruption (a damaged newest commit: docs/guide.md, "Damaged archives"), NotSupported.
+  // Corruption (a damaged newest commit, unless AllowOlderVersions: docs/guide.md, "Damaged
+  // archives"), NotSupported.
   static Status Open(const std::string& path, std::unique_ptr<Archive>* archive);
   ~Archive();
   Archive(const Archive&) = delete;

@@ -151,10 +151,17 @@ def test_errors_raise_with_message_and_code(tmp_path):
         motifmine.Archive(str(tmp_path / "absent.mfs"))
     assert "absent.mfs" in str(missing.value)
     assert missing.value.code == 11  # not found, as the tool's exit code
-    with pytest.raises(motifmine.Error) as bad:
+    with pytest.raises(motifmine.OptionError) as bad:
         motifmine.mine(out_dir=str(tmp_path / "out"), k_max=0)
+    assert isinstance(bad.value, motifmine.Error) and isinstance(bad.value, ValueError)
     assert bad.value.code == 13
     assert "kmax must be a whole number in [1, 65535], not '0'" in str(bad.value)
+    for keyword, value in [("groups", 0), ("min_length_frames", 0), ("eps", math.nan),
+                           ("threads", 65537), ("synth_frames", 99999999999)]:
+        with pytest.raises(ValueError) as refused:  # as the tool's usage errors, by name
+            motifmine.mine(out_dir=str(tmp_path / "out"), **{keyword: value})
+        assert keyword.split("_")[0] in str(refused.value), keyword
+    assert not (tmp_path / "out").exists()
     with pytest.raises(TypeError):
         motifmine.mine(out_dir=str(tmp_path / "out"), no_such_option=1)
     with pytest.raises(ValueError):
@@ -235,3 +242,56 @@ def test_words_signatures_and_search_are_the_tools(tmp_path):
     with pytest.raises(motifmine.Error) as missing:
         motifmine.search(archive, "no_such_clip", 0, 100)
     assert missing.value.code == 11
+
+
+def two_commit_archive_with_its_newest_footer_damaged(tmp_path):
+    """A two-take archive, one commit per take, whose last byte (the newest commit's footer) is
+    flipped: only the first commit's version still validates."""
+    archive = str(tmp_path / "two.mfs")
+    tool("synth", str(tmp_path / "s.mfs"), "--frames", "20000", "--motifs", "3", "--seed", "2",
+         "--quiet")
+    for clip in ("synth_000000", "synth_000001"):
+        tool("export", str(tmp_path / "s.mfs"), "--clip", clip, "--end", "600", "--out",
+             str(tmp_path / (clip + ".bvh")))
+        motifmine.import_takes(archive, [str(tmp_path / (clip + ".bvh"))])
+    with open(archive, "r+b") as f:
+        f.seek(-1, os.SEEK_END)
+        last = f.read(1)
+        f.seek(-1, os.SEEK_END)
+        f.write(bytes([last[0] ^ 0xFF]))
+    return archive
+
+
+def test_a_damaged_newest_commit_is_refused_unless_allow_older(tmp_path):
+    archive = two_commit_archive_with_its_newest_footer_damaged(tmp_path)
+    out = tmp_path / "out"
+    calls = [lambda **kw: motifmine.Archive(archive, **kw),
+             lambda **kw: motifmine.mine([archive], out_dir=str(out), write_report=False, **kw),
+             lambda **kw: motifmine.signatures(archive, **kw),
+             lambda **kw: motifmine.search(archive, "synth_000000", 0, 300, **kw)]
+    for call in calls:  # as `motifmine info` without --allow-older: exit 12
+        with pytest.raises(motifmine.Error) as refused:
+            call()
+        assert refused.value.code == 12
+        assert "footer" in str(refused.value) and "allow_older=True" in str(refused.value)
+    assert subprocess.run([TOOL, "info", archive]).returncode == 12
+    older = motifmine.Archive(archive, allow_older=True)  # the first commit: one take
+    assert (older.frames, [c.name for c in older.clips]) == (600, ["synth_000000"])
+    result = motifmine.mine([archive], out_dir=str(out), write_report=False, allow_older=True)
+    assert [c.name for c in result.clips] == ["synth_000000"]
+    with open(result.motifs_path) as f:
+        assert json.load(f)["archive_version"]["generation"] == 1
+    with pytest.raises(motifmine.Error):  # the keyword holds for its call only
+        motifmine.Archive(archive)
+
+
+def test_a_path_with_a_nul_is_a_value_error(tmp_path):
+    archive = two_commit_archive_with_its_newest_footer_damaged(tmp_path)
+    for call in [lambda: motifmine.Archive(archive + "\0junk"),
+                 lambda: motifmine.mine([archive + "\0junk"], out_dir=str(tmp_path / "o")),
+                 lambda: motifmine.mine(out_dir=str(tmp_path / "o\0junk")),
+                 lambda: motifmine.import_takes(archive + "\0x", []),
+                 lambda: motifmine.signatures(archive + "\0x")]:
+        with pytest.raises(ValueError) as refused:
+            call()
+        assert "NUL" in str(refused.value)

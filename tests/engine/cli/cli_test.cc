@@ -317,6 +317,17 @@ TEST(MotifmineTool, AMissingInputOrOutputFolderIsNamedAndLeavesNothing) {
   EXPECT_NE(exported.output.find(dir.File("missing") + " does not exist"), std::string::npos)
       << exported.output;
   EXPECT_EQ(exported.output.find(".tmp-"), std::string::npos) << exported.output;
+
+  ASSERT_EQ(RunTool("export " + archive + " --clip synth_000000 --end 300 --out " +
+                    dir.File("take.bvh")).exit_code, 0);
+  const RunResult imported =
+      RunTool("import " + dir.File("missing/a.mfs") + " " + dir.File("take.bvh") + " --quiet");
+  EXPECT_EQ(imported.exit_code, 14) << imported.output;
+  EXPECT_NE(imported.output.find(dir.File("missing/a.mfs") + ": cannot create the archive: the "
+                                 "folder " + dir.File("missing") + " does not exist"),
+            std::string::npos) << imported.output;
+  EXPECT_EQ(imported.output.find(".tmp-"), std::string::npos) << imported.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.File("missing")));
 }
 
 // A folder that cannot be made is an I/O error (exit 14) naming it; a disk too full for an

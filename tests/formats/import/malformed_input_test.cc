@@ -109,6 +109,9 @@ TEST(MalformedBvh, ErrorsNameFileLineAndProblem) {
        "bad.bvh:19: frame 0, value 6: '-inf' is not a finite number"},
       {"overflowing value", Replace(valid, "1 2 3 4 5 6 7 8 9\n", "1 2 3 4 5 6 7 8 1e999\n"),
        "bad.bvh:19: frame 0, value 9: '1e999' is not a finite number"},
+      {"absurd rotation", Replace(valid, "1 2 3 4 5 6 7 8 9\n", "1 2 3 4 5 6 7 8 -1e308\n"),
+       "bad.bvh:19: frame 0, value 9: a rotation of -1e+308 degrees, beyond the 1e6 degrees a "
+       "take can hold"},
       {"word in frame", Replace(valid, "1 2 3 4 5 6 7 8 9\n", "1 2 3 4 5 6 7 8 9x\n"),
        "bad.bvh:19: frame 0, value 9: '9x' is not a finite number"},
       {"nan offset", Replace(valid, "OFFSET 0 1 0", "OFFSET 0 NaN 0"),
@@ -225,6 +228,8 @@ TEST(MalformedAmc, ErrorsNameFileLineAndProblem) {
        "bad.amc:7: bone 'lfemur' is not in the skeleton tiny.asf"},
       {"too few values", Replace(valid, "thigh -30 5 10", "thigh -30 5"),
        "bad.amc:6: bone 'thigh' has 2 values in frame 1, the ASF gives it 3 dofs (rx ry rz)"},
+      {"absurd rotation", Replace(valid, "shin 45", "shin 1e308"),
+       "bad.amc:7: bone 'shin', value 1: a rotation beyond the 1e6 degrees a take can hold"},
       {"too many values", Replace(valid, "shin 45", "shin 45 46"),
        "bad.amc:7: bone 'shin' has 2 values in frame 1, the ASF gives it 1 dofs (rx)"},
       {"values for a bone without dof", Replace(valid, "shin 45", "shin 45\nhip 1"),
