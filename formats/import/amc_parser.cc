@@ -12,6 +12,7 @@ namespace motif {
 namespace {
 
 using import_internal::EqualsIgnoreCase;
+using import_internal::kMaxRotationDegrees;
 using import_internal::LineCursor;
 using import_internal::NextWord;
 using import_internal::ParseDouble;
@@ -179,8 +180,7 @@ class AmcParser {
       const AsfDof dof = entity.dofs[dof_idx];
       const double value = values[dof_idx];
       if (IsRotationDof(dof)) {
-        // As in the BVH parser: far beyond 10^6 degrees a float angle is noise, not motion.
-        if (std::abs(degrees_ ? value : value * 180 / M_PI) > 1e6) {
+        if (std::abs(degrees_ ? value : value * 180 / M_PI) > kMaxRotationDegrees) {
           return Error("bone " + Quoted(name) + ", value " + std::to_string(dof_idx + 1) +
                        ": a rotation beyond the 1e6 degrees a take can hold");
         }

@@ -18,6 +18,7 @@ namespace {
 using import_internal::EqualsIgnoreCase;
 using import_internal::IsBlank;
 using import_internal::LineCursor;
+using import_internal::kMaxRotationDegrees;
 using import_internal::ParseDouble;
 using import_internal::ParseInt64;
 using import_internal::Printable;
@@ -38,11 +39,6 @@ struct BvhFrameLayout {
   std::array<int, 3> root_position_channel = {-1, -1, -1};  // -1: the root's OFFSET
   int channel_count = 0;
 };
-
-// The largest rotation a channel may hold, in degrees. A take's frames are stored as float
-// quaternions of the angle: at 10^6 degrees a float still places it within 0.06 degrees; far
-// beyond, as at 1e308, the angle is noise and the pose cannot be motion, so the take is bad.
-constexpr double kMaxRotationDegrees = 1e6;
 
 // State of a joint while its braces are open.
 struct OpenJoint {

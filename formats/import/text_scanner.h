@@ -13,6 +13,12 @@
 
 namespace motif::import_internal {
 
+// The largest rotation a channel may hold, in degrees (the BVH and AMC parsers). A take's frames
+// are stored as float quaternions of the angle: at 10^6 degrees a float still places it within
+// 0.06 degrees; far beyond, as at 1e308, the angle is noise and the pose cannot be motion, so
+// the take is bad.
+inline constexpr double kMaxRotationDegrees = 1e6;
+
 inline bool IsBlank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }
