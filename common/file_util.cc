@@ -1,4 +1,5 @@
 #include "common/file_util.h"
+#include "common/temporary_files.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -84,7 +85,9 @@ Result<std::string> ReadRegularFile(const std::string& path) {
 
 std::string TemporaryPathFor(const std::string& path) {
   static std::atomic<uint64_t> counter{0};
-  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  TrackTemporaryFile(temp);
+  return temp;
 }
 
 Status AtomicWriteFile(const std::string& path, std::string_view content, FileSystem* file_system) {

@@ -25,6 +25,7 @@ Result<std::unique_ptr<MappedFile>> MappedFile::Open(const std::string& path) {
   const uint64_t size = std::filesystem::file_size(path, error);
   if (error) return Status::IOError(path + ": cannot read the size: " + error.message());
   std::unique_ptr<MappedFile> mapped(new MappedFile());
+  mapped->path_ = path;
   if (size > 0) {
     try {
       namespace bip = boost::interprocess;
@@ -36,11 +37,21 @@ Result<std::unique_ptr<MappedFile>> MappedFile::Open(const std::string& path) {
     }
     mapped->data_ = static_cast<const uint8_t*>(mapped->mapping_->region.get_address());
     mapped->size_ = mapped->mapping_->region.get_size();
+    mapped->guard_ = std::make_unique<MappingGuard>(mapped->data_, mapped->size_);
   }
   return mapped;
 }
 
 MappedFile::~MappedFile() = default;
+
+Status MappedFile::CheckNotCut() const {
+  std::error_code error;
+  const uint64_t now = std::filesystem::file_size(path_, error);
+  if (!cut() && !error && now >= size_) return Status::Ok();
+  const std::string now_text = error ? "no longer readable" : std::to_string(now) + " bytes";
+  return Status::Corruption(path_ + ": the file was cut while it was being read: it was " +
+                            std::to_string(size_) + " bytes when opened, now " + now_text);
+}
 
 // posix_madvise (what boost's advice_dontneed calls) is a no-op in glibc: madvise is used.
 uint64_t MappedFile::ReleasePages(uint64_t begin_offset, uint64_t end_offset) const {

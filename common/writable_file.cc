@@ -1,4 +1,5 @@
 #include "common/writable_file.h"
+#include "common/temporary_files.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -73,6 +74,7 @@ class RealFileSystem final : public FileSystem {
     if (::rename(from.c_str(), to.c_str()) != 0) {
       return Status::FromErrno("rename " + from + " to " + to, errno);
     }
+    UntrackTemporaryFile(from);  // in place: a signal now must not remove it
     return Status::Ok();
   }
   Status SyncParentDir(const std::string& path) override {
@@ -90,6 +92,7 @@ class RealFileSystem final : public FileSystem {
     if (::unlink(path.c_str()) != 0 && errno != ENOENT) {
       return Status::FromErrno(path + ": remove", errno);
     }
+    UntrackTemporaryFile(path);
     return Status::Ok();
   }
 };

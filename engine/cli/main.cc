@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/temporary_files.h"
 #include "engine/cli/cli_common.h"
 
 namespace {
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
   // lets the peak memory of a long streaming run creep up with N; a fixed threshold keeps them
   // mmapped, so freeing returns them to the system and the peak stays flat.
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  motif::RemoveTemporaryFilesOnTermination();  // a SIGTERM or Ctrl-C leaves no temporary file
   if (argc < 2) {
     PrintUsage(stderr);
     return motif::cli::kExitUsage;

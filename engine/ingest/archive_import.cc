@@ -34,12 +34,11 @@ struct TakeInFlight {
   std::optional<ClipFrames> clip;
 };
 
-// Parses one take and converts it to the archive's skeleton and rate.
-TakeInFlight PrepareTake(const TakeSource& source, size_t index, const Skeleton& skeleton,
-                         double fps, const ImportOptions& options) {
+// Converts one parsed take (or its parse error) to the archive's skeleton and rate.
+TakeInFlight PrepareTake(const TakeSource& source, size_t index, Result<Take> take,
+                         const Skeleton& skeleton, double fps) {
   TakeInFlight item;
   item.index = index;
-  Result<Take> take = ImportTake(source, options);
   if (!take.ok()) {
     item.status = take.status();
     return item;
@@ -54,17 +53,24 @@ TakeInFlight PrepareTake(const TakeSource& source, size_t index, const Skeleton&
   return item;
 }
 
+// The takes read to create the archive (sources[0, size()), the last one the take that decided
+// its skeleton and rate): the import uses them as they were read, so that each take file is read
+// once and a file replaced meanwhile cannot give frames at another file's rate.
+using TakesReadFirst = std::vector<Result<Take>>;
+
 // A message for the user, if the caller takes them (empty ones are not passed on).
 void ImportNote(const ArchiveImportOptions& options, const std::string& message) {
   if (options.note) message.empty() ? void() : options.note(message);
 }
 
 // The archive's writer: appending to it when it exists, else creating it from the first take
-// that imports, which decides the skeleton and, unless given, the rate (result->created).
+// that imports, which decides the skeleton and, unless given, the rate (result->created). The
+// takes read for that are kept in `read_first`.
 Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& archive_path,
                                                              const std::vector<TakeSource>& sources,
                                                              const ArchiveImportOptions& options,
-                                                             ArchiveImportResult* result) {
+                                                             ArchiveImportResult* result,
+                                                             TakesReadFirst* read_first) {
   FrameFileWriterOptions writer_options;
   writer_options.block_frames = options.block_frames;
   writer_options.file_system = options.file_system;
@@ -72,17 +78,23 @@ Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& 
   if (std::filesystem::exists(archive_path, error)) {
     return FrameFileWriter::OpenForAppend(archive_path, writer_options);
   }
-  Result<Take> first_take = Status::NotFound("no take");
   for (const TakeSource& source : sources) {
-    first_take = ImportTake(source, options.import);
-    if (first_take.ok() || !options.skip_bad) break;
+    read_first->push_back(ImportTake(source, options.import));
+    if (read_first->back().ok() || !options.skip_bad) break;
   }
-  if (!first_take.ok()) return first_take.status();
-  const Take& first = *first_take;
+  if (!read_first->back().ok()) return read_first->back().status();
+  const Take& first = *read_first->back();
   const double fps = options.fps > 0 ? options.fps : first.fps;
-  MOTIF_ASSIGN_OR_RETURN(
-      std::unique_ptr<FrameFileWriter> writer,
-      FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options));
+  Result<std::unique_ptr<FrameFileWriter>> writer =
+      FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options);
+  if (!writer.ok() && std::filesystem::exists(archive_path, error)) {
+    // Another import created it since the check above: the same race the writer's commit
+    // reports as busy, lost earlier.
+    return Status::Busy(archive_path +
+                        ": created by another import while this one was starting; not "
+                        "replacing it (run again to append)");
+  }
+  if (!writer.ok()) return writer.status();
   result->created = true;
   ImportNote(options, "creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
                           std::to_string(first.skeleton.joint_count()) + " joints), " +
@@ -188,7 +200,8 @@ class ClipAppender {
 // Parses and converts the takes in parallel (at most twice the threads in flight) and hands
 // them to `appender` in discovery order; nothing new starts once it has stopped.
 void RunImportPipeline(const std::vector<TakeSource>& sources, const Skeleton& skeleton, double fps,
-                       const ArchiveImportOptions& options, ClipAppender* appender) {
+                       const ArchiveImportOptions& options, TakesReadFirst* read_first,
+                       ClipAppender* appender) {
   size_t next_source = 0;
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   const size_t max_in_flight = 2 * static_cast<size_t>(arena.max_concurrency());
@@ -201,7 +214,10 @@ void RunImportPipeline(const std::vector<TakeSource>& sources, const Skeleton& s
   };
   auto prepare = [&](size_t index) {
     if (appender->stopped()) return TakeInFlight{index, Status::Ok(), std::nullopt};
-    return PrepareTake(sources[index], index, skeleton, fps, options.import);
+    // Each index comes once: moving out of read_first races with nothing.
+    Result<Take> take = index < read_first->size() ? std::move((*read_first)[index])
+                                                   : ImportTake(sources[index], options.import);
+    return PrepareTake(sources[index], index, std::move(take), skeleton, fps);
   };
   auto consume = [&](TakeInFlight item) { appender->Consume(std::move(item)); };
   arena.execute([&] {
@@ -238,14 +254,15 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
   ArchiveImportResult result;
   result.takes_found = sources.size();
   if (sources.empty()) return Status::InvalidArgument("no takes to import");
+  TakesReadFirst read_first;
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
-                         OpenOrCreateArchive(archive_path, sources, options, &result));
+                         OpenOrCreateArchive(archive_path, sources, options, &result, &read_first));
   const Skeleton skeleton = writer->skeleton();
   const double fps = writer->fps();
   result.fps = fps;
   {
     ClipAppender appender(writer.get(), options, sources.size(), &result);
-    RunImportPipeline(sources, skeleton, fps, options, &appender);
+    RunImportPipeline(sources, skeleton, fps, options, &read_first, &appender);
     // The writer's destructor abandons the append.
     if (!appender.first_error().ok()) return appender.first_error();
   }

@@ -37,6 +37,8 @@ class FrameFileReader::Impl {
     const BlockHandle& block = metadata().blocks[block_idx];
     Status status = frame_file::DecodeBlock(metadata().columns, metadata().joint_count, block,
                                             data + block.offset, rows);
+    // Zeros read past a new end are the cut's fault, not the block's.
+    if (!status.ok() || file->cut()) MOTIF_RETURN_IF_ERROR(file->CheckNotCut());
     if (!status.ok()) {
       return status.WithContext(path + ": block " + std::to_string(block_idx) + " at offset " +
                                 Hex(block.offset));
@@ -117,7 +119,9 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::Open(const std::string
   MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
   impl->data = impl->file->data();
   impl->size = impl->file->size();
-  MOTIF_ASSIGN_OR_RETURN(impl->archive, frame_file::LoadArchive(path, impl->data, impl->size));
+  Result<frame_file::LoadedArchive> loaded = frame_file::LoadArchive(path, impl->data, impl->size);
+  MOTIF_RETURN_IF_ERROR(impl->file->CheckNotCut());
+  MOTIF_ASSIGN_OR_RETURN(impl->archive, std::move(loaded));
   std::unique_ptr<FrameFileReader> reader(new FrameFileReader(std::move(impl)));
   if (!reader->impl_->archive.fallback_reason.empty()) {
     OlderVersionHandler handler;
@@ -138,9 +142,10 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::OpenCommit(const std::
   MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
   impl->data = impl->file->data();
   impl->size = impl->file->size();
-  MOTIF_ASSIGN_OR_RETURN(
-      impl->archive,
-      frame_file::LoadArchiveCommit(path, impl->data, impl->size, generation, committed_length));
+  Result<frame_file::LoadedArchive> loaded =
+      frame_file::LoadArchiveCommit(path, impl->data, impl->size, generation, committed_length);
+  MOTIF_RETURN_IF_ERROR(impl->file->CheckNotCut());
+  MOTIF_ASSIGN_OR_RETURN(impl->archive, std::move(loaded));
   return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
 }
 

@@ -13,10 +13,8 @@
 #include <system_error>
 #include <unordered_set>
 
-#include <boost/interprocess/file_mapping.hpp>
-#include <boost/interprocess/mapped_region.hpp>
-
 #include "common/file_util.h"
+#include "common/mapped_file.h"
 #include "formats/frame_file/archive_loader.h"
 #include "formats/frame_file/block_codec.h"
 
@@ -46,19 +44,10 @@ Status CheckFolderExists(const std::string& path) {
 
 // Maps `path` read-only just long enough to validate it and copy out what an append needs.
 Result<LoadedArchive> LoadArchiveFile(const std::string& path) {
-  std::error_code error;
-  const uint64_t size = std::filesystem::file_size(path, error);
-  if (error) return Status::FromErrno(path + ": cannot read the size", error.value());
-  if (size == 0) return frame_file::LoadArchive(path, nullptr, 0);
-  try {
-    namespace bip = boost::interprocess;
-    bip::file_mapping mapping(path.c_str(), bip::read_only);
-    bip::mapped_region region(mapping, bip::read_only);
-    return frame_file::LoadArchive(path, static_cast<const uint8_t*>(region.get_address()),
-                                   region.get_size());
-  } catch (const std::exception& exception) {
-    return Status::IOError(path + ": cannot map: " + exception.what());
-  }
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MappedFile> file, MappedFile::Open(path));
+  Result<LoadedArchive> loaded = frame_file::LoadArchive(path, file->data(), file->size());
+  MOTIF_RETURN_IF_ERROR(file->CheckNotCut());
+  return loaded;
 }
 
 Status ValidateOptions(const FrameFileWriterOptions& options, uint32_t joint_count) {

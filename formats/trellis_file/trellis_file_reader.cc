@@ -136,6 +136,8 @@ class TrellisFileReader::Impl {
     limits.eps = header.params.eps;
     Status status =
         ThreadDecoder().Decode(data + handle.offset, handle, limits, block, decode_distances);
+    // Zeros read past a new end are the cut's fault, not the block's.
+    if (!status.ok() || file->cut()) MOTIF_RETURN_IF_ERROR(file->CheckNotCut());
     if (!status.ok()) {
       return status.WithContext(path + ": block " + std::to_string(block_idx) + " at offset " +
                                 Hex(handle.offset));
@@ -156,7 +158,9 @@ Result<std::unique_ptr<TrellisFileReader>> TrellisFileReader::Open(const std::st
   MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
   impl->data = impl->file->data();
   impl->size = impl->file->size();
-  MOTIF_RETURN_IF_ERROR(impl->Validate());
+  Status valid = impl->Validate();
+  MOTIF_RETURN_IF_ERROR(impl->file->CheckNotCut());
+  MOTIF_RETURN_IF_ERROR(valid);
   return std::unique_ptr<TrellisFileReader>(new TrellisFileReader(std::move(impl)));
 }
 
@@ -195,6 +199,7 @@ Status TrellisFileReader::ReadEncodedBlock(uint64_t block_idx, const uint8_t** b
   const uint64_t body = handle.bytes - trellis_file::kBlockTrailerBytes;
   if (trellis_file::LoadU64(data + body) != handle.checksum ||
       trellis_file::Checksum64(data, body) != handle.checksum) {
+    MOTIF_RETURN_IF_ERROR(impl_->file->CheckNotCut());
     return Status::Corruption(impl_->path + ": block " + std::to_string(block_idx) + " at offset " +
                               Hex(handle.offset) + ": checksum mismatch");
   }

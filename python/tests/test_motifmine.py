@@ -295,3 +295,15 @@ def test_a_path_with_a_nul_is_a_value_error(tmp_path):
         with pytest.raises(ValueError) as refused:
             call()
         assert "NUL" in str(refused.value)
+
+
+def test_an_archive_cut_under_its_reader_is_damage_not_a_sigbus(tmp_path):
+    archive = str(tmp_path / "cut.mfs")
+    tool("synth", archive, "--frames", "60000", "--motifs", "2", "--seed", "4", "--quiet")
+    opened = motifmine.Archive(archive)
+    clip = opened.clips[-1]
+    os.truncate(archive, 200)
+    with pytest.raises(motifmine.Error) as cut:  # was: killed by signal 7
+        opened.rotations(clip.name, 0, clip.frames)
+    assert cut.value.code == 12
+    assert archive + ": the file was cut while it was being read" in str(cut.value)

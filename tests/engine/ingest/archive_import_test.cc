@@ -160,6 +160,39 @@ TEST(ImportIntoArchive, AMalformedTakeStopsTheImportUnlessSkipped) {
   EXPECT_EQ(skipped->archive_frames, 3u);
 }
 
+// A two-joint BVH take of `frames` frames at `fps`.
+std::string TwoJointTake(int frames, double fps) {
+  std::string text =
+      "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 6 Xposition Yposition Zposition "
+      "Zrotation Yrotation Xrotation\n JOINT Leg\n {\n  OFFSET 0 -1 0\n  CHANNELS 3 Zrotation "
+      "Xrotation Yrotation\n  End Site\n  {\n   OFFSET 0 -1 0\n  }\n }\n}\nMOTION\n";
+  text += "Frames: " + std::to_string(frames) + "\nFrame Time: " + std::to_string(1.0 / fps) +
+          "\n";
+  for (int frame = 0; frame < frames; ++frame) {
+    text += std::to_string(0.01 * frame) + " 1 0 0 0 0 " + std::to_string(frame % 30) + " 0 0\n";
+  }
+  return text;
+}
+
+TEST(ImportIntoArchive, ATakeReplacedWhileTheArchiveIsCreatedIsImportedAsFirstRead) {
+  testing::TempDir dir;
+  const std::string take = dir.File("walk.bvh");
+  ASSERT_TRUE(AtomicWriteFile(take, TwoJointTake(40, 60.0)).ok());
+  ArchiveImportOptions options;
+  options.import.first_frame = FirstFramePolicy::kKeep;
+  // Between creating the archive (from the take's rate and skeleton) and appending its frames,
+  // the take becomes another one at twice the rate.
+  options.note = [&](const std::string& message) {
+    if (message.rfind("creating ", 0) == 0) {
+      ASSERT_TRUE(AtomicWriteFile(take, TwoJointTake(295, 120.0)).ok());
+    }
+  };
+  auto result = ImportIntoArchive(dir.File("a.mfs"), {take}, options);
+  ASSERT_TRUE(result.ok()) << result.status().ToString();
+  EXPECT_EQ(result->fps, 60.0);
+  EXPECT_EQ(result->archive_frames, 40u) << "the take was read twice";
+}
+
 TEST(ImportIntoArchive, SameArchiveBytesWithOneOrTwoThreads) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string mocap = testing::MocapDir();

@@ -1,5 +1,7 @@
 #include "formats/frame_file/frame_file_reader.h"
 
+#include <unistd.h>
+
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -7,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/file_util.h"
 #include "common/peak_memory.h"
 #include "tests/formats/frame_file/frame_file_test_util.h"
 #include "tests/testing/temp_dir.h"
@@ -28,6 +31,36 @@ std::string MakeArchive(const TempDir& dir) {
   WriteArchive(path, MakeSkeleton(kReaderJoints), clips, options);
   AppendToArchive(path, {MakeClip("appended", kReaderJoints, 77, 99)}, options);
   return path;
+}
+
+TEST(FrameFileReader, AnArchiveCutUnderTheReaderIsDamageNamingItNotASigbus) {
+  TempDir dir;
+  const std::string path = dir.File("big.mfs");
+  FrameFileWriterOptions options;
+  options.block_frames = 256;
+  WriteArchive(path, MakeSkeleton(20), {MakeClip("long", 20, 4000, 5)}, options);
+  for (const int kind : {0, 1, 2}) {
+    auto reader = FrameFileReader::Open(path);
+    ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+    const std::string whole = ReadFileToString(path).value();
+    ASSERT_EQ(::truncate(path.c_str(), 200), 0);
+    Status status;
+    std::vector<float> rows;
+    if (kind == 0) status = (*reader)->ReadFrames(0, (*reader)->frame_count(), &rows);
+    if (kind == 1) status = (*reader)->Verify();
+    if (kind == 2) {
+      auto stream = (*reader)->Stream(0, (*reader)->frame_count());
+      Result<bool> next = true;
+      while (next.ok() && *next) next = stream->Next();
+      if (!next.ok()) status = next.status();
+    }
+    EXPECT_TRUE(status.IsCorruption()) << kind << ": " << status.ToString();
+    EXPECT_NE(status.message().find(path + ": the file was cut while it was being read"),
+              std::string::npos)
+        << status.message();
+    reader->reset();
+    ASSERT_TRUE(AtomicWriteFile(path, whole).ok());
+  }
 }
 
 TEST(FrameFileReader, StreamEqualsRandomAccess) {
