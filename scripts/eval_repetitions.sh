@@ -7,8 +7,10 @@
 #
 # Prints, per take, the top-ranked motif against the movement it matches best (precision,
 # recall), every movement's best motif, the phase-free means (`motifmine score`: back-to-back
-# movements scored at the best common shift), and ends with one line
+# movements scored at the best common shift), the line
 #   mean top-1 precision P recall R
+# and the oracle gap: the best motif's F1 minus the top motif's, a mean over takes (what the
+# ranking loses).
 # Environment: MOTIF_MINE_ARGS extra `mine` options; MOTIF_EVAL_OUT the work folder (default a
 # temporary one, removed at the end); MOTIF_EVAL_TAKES a space-separated subset of clips;
 # MOTIF_BUILD_DIR the build folder (built when the tool is missing).
@@ -78,4 +80,9 @@ print("phase-free mean top-1 precision %.3f recall %.3f" % (
     sum(r[1]["top1_phase_free"]["recall"] for r in rows) / n))
 print("mean top-1 precision %.3f recall %.3f" % (sum(r[1]["top1"]["precision"] for r in rows) / n,
                                                   sum(r[1]["top1"]["recall"] for r in rows) / n))
+# The ranking's loss: the best motif of a take (highest F1 against the movement it matches best)
+# against the top-ranked one; 0 when the top motif is the best the miner found.
+gaps = [max([m["f1"] for m in r[1]["per_motif"]] + [0.0]) - r[1]["top1"]["f1"] for r in rows]
+print("oracle gap %.3f (best motif's F1 minus the top motif's, mean over takes; %d of %d takes "
+      "rank another motif better)" % (sum(gaps) / n, sum(g > 1e-9 for g in gaps), len(rows)))
 PY
