@@ -974,7 +974,11 @@ Row RunCandidate(Candidate& candidate, const std::string& take, const Workload& 
 
 bool Wanted(const motif::testing::ExperimentArgs& args, const std::string& name) {
   if (!args.has("candidates")) return true;
-  return ("," + args.text("candidates") + ",").find("," + name + ",") != std::string::npos;
+  std::string list = ",";
+  list.append(args.text("candidates")).append(",");
+  std::string item = ",";
+  item.append(name).append(",");
+  return list.find(item) != std::string::npos;
 }
 
 // The clip to study: clip=NAME, else the first clip of the truth file that the archive has.

@@ -108,13 +108,15 @@ std::string InstancePlayback::FigureJson() const {
   json += ",\"height\":" + std::string(number) + ",\"root\":" + std::to_string(root_idx) +
           ",\"sides\":[";
   for (size_t idx = 0; idx < sides_.size(); ++idx) {
-    json += (idx ? "," : "") + std::to_string(sides_[idx]);
+    if (idx) json += ',';
+    json += std::to_string(sides_[idx]);
   }
   json += "],\"chains\":[";
   for (size_t chain = 0; chain < layout_.chains.size(); ++chain) {
     json += chain ? ",[" : "[";
     for (size_t idx = 0; idx < layout_.chains[chain].size(); ++idx) {
-      json += (idx ? "," : "") + std::to_string(layout_.chains[chain][idx]);
+      if (idx) json += ',';
+      json += std::to_string(layout_.chains[chain][idx]);
     }
     json += "]";
   }

@@ -18,7 +18,9 @@ RunResult RunShell(const std::string& command);
 // `motifmine ARGUMENTS`, stdout and stderr together. MOTIF_TOOL is the binary's path, defined per
 // test target (tests/engine/cli/CMakeLists.txt).
 inline RunResult RunTool(const std::string& arguments) {
-  return RunShell(std::string(MOTIF_TOOL) + " " + arguments + " 2>&1");
+  std::string command = MOTIF_TOOL;
+  command.append(" ").append(arguments).append(" 2>&1");
+  return RunShell(command);
 }
 #endif
 

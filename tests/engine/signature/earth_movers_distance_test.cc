@@ -140,7 +140,8 @@ TEST(EarthMoversDistance, ThreeByThreeByHand) {
 // Symmetric with a zero diagonal but not a metric (0 -> 2 costs 10 > 1 + 1): the optimum does not
 // leave the shared mass of bin 1 in place, it shifts everything one bin to the right.
 TEST(EarthMoversDistance, MovesSharedMassWhenTheGroundIsNotAMetric) {
-  const Eigen::MatrixXd ground = (Eigen::MatrixXd(3, 3) << 0, 1, 10, 1, 0, 1, 10, 1, 0).finished();
+  Eigen::MatrixXd ground(3, 3);
+  ground << 0, 1, 10, 1, 0, 1, 10, 1, 0;
   EXPECT_NEAR(Emd({0.5, 0.5, 0}, {0, 0.5, 0.5}, ground), 1.0, 1e-12);
 }
 
