@@ -191,7 +191,7 @@ int RunCluster(const std::vector<std::string>& args) {
   ProgressReporter progress(ProgressModeFrom(vm));
   bool started = false;
   options->progress = [&](const std::string& stage, uint64_t done, uint64_t total) {
-    if (!started) progress.BeginStage(stage, total, "columns");
+    if (!started) progress.BeginStage(stage, total, "instance frames");  // instances overlap
     started = true;
     progress.Update(done);
   };

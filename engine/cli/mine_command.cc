@@ -111,9 +111,9 @@ void PrintSummary(const MinePipelineResult& result) {
   const double fps = result.fps;
   const TrellisReport& trellis = result.trellis;
   std::printf("motifmine mine: %s\n", result.archive_path.c_str());
-  std::printf("  archive      %s frames (%.1f min at %g fps) in %s\n",
-              WithCommas(result.frames).c_str(), static_cast<double>(result.frames) / fps / 60.0,
-              fps, CountOf(result.clips, "clip").c_str());
+  std::printf("  archive      %s frames (%s at %g fps) in %s\n", WithCommas(result.frames).c_str(),
+              FormatDuration(static_cast<double>(result.frames) / fps).c_str(), fps,
+              CountOf(result.clips, "clip").c_str());
   std::printf("  radius       eps %.3f: %s (the paper's mu - 2 sigma would be %.3f)\n",
               trellis.params.eps, trellis.eps_how.c_str(), trellis.paper_eps);
   std::printf("  trellis      mean K %.1f of k_max %u, %s search\n", trellis.mean_k,

@@ -101,6 +101,18 @@ void ProgressReporter::Note(const std::string& message) {
   drawn_in_place_ = false;
 }
 
+std::string FormatDuration(double seconds) {
+  char buffer[32];
+  if (seconds < 60) {
+    std::snprintf(buffer, sizeof buffer, "%.1f s", seconds);
+  } else if (seconds < 3600) {
+    std::snprintf(buffer, sizeof buffer, "%.1f min", seconds / 60);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.1f h", seconds / 3600);
+  }
+  return buffer;
+}
+
 double ProgressRate(uint64_t done, double elapsed_seconds) {
   // No rate from the first moments of a stage: a stage reported first with work already done
   // (reused, or faster than the clock) would show billions a second.
@@ -122,10 +134,13 @@ std::string ProgressLine(const std::string& stage, const std::string& unit, uint
   } else {
     const double percent = total > 0 ? 100.0 * static_cast<double>(done) / total : 0.0;
     const double eta = rate > 0 && total >= done ? static_cast<double>(total - done) / rate : -1.0;
-    std::snprintf(line, sizeof line, "[%s] %s/%s %s (%.0f%%)%s%s  ETA %s", stage.c_str(),
+    // All done (the stage is finishing): nothing left to estimate.
+    const std::string eta_text =
+        total > 0 && done >= total ? "" : "  ETA " + FormatSeconds(eta);
+    std::snprintf(line, sizeof line, "[%s] %s/%s %s (%.0f%%)%s%s%s", stage.c_str(),
                   FormatCount(static_cast<double>(done)).c_str(),
                   FormatCount(static_cast<double>(total)).c_str(), unit.c_str(), percent,
-                  rate > 0 ? "  " : "", rate_text.c_str(), FormatSeconds(eta).c_str());
+                  rate > 0 ? "  " : "", rate_text.c_str(), eta_text.c_str());
   }
   return line;
 }

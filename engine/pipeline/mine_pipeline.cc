@@ -358,7 +358,7 @@ Status MinePipeline::ClusterStage() {
   input.state_path = files.cluster_state;
   ClusterOptions cluster = cluster_options_;
   cluster.progress = [this](const std::string&, uint64_t done, uint64_t total) {
-    session_->Progress("cluster", done, total, "columns");
+    session_->Progress("cluster", done, total, "instance frames");  // overlapping instances
   };
   const Clock::time_point start = Clock::now();
   MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(input, cluster));

@@ -54,6 +54,7 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   EXPECT_EQ(Figure(first.output, "recall"), 1.0) << first.output;
   EXPECT_GT(Figure(first.output, "precision"), 0.0) << first.output;
   EXPECT_NE(first.output.find("peak resident"), std::string::npos);
+  EXPECT_NE(first.output.find("14,000 frames (1.9 min at 120 fps)"), std::string::npos);
   auto document = ReadMotifsJson(out + "/motifs.json");
   ASSERT_TRUE(document.ok()) << document.status().ToString();
   EXPECT_EQ(document->frames, 14000u);

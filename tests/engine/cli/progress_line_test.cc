@@ -16,7 +16,14 @@ TEST(ProgressLine, ShowsHumanRatesAndNoneInTheFirstQuarterSecond) {
             "[trellis] 120.0k columns in 0.0s");
   EXPECT_EQ(ProgressLine("grow", "columns", 5000, 120000, 0.1, false),
             "[grow] 5000/120.0k columns (4%)  ETA ?");
+  // At 100 % before the stage's last line: nothing left to estimate, no "ETA ?".
+  EXPECT_EQ(ProgressLine("import", "takes", 1, 1, 0.01, false), "[import] 1/1 takes (100%)");
+  EXPECT_EQ(ProgressLine("import", "takes", 4, 4, 2.0, false),
+            "[import] 4/4 takes (100%)  2 takes/s");
   EXPECT_EQ(ProgressRate(1000, 0.2), 0.0);
+  EXPECT_EQ(FormatDuration(148 / 120.0), "1.2 s");  // was "0.0 min"
+  EXPECT_EQ(FormatDuration(14000 / 120.0), "1.9 min");
+  EXPECT_EQ(FormatDuration(1e7 / 120.0), "23.1 h");
   EXPECT_EQ(ProgressRate(1000, 0.5), 2000.0);
 }
 
