@@ -68,6 +68,7 @@ void PrintSummary(const ReindexReport& report, int exit_code, bool json) {
     nlohmann::json line = {{"event", "reindex"},
                            {"exit_code", exit_code},
                            {"up_to_date", report.up_to_date},
+                           {"waiting", report.waiting},
                            {"version", manifest.version},
                            {"build", report.up_to_date ? "none" : manifest.build.kind},
                            {"takes_imported", report.takes_imported},
@@ -94,7 +95,12 @@ void PrintSummary(const ReindexReport& report, int exit_code, bool json) {
     std::printf("%s\n", line.dump().c_str());
     return;
   }
-  if (report.up_to_date) {
+  if (report.waiting) {
+    std::printf(
+        "motifmine reindex: waiting: no archive yet, and the %s take(s) found are younger than "
+        "--min-age (still being copied?); the next run imports them\n",
+        WithCommas(report.settling.size()).c_str());
+  } else if (report.up_to_date) {
     std::printf(
         "motifmine reindex: up to date (version %llu, %s frames in %s clips; %s takes "
         "already imported)\n",

@@ -206,7 +206,8 @@ Status ImportNewTakes(const ReindexOptions& options, const RunLog& log, ReindexR
   }
   if (scan.new_takes.empty()) {
     report->import_seconds = SecondsSince(start);
-    if (archive_exists) return Status::Ok();
+    report->waiting = !archive_exists && !scan.settling.empty();
+    if (archive_exists || report->waiting) return Status::Ok();
     return Status::NotFound(options.archive_path + " does not exist and " + options.watch_dir +
                             " holds no take to make it from");
   }
@@ -358,6 +359,11 @@ Result<ReindexReport> Reindex(const ReindexOptions& options) {
   MOTIF_RETURN_IF_ERROR(LockAndClean(options, &lock));
   MOTIF_ASSIGN_OR_RETURN(std::optional<ReindexManifest> current, ReadCurrent(options));
   MOTIF_RETURN_IF_ERROR(ImportNewTakes(options, log, &report));
+  if (report.waiting) {
+    report.up_to_date = true;
+    report.total_seconds = SecondsSince(run_start);
+    return report;
+  }
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileReader> archive,
                          FrameFileReader::Open(options.archive_path));
   const ArchiveVersion archive_version = VersionOf(*archive, options.archive_path);

@@ -63,6 +63,9 @@ struct ReindexOptions {
 
 struct ReindexReport {
   bool up_to_date = false;   // nothing new: no version made
+  // No archive yet and every take of the folder is younger than min_age (a first night while
+  // they are being copied in): nothing made, the next run imports them. Implies up_to_date.
+  bool waiting = false;
   ReindexManifest manifest;  // the current one after the run
   uint64_t takes_scanned = 0;
   uint64_t takes_known = 0;

@@ -180,6 +180,23 @@ TEST(MotifmineTool, ReportAndExportMotifWorkFromAnyDirectory) {
       RunTool("export-motif " + dir.File("out") + " --motif 0 --out " + dir.File("m0"));
   EXPECT_EQ(exported.exit_code, 0) << exported.output;
   EXPECT_FALSE(std::filesystem::is_empty(dir.File("m0")));
+
+  // verify on the mine output folder checks its files (it said "out/manifest.json: no such
+  // file", exit 11); on motifs.json it is a usage error, not damage (it said "bad magic", 12).
+  const RunResult folder = RunTool("verify " + dir.File("out"));
+  EXPECT_EQ(folder.exit_code, 0) << folder.output;
+  EXPECT_NE(folder.output.find("a mine output folder: " + dir.File("s.mfs") + ", trellis.mtr"),
+            std::string::npos)
+      << folder.output;
+  EXPECT_NE(folder.output.find("motifs.json ("), std::string::npos) << folder.output;
+  const RunResult json = RunTool("verify " + dir.File("out/motifs.json"));
+  EXPECT_EQ(json.exit_code, 2) << json.output;
+  EXPECT_NE(json.output.find("motifs.json is not an archive (.mfs), trellis (.mtr)"),
+            std::string::npos)
+      << json.output;
+  std::filesystem::copy_file(dir.File("out/trellis.mtr"), dir.File("trellis.copy"));
+  EXPECT_NE(RunTool("verify " + dir.File("trellis.copy")).output.find("columns"),
+            std::string::npos);  // known by its bytes, whatever its name
 }
 
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {

@@ -386,6 +386,20 @@ TEST_F(ReindexCliTest, ARerunImportsNothingAndAChangedFileIsReportedNotImported)
   EXPECT_EQ(Manifest().version, v1.version);
 }
 
+TEST_F(ReindexCliTest, AFirstNightWithEveryTakeStillBeingCopiedWaitsAndExitsZero) {
+  Arrive("batch1");
+  // Every take is younger than --min-age: not a failure (cron would mail one), a wait.
+  RunResult waiting = RunTool("reindex " + archive_ + " --watch " + watch_ + " --out " + out_ +
+                              " --min-age 3600 --no-report");
+  EXPECT_EQ(waiting.exit_code, 0) << waiting.output;
+  EXPECT_NE(waiting.output.find("waiting: no archive yet"), std::string::npos) << waiting.output;
+  EXPECT_FALSE(fs::exists(archive_));
+  EXPECT_FALSE(fs::exists(out_ + "/manifest.json"));
+  RunResult later = Reindex();  // the next night: old enough
+  ASSERT_EQ(later.exit_code, 0) << later.output;
+  EXPECT_EQ(Manifest().version, 1u);
+}
+
 TEST_F(ReindexCliTest, ASecondRunWhileOneHoldsTheOutputFolderExitsAtOnceWith17) {
   Arrive("batch1");
   fs::create_directories(out_);
