@@ -58,6 +58,19 @@ TakeInFlight PrepareTake(const TakeSource& source, size_t index, Result<Take> ta
 // once and a file replaced meanwhile cannot give frames at another file's rate.
 using TakesReadFirst = std::vector<Result<Take>>;
 
+// A take that stops the import: its error with the option that would have let the others in
+// (the tool says "--skip-bad", Python "skip_bad"); a mixed folder says what an archive holds.
+Status StopForTake(const Status& status) {
+  if (!status.option().empty()) return status;  // it names its own option already (asf)
+  const bool other_family = status.message().find("skeleton family") != std::string::npos;
+  return Status::FromCode(status.code(),
+                          status.message() +
+                              (other_family ? " (an archive holds one skeleton family;"
+                                            : " (") +
+                              (other_family ? " " : "") + "skip_bad imports the other takes)")
+      .WithOption("skip_bad");
+}
+
 // A message for the user, if the caller takes them (empty ones are not passed on).
 void ImportNote(const ArchiveImportOptions& options, const std::string& message) {
   if (options.note) message.empty() ? void() : options.note(message);
@@ -82,7 +95,9 @@ Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& 
     read_first->push_back(ImportTake(source, options.import));
     if (read_first->back().ok() || !options.skip_bad) break;
   }
-  if (!read_first->back().ok()) return read_first->back().status();
+  if (!read_first->back().ok()) {
+    return options.skip_bad ? read_first->back().status() : StopForTake(read_first->back().status());
+  }
   const Take& first = *read_first->back();
   const double fps = options.fps > 0 ? options.fps : first.fps;
   Result<std::unique_ptr<FrameFileWriter>> writer =
@@ -127,7 +142,7 @@ class ClipAppender {
       ++result_->takes_failed;
       result_->failures.push_back(item.status.message());
       if (!options_.skip_bad) {
-        Stop(item.status);
+        Stop(StopForTake(item.status));
       } else {
         ImportNote(options_, "skipped: " + item.status.message());
       }

@@ -104,6 +104,12 @@ TEST(ImportIntoArchive, MixedSkeletonsAreRefusedAndNothingIsStored) {
   EXPECT_TRUE(result.status().IsInvalidArgument()) << result.status().ToString();
   EXPECT_NE(result.status().message().find("bvh_daz/02_01.bvh"), std::string::npos)
       << result.status().message();
+  // The refusal says what an archive holds and which option lets the other takes in.
+  EXPECT_NE(result.status().message().find("an archive holds one skeleton family; skip_bad "
+                                           "imports the other takes"),
+            std::string::npos)
+      << result.status().message();
+  EXPECT_EQ(result.status().option(), "skip_bad");
   EXPECT_EQ(ReadFileToString(archive).value(), before) << "the archive was changed";
 }
 
@@ -151,6 +157,10 @@ TEST(ImportIntoArchive, AMalformedTakeStopsTheImportUnlessSkipped) {
   auto failed = ImportIntoArchive(archive, {dir.path()}, options);
   ASSERT_FALSE(failed.ok());
   EXPECT_NE(failed.status().message().find("bad.bvh"), std::string::npos);
+  EXPECT_NE(failed.status().message().find("(skip_bad imports the other takes)"),
+            std::string::npos)
+      << failed.status().message();
+  EXPECT_EQ(failed.status().option(), "skip_bad");  // the tool says --skip-bad
   EXPECT_FALSE(std::filesystem::exists(archive));
   options.skip_bad = true;
   auto skipped = ImportIntoArchive(archive, {dir.path()}, options);
