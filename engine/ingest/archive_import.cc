@@ -9,6 +9,8 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include "engine/ingest/duplicate_takes.h"
+#include "formats/frame_file/frame_file_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
 #include "formats/motion/canonical_skeleton.h"
 #include "formats/motion/resample.h"
@@ -122,9 +124,14 @@ Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& 
 // failure stops the import (stop(), first_error()) unless skip_bad lets it pass, named.
 class ClipAppender {
  public:
-  ClipAppender(FrameFileWriter* writer, const ArchiveImportOptions& options, uint64_t take_count,
-               ArchiveImportResult* result)
-      : writer_(writer), options_(options), take_count_(take_count), result_(result) {
+  // `stored`: the archive before this import (null when it is being created).
+  ClipAppender(FrameFileWriter* writer, const FrameFileReader* stored,
+               const ArchiveImportOptions& options, uint64_t take_count, ArchiveImportResult* result)
+      : writer_(writer),
+        options_(options),
+        take_count_(take_count),
+        result_(result),
+        duplicates_(stored, FrameLayout{static_cast<uint32_t>(writer->skeleton().joint_count())}) {
     for (const ClipInfo& clip : writer->clips()) {
       if (clip.content_hash != 0) known_hashes_.insert(clip.content_hash);
       known_names_.insert(clip.name);
@@ -154,6 +161,7 @@ class ClipAppender {
       ImportNote(options_, clip.info.source_path + ": already in the archive, skipped");
       return;
     }
+    if (IsCopyOfAKnownClip(clip)) return;
     GiveUniqueName(&clip);
     Append(clip);
   }
@@ -162,6 +170,20 @@ class ClipAppender {
   void Stop(const Status& status) {
     first_error_ = status;
     stop_.store(true);
+  }
+
+  // The same capture in another format (other bytes, the same frames): skipped, both named.
+  bool IsCopyOfAKnownClip(const ClipFrames& clip) {
+    Result<std::optional<ClipInfo>> copy = duplicates_.FindCopy(clip);
+    if (!copy.ok()) {
+      Stop(copy.status());
+      return true;
+    }
+    if (!copy->has_value()) return false;
+    ++result_->takes_already_present;
+    ImportNote(options_, clip.info.source_path + ": the same frames as clip '" + (*copy)->name +
+                             "' (" + (*copy)->source_path + "), skipped");
+    return true;
   }
 
   // "<stem>~2" ("~3", ...) when a clip of that name exists already.
@@ -197,6 +219,7 @@ class ClipAppender {
     }
     known_hashes_.insert(clip.info.content_hash);
     known_names_.insert(clip.info.name);
+    duplicates_.Add(clip);
     ++result_->takes_imported;
     result_->frames_added += clip.info.frame_count;
   }
@@ -207,6 +230,7 @@ class ClipAppender {
   ArchiveImportResult* result_;
   std::unordered_set<uint64_t> known_hashes_;
   std::unordered_set<std::string> known_names_;
+  DuplicateTakes duplicates_;
   Status first_error_;
   std::atomic<bool> stop_{false};
   uint64_t done_ = 0;
@@ -276,7 +300,13 @@ Result<ArchiveImportResult> ImportTakesIntoArchive(const std::string& archive_pa
   const double fps = writer->fps();
   result.fps = fps;
   {
-    ClipAppender appender(writer.get(), options, sources.size(), &result);
+    // The archive as it was: its clips are compared with the new takes (DuplicateTakes).
+    std::unique_ptr<FrameFileReader> stored;
+    if (!result.created) {
+      Result<std::unique_ptr<FrameFileReader>> opened = FrameFileReader::Open(archive_path);
+      if (opened.ok()) stored = std::move(*opened);
+    }
+    ClipAppender appender(writer.get(), stored.get(), options, sources.size(), &result);
     RunImportPipeline(sources, skeleton, fps, options, &read_first, &appender);
     // The writer's destructor abandons the append.
     if (!appender.first_error().ok()) return appender.first_error();

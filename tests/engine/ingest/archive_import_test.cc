@@ -1,5 +1,6 @@
 #include "engine/ingest/archive_import.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -62,12 +63,17 @@ TEST(ImportIntoArchive, RealBvhAndAsfAmcArchivesHaveTheIndexedClipsAndFrames) {
     std::vector<std::string> folders;
     std::vector<std::string> prefixes;
     std::string family;
+    std::vector<std::string> copies;  // INDEX files skipped as copies of a BVH take (their frames)
   };
+  // Six AMC takes are the captures of BVH takes (the same frames in another format).
+  const std::vector<std::string> amc_copies = {
+      "asfamc/05/05_01.amc", "asfamc/05/05_02.amc",      "asfamc/05/05_03.amc",
+      "asfamc/05/05_16.amc", "asfamc/07/07_05-walk.amc", "asfamc/09/09_06-run.amc"};
   const Case cases[] = {
-      {{mocap + "/bvh"}, {"bvh/"}, "cmu31"},
-      {{mocap + "/asfamc"}, {"asfamc/"}, "cmu31"},
-      {{mocap + "/bvh", mocap + "/asfamc"}, {"bvh/", "asfamc/"}, "cmu31"},
-      {{mocap + "/bvh_daz"}, {"bvh_daz/"}, "custom"},
+      {{mocap + "/bvh"}, {"bvh/"}, "cmu31", {}},
+      {{mocap + "/asfamc"}, {"asfamc/"}, "cmu31", {}},
+      {{mocap + "/bvh", mocap + "/asfamc"}, {"bvh/", "asfamc/"}, "cmu31", amc_copies},
+      {{mocap + "/bvh_daz"}, {"bvh_daz/"}, "custom", {}},
   };
   int case_idx = 0;
   for (const Case& test_case : cases) {
@@ -80,6 +86,11 @@ TEST(ImportIntoArchive, RealBvhAndAsfAmcArchivesHaveTheIndexedClipsAndFrames) {
       auto [prefix_clips, prefix_frames] = ExpectedClipsAndFrames(mocap, prefix);
       clips += prefix_clips;
       frames += prefix_frames;
+    }
+    for (const std::string& copy : test_case.copies) {
+      ASSERT_TRUE(IndexFrames(mocap).count(copy)) << copy;
+      clips -= 1;
+      frames -= IndexFrames(mocap).at(copy);
     }
     auto reader = FrameFileReader::Open(archive);
     ASSERT_TRUE(reader.ok()) << reader.status().ToString();
@@ -126,10 +137,17 @@ TEST(ImportIntoArchive, ReimportSkipsKnownTakesAndRenamesClashingStems) {
   EXPECT_EQ(again->takes_already_present, 1u);
   // Nothing added, nothing committed: the same bytes, so the same generation and identity.
   EXPECT_EQ(ReadFileToString(archive).value(), before);
-  // The AMC of the same take has the same stem and other bytes: stored under another name.
+  // The AMC of the same take has other bytes and the same frames: a copy, skipped.
   auto amc = ImportIntoArchive(archive, {mocap + "/asfamc/05/05_01.amc"}, DefaultOptions());
   ASSERT_TRUE(amc.ok()) << amc.status().ToString();
-  EXPECT_EQ(amc->takes_imported, 1u);
+  EXPECT_EQ(amc->takes_imported, 0u);
+  EXPECT_EQ(amc->takes_already_present, 1u);
+  // Another take of the same stem: stored under another name.
+  std::filesystem::create_directories(dir.File("other"));
+  std::filesystem::copy_file(mocap + "/bvh/05_02.bvh", dir.File("other/05_01.bvh"));
+  auto same_stem = ImportIntoArchive(archive, {dir.File("other/05_01.bvh")}, DefaultOptions());
+  ASSERT_TRUE(same_stem.ok()) << same_stem.status().ToString();
+  EXPECT_EQ(same_stem->takes_imported, 1u);
   auto reader = FrameFileReader::Open(archive);
   ASSERT_TRUE(reader.ok());
   ASSERT_EQ((*reader)->clips().size(), 2u);
@@ -201,6 +219,40 @@ TEST(ImportIntoArchive, ATakeReplacedWhileTheArchiveIsCreatedIsImportedAsFirstRe
   ASSERT_TRUE(result.ok()) << result.status().ToString();
   EXPECT_EQ(result->fps, 60.0);
   EXPECT_EQ(result->archive_frames, 40u) << "the take was read twice";
+}
+
+TEST(ImportIntoArchive, TheSameFramesInOtherBytesAreSkippedNamingBothTakes) {
+  testing::TempDir dir;
+  const std::string take = TwoJointTake(90, 120.0);
+  std::string reformatted = take;  // the same numbers, written otherwise: other bytes
+  for (size_t at = reformatted.find(" 1 0 0 0 0 "); at != std::string::npos;
+       at = reformatted.find(" 1 0 0 0 0 ", at + 14)) {
+    reformatted.replace(at, 11, " 1.0 0 0 0 0 ");
+  }
+  std::string other = take;  // one frame's leg turned by 5 degrees more: another take
+  other.replace(other.rfind(" 0 0\n"), 5, " 5 0\n");
+  ASSERT_TRUE(AtomicWriteFile(dir.File("a.bvh"), take).ok());
+  ASSERT_TRUE(AtomicWriteFile(dir.File("b.bvh"), reformatted).ok());
+  ASSERT_TRUE(AtomicWriteFile(dir.File("c.bvh"), other).ok());
+  std::vector<std::string> notes;
+  ArchiveImportOptions options;
+  options.import.first_frame = FirstFramePolicy::kKeep;
+  options.note = [&](const std::string& note) { notes.push_back(note); };
+  // In one import, and against a stored clip in a second one.
+  auto first = ImportIntoArchive(dir.File("x.mfs"), {dir.File("a.bvh"), dir.File("b.bvh")}, options);
+  ASSERT_TRUE(first.ok()) << first.status().ToString();
+  EXPECT_EQ(first->takes_imported, 1u);
+  EXPECT_EQ(first->takes_already_present, 1u);
+  const std::string expected =
+      dir.File("b.bvh") + ": the same frames as clip 'a' (" + dir.File("a.bvh") + "), skipped";
+  EXPECT_NE(std::find(notes.begin(), notes.end(), expected), notes.end()) << notes.back();
+  auto second = ImportIntoArchive(dir.File("y.mfs"), {dir.File("a.bvh")}, options);
+  ASSERT_TRUE(second.ok());
+  auto again = ImportIntoArchive(dir.File("y.mfs"), {dir.File("b.bvh"), dir.File("c.bvh")}, options);
+  ASSERT_TRUE(again.ok()) << again.status().ToString();
+  EXPECT_EQ(again->takes_already_present, 1u);
+  EXPECT_EQ(again->takes_imported, 1u) << "c differs in one frame: not a copy";
+  EXPECT_EQ(again->archive_clips, 2u);
 }
 
 TEST(ImportIntoArchive, SameArchiveBytesWithOneOrTwoThreads) {
