@@ -15,9 +15,26 @@
 
 #include <motifmine/motifmine.h>
 
+#include "keyword_arguments.h"
+
 namespace py = pybind11;
 
 namespace {
+
+using motifmine_python::Argument;
+using motifmine_python::CallbackArgument;
+using motifmine_python::GivenBool;
+using motifmine_python::GivenCallable;
+using motifmine_python::GivenInt;
+using motifmine_python::GivenStr;
+using motifmine_python::GivenStrList;
+using motifmine_python::OptionFailure;
+using motifmine_python::SetMineKeyword;
+using motifmine_python::SwitchArgument;
+using motifmine_python::TableWholeArgument;
+using motifmine_python::TextArgument;
+using motifmine_python::TextListArgument;
+using motifmine_python::WholeArgument;
 
 // A failed Status on its way to Python.
 struct StatusError {
@@ -26,26 +43,6 @@ struct StatusError {
 
 void Check(const motifmine::Status& status) {
   if (!status.ok()) throw StatusError{status};
-}
-
-// A keyword out of range on its way to Python: motifmine.OptionError, which is both a
-// motifmine.Error and a ValueError.
-struct OptionFailure {
-  motifmine::Status status;
-};
-
-// A path goes on to C as text, which ends at a NUL: a path holding one is a ValueError rather
-// than another, shorter path.
-const std::string& CheckPath(const std::string& path, const std::string& argument) {
-  if (path.find('\0') != std::string::npos) {
-    throw py::value_error(argument + " holds a NUL character, which no file name can: '" +
-                          path.substr(0, path.find('\0')) + "\\0...'");
-  }
-  return path;
-}
-
-void CheckPaths(const std::vector<std::string>& paths, const std::string& argument) {
-  for (const std::string& path : paths) CheckPath(path, argument);
 }
 
 // allow_older=True for one call: this thread may work on an archive's previous version when
@@ -107,83 +104,41 @@ motifmine::Status WithoutGil(const py::object& progress, ProgressSlot* slot, Cal
   return status;
 }
 
-// The option table's row for a keyword (its name with '_' for '-', or an older alias); null for
-// none.
-std::optional<motifmine::OptionInfo> OptionRow(const std::string& key) {
-  std::string dashed = key;
-  std::replace(dashed.begin(), dashed.end(), '_', '-');
-  for (const motifmine::OptionInfo& row : motifmine::MineOptionTable()) {
-    if (row.name == dashed) return row;
-    for (const std::string& alias : row.aliases) {
-      if (alias == key) return row;
-    }
-  }
-  return std::nullopt;
-}
+// The ranges of the module's own numbers: as `motifmine words --motifs` and `motifmine search
+// --top` (engine/cli/numeric_options.cc).
+constexpr uint64_t kMaxWordMotifs = 65535;
+constexpr uint64_t kMaxSearchTop = 100000;
+constexpr uint64_t kAnyFrame = UINT64_MAX;  // checked against the clip when it is read
 
-// A keyword's value as the text the option table reads: True/False for a switch, a number, or
-// text ("auto", "0.5s", a path); TypeError naming the keyword for another kind of value.
-std::string OptionText(const std::string& key, const std::string& type, py::handle value) {
-  const bool is_bool = py::isinstance<py::bool_>(value);
-  const bool is_number =
-      !is_bool && (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value));
-  const bool is_text = py::isinstance<py::str>(value);
-  const bool textual = type == "choice" || type == "text";
-  const bool may_be_text = type == "radius" || type == "groups" || type == "length";
-  if (type == "switch" && is_bool) return value.cast<bool>() ? "true" : "false";
-  if (type != "switch" && !textual && is_number) return py::str(value).cast<std::string>();
-  if ((textual || may_be_text) && is_text) return value.cast<std::string>();
-  throw py::type_error("mine(): " + key + " must be " +
-                       (type == "switch" ? std::string("True or False")
-                        : textual        ? std::string("a str")
-                        : may_be_text    ? std::string("a number or a str")
-                                         : std::string("a number")) +
-                       ", not " +
-                       py::str(py::type::of(value).attr("__name__")).cast<std::string>());
-}
-
-// Sets one option from a keyword argument through the option table; TypeError for an unknown
-// keyword or a value of the wrong kind, motifmine.OptionError (code 13) for one out of range.
-void SetMineOption(motifmine::MineOptions* options, const std::string& key, py::handle value) {
-  // Older names the table knows as aliases that are not the option itself.
-  static const std::vector<std::pair<std::string, std::string>> kTranslated = {
-      {"min_length_seconds", "number"}, {"min_length_frames", "count"}, {"write_report", "switch"}};
-  std::string type;
-  for (const auto& [name, kind] : kTranslated) {
-    if (key == name) type = kind;
-  }
-  if (type.empty()) {
-    const std::optional<motifmine::OptionInfo> row = OptionRow(key);
-    if (!row) throw py::type_error("mine() got an unexpected keyword argument '" + key + "'");
-    type = row->type;
-  }
-  const motifmine::Status set = motifmine::SetMineOption(options, key, OptionText(key, type, value));
-  if (!set.ok()) throw OptionFailure{set};
-}
-
-motifmine::MineResult Mine(const std::vector<std::string>& inputs, const std::string& out_dir,
-                           const py::object& progress, bool allow_older,
+motifmine::MineResult Mine(const GivenStrList& inputs_given, const GivenStr& out_dir,
+                           const GivenCallable& progress_given, const GivenBool& allow_older,
                            const py::kwargs& kwargs) {
-  CheckPaths(inputs, "inputs");
+  const std::vector<std::string> inputs = TextListArgument({"mine()", "inputs"}, inputs_given);
   motifmine::MineOptions options;
-  options.out_dir = CheckPath(out_dir, "out_dir");
-  for (const auto& [key, value] : kwargs) SetMineOption(&options, key.cast<std::string>(), value);
+  options.out_dir = TextArgument({"mine()", "out_dir"}, out_dir);
+  const py::object progress = CallbackArgument({"mine()", "progress"}, progress_given);
+  const OlderVersions older(SwitchArgument({"mine()", "allow_older"}, allow_older));
+  for (const auto& [key, value] : kwargs) SetMineKeyword(&options, key.cast<std::string>(), value);
   motifmine::MineResult result;
-  const OlderVersions older(allow_older);
   Check(WithoutGil(progress, &options.progress,
                    [&] { return motifmine::Mine(inputs, options, &result); }));
   return result;
 }
 
-std::unique_ptr<motifmine::Archive> OpenArchive(const std::string& path, bool allow_older) {
+std::unique_ptr<motifmine::Archive> OpenArchive(const GivenStr& path,
+                                                const GivenBool& allow_older) {
+  const std::string checked = TextArgument({"Archive()", "path"}, path);
+  const OlderVersions older(SwitchArgument({"Archive()", "allow_older"}, allow_older));
   std::unique_ptr<motifmine::Archive> archive;
-  const OlderVersions older(allow_older);
-  Check(motifmine::Archive::Open(CheckPath(path, "path"), &archive));
+  Check(motifmine::Archive::Open(checked, &archive));
   return archive;
 }
 
-py::array_t<float> Rotations(const motifmine::Archive& archive, const std::string& clip,
-                             uint64_t start, uint64_t end) {
+py::array_t<float> Rotations(const motifmine::Archive& archive, const GivenStr& clip_given,
+                             const GivenInt& start_given, const GivenInt& end_given) {
+  const std::string clip = TextArgument({"rotations()", "clip"}, clip_given);
+  const uint64_t start = WholeArgument({"rotations()", "start"}, start_given, 0, kAnyFrame);
+  const uint64_t end = WholeArgument({"rotations()", "end"}, end_given, 0, kAnyFrame);
   auto rotations = std::make_unique<std::vector<float>>();
   motifmine::Status status;
   {
@@ -198,14 +153,13 @@ py::array_t<float> Rotations(const motifmine::Archive& archive, const std::strin
   return py::array_t<float>({frames, joints, py::ssize_t{4}}, data->data(), owner);
 }
 
-motifmine::ImportResult ImportTakes(const std::string& archive,
-                                    const std::vector<std::string>& paths, bool skip_bad,
-                                    int threads) {
-  CheckPath(archive, "archive");
-  CheckPaths(paths, "paths");
+motifmine::ImportResult ImportTakes(const GivenStr& archive_given, const GivenStrList& paths_given,
+                                    const GivenBool& skip_bad, const GivenInt& threads) {
+  const std::string archive = TextArgument({"import_takes()", "archive"}, archive_given);
+  const std::vector<std::string> paths = TextListArgument({"import_takes()", "paths"}, paths_given);
   motifmine::ImportOptions options;
-  options.skip_bad = skip_bad;
-  options.threads = threads;
+  options.skip_bad = SwitchArgument({"import_takes()", "skip_bad"}, skip_bad);
+  options.threads = static_cast<int>(TableWholeArgument({"import_takes()", "threads"}, threads));
   motifmine::ImportResult result;
   motifmine::Status status;
   {
@@ -216,14 +170,18 @@ motifmine::ImportResult ImportTakes(const std::string& archive,
   return result;
 }
 
-motifmine::WordsResult BuildWords(const std::string& archive, uint32_t motifs, uint64_t seed,
-                                  int threads, const py::object& progress, bool allow_older) {
-  CheckPath(archive, "archive");
-  const OlderVersions older(allow_older);
+motifmine::WordsResult BuildWords(const GivenStr& archive_given, const GivenInt& motifs,
+                                  const GivenInt& seed, const GivenInt& threads,
+                                  const GivenCallable& progress_given,
+                                  const GivenBool& allow_older) {
+  const std::string archive = TextArgument({"build_words()", "archive"}, archive_given);
   motifmine::WordsOptions options;
-  options.motifs = motifs;
-  options.seed = seed;
-  options.threads = threads;
+  options.motifs =
+      static_cast<uint32_t>(WholeArgument({"build_words()", "motifs"}, motifs, 1, kMaxWordMotifs));
+  options.seed = TableWholeArgument({"build_words()", "seed"}, seed);
+  options.threads = static_cast<int>(TableWholeArgument({"build_words()", "threads"}, threads));
+  const py::object progress = CallbackArgument({"build_words()", "progress"}, progress_given);
+  const OlderVersions older(SwitchArgument({"build_words()", "allow_older"}, allow_older));
   motifmine::WordsResult result;
   Check(WithoutGil(progress, &options.progress,
                    [&] { return motifmine::BuildWords(archive, options, &result); }));
@@ -231,9 +189,9 @@ motifmine::WordsResult BuildWords(const std::string& archive, uint32_t motifs, u
 }
 
 // (clip names, float64 array clips x motifs).
-py::tuple Signatures(const std::string& archive, bool allow_older) {
-  CheckPath(archive, "archive");
-  const OlderVersions older(allow_older);
+py::tuple Signatures(const GivenStr& archive_given, const GivenBool& allow_older) {
+  const std::string archive = TextArgument({"signatures()", "archive"}, archive_given);
+  const OlderVersions older(SwitchArgument({"signatures()", "allow_older"}, allow_older));
   auto signatures = std::make_unique<motifmine::Signatures>();
   motifmine::Status status;
   {
@@ -250,16 +208,22 @@ py::tuple Signatures(const std::string& archive, bool allow_older) {
   return py::make_tuple(names, py::array_t<double>({rows, columns}, data->values.data(), owner));
 }
 
-std::vector<motifmine::SearchMatch> Search(const std::string& archive, const std::string& clip,
-                                           uint64_t start, uint64_t end, uint32_t top,
-                                           bool allow_older) {
-  CheckPath(archive, "archive");
-  const OlderVersions older(allow_older);
+std::vector<motifmine::SearchMatch> Search(const GivenStr& archive_given,
+                                           const GivenStr& clip_given, const GivenInt& start,
+                                           const GivenInt& end, const GivenInt& top,
+                                           const GivenBool& allow_older) {
+  const std::string archive = TextArgument({"search()", "archive"}, archive_given);
+  const std::string clip = TextArgument({"search()", "clip"}, clip_given);
+  const uint64_t first = WholeArgument({"search()", "start"}, start, 0, kAnyFrame);
+  const uint64_t last = WholeArgument({"search()", "end"}, end, 0, kAnyFrame);
+  const auto count =
+      static_cast<uint32_t>(WholeArgument({"search()", "top"}, top, 1, kMaxSearchTop));
+  const OlderVersions older(SwitchArgument({"search()", "allow_older"}, allow_older));
   std::vector<motifmine::SearchMatch> matches;
   motifmine::Status status;
   {
     py::gil_scoped_release release;
-    status = motifmine::SearchClipRange(archive, clip, start, end, top, &matches);
+    status = motifmine::SearchClipRange(archive, clip, first, last, count, &matches);
   }
   Check(status);
   return matches;
@@ -273,6 +237,8 @@ std::string InstanceRepr(const motifmine::Instance& instance) {
 }  // namespace
 
 PYBIND11_MODULE(motifmine, m) {
+  const GivenBool kFalse{py::bool_(false)};
+  const GivenCallable kNoCallback{py::none()};
   m.doc() = "motifmine: motion motifs mined from motion-capture archives (docs/python.md)";
 
   static py::exception<StatusError> error(m, "Error", PyExc_RuntimeError);
@@ -341,8 +307,8 @@ PYBIND11_MODULE(motifmine, m) {
       .def_readonly("frames_added", &motifmine::ImportResult::frames_added)
       .def_readonly("skipped", &motifmine::ImportResult::skipped);
 
-  m.def("mine", &Mine, py::arg("inputs") = std::vector<std::string>{}, py::kw_only(),
-        py::arg("out_dir"), py::arg("progress") = py::none(), py::arg("allow_older") = false,
+  m.def("mine", &Mine, py::arg("inputs") = GivenStrList{py::list()}, py::kw_only(),
+        py::arg("out_dir"), py::arg("progress") = kNoCallback, py::arg("allow_older") = kFalse,
         "Mines takes, folders or an archive (the built-in synthetic archive when `inputs` is "
         "empty) into out_dir, as `motifmine mine` does; options as keyword arguments named as "
         "the tool's flags with '_' for '-' (kmax, min_length, eps_angle, ...: "
@@ -377,7 +343,7 @@ PYBIND11_MODULE(motifmine, m) {
       "Every option of mine(): a list of dicts (name, keyword, type, default, min, max, "
       "min_exclusive, choices, aliases, help), as `motifmine mine --help` lists them.");
   m.def("import_takes", &ImportTakes, py::arg("archive"), py::arg("paths"), py::kw_only(),
-        py::arg("skip_bad") = false, py::arg("threads") = 0,
+        py::arg("skip_bad") = kFalse, py::arg("threads") = GivenInt{py::int_(0)},
         "Imports BVH / ASF+AMC takes and folders into an archive (created if missing).");
 
   py::class_<motifmine::WordsResult>(m, "WordsResult")
@@ -399,21 +365,22 @@ PYBIND11_MODULE(motifmine, m) {
       });
   const motifmine::WordsOptions words_defaults;
   m.def("build_words", &BuildWords, py::arg("archive"), py::kw_only(),
-        py::arg("motifs") = words_defaults.motifs, py::arg("seed") = words_defaults.seed,
-        py::arg("threads") = words_defaults.threads, py::arg("progress") = py::none(),
-        py::arg("allow_older") = false,
+        py::arg("motifs") = GivenInt{py::int_(words_defaults.motifs)},
+        py::arg("seed") = GivenInt{py::int_(words_defaults.seed)},
+        py::arg("threads") = GivenInt{py::int_(words_defaults.threads)},
+        py::arg("progress") = kNoCallback, py::arg("allow_older") = kFalse,
         "The archive's motion words, their embedding, motifs and signatures, written beside it "
         "(reused when up to date), as `motifmine words` does.");
   m.def("signatures", &Signatures, py::arg("archive"), py::kw_only(),
-        py::arg("allow_older") = false,
+        py::arg("allow_older") = kFalse,
         "(clip names, float64 array clips x motifs): every clip's TF-IDF signature.");
   m.def("search", &Search, py::arg("archive"), py::arg("clip"), py::arg("start"), py::arg("end"),
-        py::kw_only(), py::arg("top") = 10, py::arg("allow_older") = false,
+        py::kw_only(), py::arg("top") = GivenInt{py::int_(10)}, py::arg("allow_older") = kFalse,
         "The takes with a window most like frames [start, end) of clip, best first, as "
         "`motifmine search` finds them.");
 
   py::class_<motifmine::Archive>(m, "Archive")
-      .def(py::init(&OpenArchive), py::arg("path"), py::kw_only(), py::arg("allow_older") = false)
+      .def(py::init(&OpenArchive), py::arg("path"), py::kw_only(), py::arg("allow_older") = kFalse)
       .def_property_readonly("path", &motifmine::Archive::path)
       .def_property_readonly("frames", &motifmine::Archive::frames)
       .def_property_readonly("fps", &motifmine::Archive::fps)

@@ -54,7 +54,7 @@ Status Archive::Rotations(const std::string& clip, uint64_t start, uint64_t end,
   }
   if (start > end || end > found->frames) {
     return {Status::Code::kInvalidArgument,
-            "frames [" + std::to_string(start) + ", " + std::to_string(end) +
+            "start and end: frames [" + std::to_string(start) + ", " + std::to_string(end) +
                 ") are not in clip '" + clip + "' of " + std::to_string(found->frames) + " frames"};
   }
   std::vector<float> rows;

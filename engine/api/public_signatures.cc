@@ -83,8 +83,8 @@ Status SearchClipRange(const std::string& archive_path, const std::string& clip,
     return {Status::Code::kNotFound, archive_path + ": no clip named '" + clip + "'"};
   }
   if (start >= end || end > reader.clips()[index].frame_count) {
-    return {Status::Code::kInvalidArgument, "frames [" + std::to_string(start) + ", " +
-                                                std::to_string(end) +
+    return {Status::Code::kInvalidArgument, "start and end: frames [" + std::to_string(start) +
+                                                ", " + std::to_string(end) +
                                                 ") are not a range within clip '" + clip + "'"};
   }
   motif::Result<std::pair<uint64_t, uint64_t>> words =

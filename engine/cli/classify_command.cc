@@ -90,9 +90,6 @@ Result<ClassifyCommandOptions> ReadClassifyOptions(const po::variables_map& vm) 
   classify.seed = table.seed;
   classify.threads = table.threads;
   options.dtw_step = vm["dtw-step"].as<uint32_t>();
-  if (classify.dims == 0 || classify.knn == 0 || classify.top == 0 || options.dtw_step == 0) {
-    return Status::InvalidArgument("--dims, --knn, --top and --dtw-step must be at least 1");
-  }
   MOTIF_ASSIGN_OR_RETURN(options.output, WordsReaderOutputFrom(vm, options.archive, "classify"));
   options.labels_path = vm["labels"].as<std::string>();
   options.weights_path = table.weights_path;

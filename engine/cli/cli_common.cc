@@ -110,7 +110,7 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
       return kExitOk;
     }
     po::notify(*vm);
-    const Status numbers = CheckNumericOptions(parsed, *vm);
+    const Status numbers = CheckNumericOptions(spec.name, parsed, *vm);
     if (!numbers.ok()) throw po::error(numbers.message());
     const Status table = CheckTableFlags(spec, *vm);
     if (!table.ok()) throw po::error(table.message());

@@ -66,9 +66,6 @@ int ReadImportOptions(const CommandSpec& spec, const po::variables_map& vm,
       !status.ok()) {
     return ReportError("import", status);
   }
-  if (options.fps < 0 || options.import.amc_fps <= 0 || options.import.bvh_fps < 0) {
-    return ReportError("import", Status::InvalidArgument("frame rates must be positive"));
-  }
   motifmine::MineOptions table;
   ReadTableFlags(spec, vm, &table);
   options.skip_bad = table.skip_bad;
@@ -77,10 +74,7 @@ int ReadImportOptions(const CommandSpec& spec, const po::variables_map& vm,
     if (!descriptions.ok()) return ReportError("import", descriptions.status());
     options.import.descriptions = std::move(*descriptions);
   }
-  options.block_frames = vm["block-frames"].as<uint32_t>();
-  if (options.block_frames == 0) {
-    return ReportError("import", Status::InvalidArgument("--block-frames must be at least 1"));
-  }
+  options.block_frames = vm["block-frames"].as<uint32_t>();  // in range: CheckNumericOptions
   options.threads = table.threads;
   command->archive = vm["archive"].as<std::string>();
   command->paths = vm["paths"].as<std::vector<std::string>>();

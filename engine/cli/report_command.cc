@@ -72,9 +72,6 @@ int ReadReportOptions(const CommandSpec& spec, const po::variables_map& vm,
   motifmine::MineOptions mine;
   ReadTableFlags(spec, vm, &mine);
   options.playback_bytes = ReportOptionsFor(mine).playback_bytes;
-  if (options.keyframes == 0 || options.keyframes > 50) {
-    return ReportError("report", Status::InvalidArgument("--keyframes must be 1 to 50"));
-  }
   command->dir = vm["dir"].as<std::string>();
   command->archive = vm["archive"].as<std::string>();
   command->out = vm["out"].as<std::string>();

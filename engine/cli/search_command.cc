@@ -181,7 +181,6 @@ int ReadSearchOptions(const CommandSpec& spec, const po::variables_map& vm,
     options->end = vm["end"].as<uint64_t>();
   }
   options->weights_path = table.weights_path;
-  if (options->top == 0) return fail(Status::InvalidArgument("--top must be at least 1"));
   Result<WordsReaderOutput> output = WordsReaderOutputFrom(vm, options->archive, "search");
   if (!output.ok()) return fail(output.status());
   options->output = std::move(output.value());

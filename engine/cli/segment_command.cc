@@ -207,9 +207,6 @@ Result<SegmentCommandOptions> ReadSegmentOptions(const po::variables_map& vm) {
   motifmine::MineOptions table;
   ReadTableFlags(vm, {"weights", "seed", "threads"}, &table);
   segment.threads = table.threads;
-  if (segment.window == 0 || segment.knn == 0 || segment.dtw_step == 0) {
-    return Status::InvalidArgument("--window, --knn and --dtw-step must be at least 1");
-  }
   MOTIF_ASSIGN_OR_RETURN(options.output, WordsReaderOutputFrom(vm, options.archive, "segments"));
   options.clip_names =
       vm.count("clip") ? vm["clip"].as<std::vector<std::string>>() : std::vector<std::string>{};

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/cli/numeric_options.h"
 #include "engine/pipeline/option_table.h"
 
 namespace motif::cli {
@@ -130,6 +131,35 @@ std::optional<std::string> ShownDefault(const po::option_description& option) {
   return text.substr(at + 2, text.size() - at - 3);
 }
 
+// A table option's range: "kind" (its OptionType's name), "min", "max", "min_exclusive"; nothing
+// for one that is not a number (a choice, text, a switch).
+void AddTableRange(const OptionSpec& spec, nlohmann::json* option) {
+  switch (spec.type) {
+    case OptionType::kChoice:
+    case OptionType::kText:
+    case OptionType::kSwitch:
+      return;
+    default:
+      break;
+  }
+  (*option)["kind"] = OptionTypeName(spec.type);
+  (*option)["min"] = spec.info.min;
+  (*option)["max"] = spec.info.max;
+  (*option)["min_exclusive"] = spec.info.min_exclusive;
+}
+
+// A command's own numeric flag's range (numeric_options.h): "kind" count, number or groups
+// ("auto" or a count), "min",
+// "max", "min_exclusive", "zero_allowed".
+void AddFlagRange(const FlagRange& range, const std::string& type, nlohmann::json* option) {
+  const bool whole = type == "uint32" || type == "uint64" || type == "int";
+  (*option)["kind"] = range.auto_allowed ? "groups" : whole ? "count" : "number";
+  (*option)["min"] = range.min;
+  (*option)["max"] = range.max;
+  (*option)["min_exclusive"] = range.min_exclusive;
+  (*option)["zero_allowed"] = range.zero_allowed;
+}
+
 }  // namespace
 
 std::string OptionsJson(const CommandSpec& spec) {
@@ -137,11 +167,19 @@ std::string OptionsJson(const CommandSpec& spec) {
   for (const auto& option : spec.options.options()) {
     const std::string name = option->long_name();
     const std::optional<std::string> shown = ShownDefault(*option);
-    options.push_back({{"name", name},
-                       {"type", ValueTypeName(option->semantic().get())},
-                       {"default", shown ? nlohmann::json(*shown) : nlohmann::json(nullptr)},
-                       {"table", std::find(spec.table_flags.begin(), spec.table_flags.end(),
-                                           name) != spec.table_flags.end()}});
+    const bool table =
+        std::find(spec.table_flags.begin(), spec.table_flags.end(), name) != spec.table_flags.end();
+    const std::string type = ValueTypeName(option->semantic().get());
+    nlohmann::json entry = {{"name", name},
+                            {"type", type},
+                            {"default", shown ? nlohmann::json(*shown) : nlohmann::json(nullptr)},
+                            {"table", table}};
+    if (table) {
+      AddTableRange(SpecNamed(name), &entry);
+    } else if (const FlagRange* range = FindFlagRange(spec.name, name)) {
+      AddFlagRange(*range, type, &entry);
+    }
+    options.push_back(std::move(entry));
   }
   return options.dump();
 }

@@ -52,7 +52,10 @@ Status CheckTableFlags(const CommandSpec& spec, const boost::program_options::va
 
 // `spec`'s options as a JSON array, one object each: "name", "type" (the value's C++ type:
 // "string", "uint32", "uint64", "int", "double", "float", "bool"; "switch" without a value),
-// "default" (the text the help shows; null without one) and "table" (declared by AddTableFlags).
+// "default" (the text the help shows; null without one), "table" (declared by AddTableFlags) and,
+// for a number, its range: "kind" ("count", "number", or the table's "length", "groups",
+// "radius"), "min", "max", "min_exclusive" (and "zero_allowed" for a command's own flag), from the
+// option table or FlagRanges() (numeric_options.h). Read by scripts/option_sweep.py.
 std::string OptionsJson(const CommandSpec& spec);
 
 // A status's message as the tool prints it: an option named by the table ("kmax must be ...")

@@ -258,8 +258,8 @@ OptionSpec RadiusOption() {
     }
     Result<double> eps = ParseNumber(info, text);
     if (!eps.ok()) {
-      return Status::InvalidOption(info.name,
-                                   "must be auto or a number >= 0 (0: auto), not '" + text + "'");
+      return Status::InvalidOption(info.name, "must be auto or a number in " + RangeText(info) +
+                                                  " (0: auto), not '" + text + "'");
     }
     options->eps = *eps;
     return Status::Ok();

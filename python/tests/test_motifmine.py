@@ -155,7 +155,7 @@ def test_errors_raise_with_message_and_code(tmp_path):
         motifmine.mine(out_dir=str(tmp_path / "out"), k_max=0)
     assert isinstance(bad.value, motifmine.Error) and isinstance(bad.value, ValueError)
     assert bad.value.code == 13
-    assert "kmax must be a whole number in [1, 65535], not '0'" in str(bad.value)
+    assert "k_max must be a whole number in [1, 65535], not '0'" in str(bad.value)  # as given
     for keyword, value in [("groups", 0), ("min_length_frames", 0), ("eps", math.nan),
                            ("threads", 65537), ("synth_frames", 99999999999)]:
         with pytest.raises(ValueError) as refused:  # as the tool's usage errors, by name
@@ -187,8 +187,25 @@ def test_keywords_are_the_tools_flags_from_one_table(tmp_path):
     with pytest.raises(motifmine.Error) as bad:
         motifmine.mine(out_dir=str(tmp_path / "out"), pause_seconds=0)
     assert bad.value.code == 13
-    assert "pause-seconds must be a number in (0, 3600], not '0'" in str(bad.value)
+    assert "pause_seconds must be a number in (0, 3600], not '0'" in str(bad.value)
     assert not (tmp_path / "out").exists()
+
+
+def test_every_functions_arguments_are_refused_by_name(tmp_path):
+    archive = str(tmp_path / "a.mfs")
+    for call, name, error in [
+            (lambda: motifmine.build_words(archive, motifs=-1), "motifs", ValueError),
+            (lambda: motifmine.build_words(archive, threads=float("nan")), "threads", ValueError),
+            (lambda: motifmine.search(archive, "clip", 0, 10, top=0), "top", ValueError),
+            (lambda: motifmine.search(archive, "clip", -1, 10), "start", ValueError),
+            (lambda: motifmine.search(archive, 7, 0, 10), "clip", TypeError),
+            (lambda: motifmine.import_takes(archive, "take.bvh"), "paths", TypeError),
+            (lambda: motifmine.signatures(archive, allow_older=1), "allow_older", TypeError),
+            (lambda: motifmine.mine(out_dir=archive, progress=3), "progress", TypeError)]:
+        with pytest.raises(error) as refused:
+            call()
+        assert name in str(refused.value)
+        assert "incompatible function arguments" not in str(refused.value)  # pybind11's own
 
 
 def fail_at_once(stage, done, total):

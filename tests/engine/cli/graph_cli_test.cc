@@ -81,8 +81,8 @@ TEST_F(GraphCliTest, GraphWritesTheWalkItsPiecesAndTheGraph) {
     EXPECT_FALSE(FileExists(dir_->File("graph-bad/walk.json"))) << args;
   };
   expect(" --start nope --seconds 5", 11, "no clip named 'nope'");
-  expect(" --start class0_0 --seconds 0", 13, "--seconds");
-  expect(" --start class0_0 --seconds 5 --window 0", 13, "--window");
+  expect(" --start class0_0 --seconds 0", 2, "--seconds");
+  expect(" --start class0_0 --seconds 5 --window 0", 2, "--window");
   expect(" --seconds 5", 2, "start");
 }
 

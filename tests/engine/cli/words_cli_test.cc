@@ -167,9 +167,9 @@ TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
     EXPECT_NE(result.output.find(text), std::string::npos) << args << "\n" << result.output;
   };
   expect("words " + dir_->File("missing.mfs"), 11, "missing.mfs");
-  expect("words " + archive_ + " --motifs 0", 13, "motifs");
+  expect("words " + archive_ + " --motifs 0", 2, "--motifs must be a whole number in [1, 65535]");
   expect("words " + archive_ + " --motifs 60000 --epochs 1", 13, "fewer than the 60000 asked for (--motifs)");
-  expect("words " + archive_ + " --held-out 1", 13, "held_out_fraction");
+  expect("words " + archive_ + " --held-out 1", 2, "--held-out must be a number in [0, 0.9]");
   expect("classify " + archive_ + " --prefix " + dir_->File("none"), 11, "run `motifmine words`");
   expect("classify " + archive_ + " --distance cosine", 13, "--distance must be");
   {
@@ -281,7 +281,7 @@ TEST_F(WordsCliTest, SegmentRefusesBadOptionsByNameAndWritesNothing) {
   expect(" --clip nope", 11, "no clip named 'nope'");
   expect(" --distance cosine", 13, "--distance must be emd or dtw");
   expect(" --distance dtw", 13, "--distance dtw needs --labels");
-  expect(" --window 0", 13, "--window");
+  expect(" --window 0", 2, "--window");
   expect(" --neighbours frames", 13, "--neighbours must be");
   expect(" --signature frames", 13, "--signature must be words or motifs");
   expect(" --signature words", 13, "--signature words needs --labels");
