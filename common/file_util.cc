@@ -1,5 +1,4 @@
 #include "common/file_util.h"
-#include "common/temporary_files.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -14,6 +13,8 @@
 #include <atomic>
 #include <filesystem>
 #include <system_error>
+
+#include "common/temporary_files.h"
 
 namespace motif {
 

@@ -1,12 +1,14 @@
 #include "common/writable_file.h"
-#include "common/temporary_files.h"
 
 #include <fcntl.h>
+#include <stdio.h>  // renameat2, RENAME_NOREPLACE (glibc)
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <filesystem>
+
+#include "common/temporary_files.h"
 
 namespace motif {
 namespace {
@@ -77,6 +79,17 @@ class RealFileSystem final : public FileSystem {
     UntrackTemporaryFile(from);  // in place: a signal now must not remove it
     return Status::Ok();
   }
+  Status RenameNoReplace(const std::string& from, const std::string& to) override {
+    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) != 0) {
+      if (errno == EEXIST) return Status::Busy(to + ": exists; not replaced");
+      if (errno != EINVAL && errno != ENOSYS) {
+        return Status::FromErrno("rename " + from + " to " + to, errno);
+      }
+      return FileSystem::RenameNoReplace(from, to);  // a file system without the flag
+    }
+    UntrackTemporaryFile(from);
+    return Status::Ok();
+  }
   Status SyncParentDir(const std::string& path) override {
     std::filesystem::path parent = std::filesystem::path(path).parent_path();
     if (parent.empty()) parent = ".";
@@ -98,6 +111,12 @@ class RealFileSystem final : public FileSystem {
 };
 
 }  // namespace
+
+Status FileSystem::RenameNoReplace(const std::string& from, const std::string& to) {
+  std::error_code error;
+  if (std::filesystem::exists(to, error)) return Status::Busy(to + ": exists; not replaced");
+  return Rename(from, to);
+}
 
 FileSystem* PosixFileSystem() {
   static RealFileSystem* file_system = new RealFileSystem();
@@ -131,6 +150,9 @@ class NoSyncFileSystemImpl final : public FileSystem {
   }
   Status Rename(const std::string& from, const std::string& to) override {
     return PosixFileSystem()->Rename(from, to);
+  }
+  Status RenameNoReplace(const std::string& from, const std::string& to) override {
+    return PosixFileSystem()->RenameNoReplace(from, to);
   }
   Status SyncParentDir(const std::string&) override { return Status::Ok(); }
   Status Remove(const std::string& path) override { return PosixFileSystem()->Remove(path); }

@@ -43,6 +43,10 @@ class FileSystem {
                                                              OpenMode mode) = 0;
   // rename(2): atomically replaces `to`.
   virtual Status Rename(const std::string& from, const std::string& to) = 0;
+  // The same, unless `to` exists: then Busy, and nothing changes. The real file system does it
+  // in one step (renameat2 RENAME_NOREPLACE); this default, for file systems that wrap another
+  // in tests, checks first.
+  virtual Status RenameNoReplace(const std::string& from, const std::string& to);
   // fsync(2) on the directory that holds `path`, so a rename into it is durable.
   virtual Status SyncParentDir(const std::string& path) = 0;
   // unlink(2); a missing file is not an error.

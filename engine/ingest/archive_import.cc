@@ -179,7 +179,8 @@ class ClipAppender {
       Stop(copy.status());
       return true;
     }
-    if (!copy->has_value()) return false;
+    // A bad take is reported as bad (by Append), even when its rotations copy another's.
+    if (!copy->has_value() || !writer_->CheckFrames(clip).ok()) return false;
     ++result_->takes_already_present;
     ImportNote(options_, clip.info.source_path + ": the same frames as clip '" + (*copy)->name +
                              "' (" + (*copy)->source_path + "), skipped");

@@ -154,6 +154,19 @@ class FrameFileWriter::Impl {
 
   Status AppendClip(const ClipFrames& clip) {
     MOTIF_RETURN_IF_ERROR(CheckUsable());
+    MOTIF_RETURN_IF_ERROR(CheckClip(clip));
+    MOTIF_RETURN_IF_ERROR(BeginClip(clip.info));
+    MOTIF_RETURN_IF_ERROR(BufferRows(clip.rows.data(), clip.info.frame_count));
+    return EndClip();
+  }
+
+  Status CheckClip(const ClipFrames& clip) const {
+    MOTIF_RETURN_IF_ERROR(CheckFrames(clip));
+    return CheckClipInfo(clip.info);
+  }
+
+  // The rows alone: their count, and every value storable in its column.
+  Status CheckFrames(const ClipFrames& clip) const {
     const std::string what = "clip \"" + clip.info.name + "\"";
     if (clip.info.frame_count == 0) return Invalid(what + " has no frames");
     const uint64_t stride = metadata_.layout().stride();
@@ -163,11 +176,7 @@ class FrameFileWriter::Impl {
                      std::to_string(clip.info.frame_count) + " frames of " +
                      std::to_string(stride));
     }
-    MOTIF_RETURN_IF_ERROR(CheckClipInfo(clip.info));
-    MOTIF_RETURN_IF_ERROR(CheckRows(clip.info.name, clip.rows.data(), clip.info.frame_count, 0));
-    MOTIF_RETURN_IF_ERROR(BeginClip(clip.info));
-    MOTIF_RETURN_IF_ERROR(BufferRows(clip.rows.data(), clip.info.frame_count));
-    return EndClip();
+    return CheckRows(clip.info.name, clip.rows.data(), clip.info.frame_count, 0);
   }
 
   Status BeginClip(const ClipInfo& info) {
@@ -359,15 +368,15 @@ class FrameFileWriter::Impl {
       MOTIF_RETURN_IF_ERROR(file_->WriteAt(0, header_bytes.data(), header_bytes.size()));
       MOTIF_RETURN_IF_ERROR(file_->Sync());
       MOTIF_RETURN_IF_ERROR(file_->Close());
-      std::error_code error;
-      if (std::filesystem::exists(path_, error)) {
-        // Another writer created it meanwhile (two imports starting one archive): this run
-        // changed nothing, and retried it appends.
+      // Not over an archive another writer created meanwhile (two imports starting one
+      // archive): this run changed nothing, and retried it appends.
+      Status renamed = fs_->RenameNoReplace(write_path_, path_);
+      if (renamed.IsBusy()) {
         return Status::Busy(path_ +
                             ": created by another writer while this one was writing it; not "
                             "replacing it (run again to append)");
       }
-      MOTIF_RETURN_IF_ERROR(fs_->Rename(write_path_, path_));
+      MOTIF_RETURN_IF_ERROR(renamed);
       // The archive is in place (a failed directory sync only risks its durability).
       commit_point_reached_ = true;
       temp_exists_ = false;
@@ -516,6 +525,9 @@ uint64_t FrameFileWriter::frame_count() const { return impl_->frame_count(); }
 const std::vector<ClipInfo>& FrameFileWriter::clips() const { return impl_->metadata().clips; }
 
 Status FrameFileWriter::AppendClip(const ClipFrames& clip) { return impl_->AppendClip(clip); }
+Status FrameFileWriter::CheckFrames(const ClipFrames& clip) const {
+  return impl_->CheckFrames(clip);
+}
 Status FrameFileWriter::BeginClip(const ClipInfo& info) { return impl_->BeginClip(info); }
 Status FrameFileWriter::AppendFrames(const float* rows, size_t frame_count) {
   return impl_->AppendFrames(rows, frame_count);

@@ -67,6 +67,9 @@ class FrameFileWriter {
   // clip.info.joint_offsets / end_sites have one entry per joint. InvalidArgument on a size
   // mismatch, a non-finite value, or a clip name already in the archive.
   Status AppendClip(const ClipFrames& clip);
+  // The checks AppendClip makes of `clip`'s rows before it writes anything (their count, and
+  // every value storable in its column: InvalidArgument), alone; not those of its info.
+  Status CheckFrames(const ClipFrames& clip) const;
 
   // Streaming variant for clips too long to hold: BeginClip (info.frame_count ignored), any
   // number of AppendFrames, EndClip.

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/writable_file.h"
 #include "tests/testing/fault_injection.h"
 #include "tests/testing/temp_dir.h"
 
@@ -22,6 +23,21 @@ TEST(AtomicWriteFile, WritesAndReplaces) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
                           std::filesystem::directory_iterator()),
             1);
+}
+
+TEST(FileSystemRename, NoReplaceLeavesAnExistingFileAndSaysBusy) {
+  testing::TempDir dir;
+  for (FileSystem* file_system : {PosixFileSystem(), NoSyncFileSystem()}) {
+    ASSERT_TRUE(AtomicWriteFile(dir.File("new"), "new").ok());
+    ASSERT_TRUE(AtomicWriteFile(dir.File("old"), "old").ok());
+    const Status refused = file_system->RenameNoReplace(dir.File("new"), dir.File("old"));
+    EXPECT_TRUE(refused.IsBusy()) << refused.ToString();
+    EXPECT_EQ(ReadFileToString(dir.File("old")).value(), "old");
+    ASSERT_TRUE(file_system->RenameNoReplace(dir.File("new"), dir.File("moved")).ok());
+    EXPECT_EQ(ReadFileToString(dir.File("moved")).value(), "new");
+    EXPECT_FALSE(std::filesystem::exists(dir.File("new")));
+    std::filesystem::remove(dir.File("moved"));
+  }
 }
 
 TEST(AtomicWriteFile, AMissingFolderIsNamed) {
