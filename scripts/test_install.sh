@@ -30,5 +30,20 @@ if ! diff <(strip "$prefix/library/motifs.json") <(strip "$prefix/tool/motifs.js
   echo "the example's motifs differ from the tool's" >&2
   exit 1
 fi
+# The installed Python module imports from the prefix, with no LD_LIBRARY_PATH: its RUNPATH is
+# relative to its own folder (python/CMakeLists.txt). Skipped when the module was not built.
+module="$(find "$prefix/usr" -name 'motifmine*.so' -path '*dist-packages*' | head -1)"
+if [ -n "$module" ]; then
+  frames="$(env -u LD_LIBRARY_PATH PYTHONPATH="$(dirname "$module")" /usr/bin/python3 -c \
+    "import motifmine, sys; print(motifmine.Archive(sys.argv[1]).frames)" \
+    "$prefix/library/archive.mfs")"
+  if [ "$frames" != 20000 ]; then
+    echo "the installed Python module read $frames frames, not 20000" >&2
+    exit 1
+  fi
+  echo "the installed Python module ($module) imports from the prefix and reads the archive"
+else
+  echo "no Python module installed: its import from the prefix is not checked"
+fi
 echo "installed into a prefix, built examples/mine_archive against it, and mined:"
 head -3 "$prefix/library.txt"
