@@ -37,6 +37,10 @@ void AddProgressOptions(CommandSpec& spec) {
       "(one JSON object per line on stderr, for logs and other tools), quiet");
 }
 
+void AddVerboseOption(CommandSpec& spec) {
+  spec.options.add_options()("verbose", "also print details: the search index's parameters");
+}
+
 ProgressMode ProgressModeFrom(const po::variables_map& vm) {
   if (vm.count("quiet")) return ProgressMode::kQuiet;
   ProgressMode mode = ProgressMode::kAuto;

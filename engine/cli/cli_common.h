@@ -59,6 +59,8 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args,
 
 // Adds --quiet and --progress=auto|json|quiet, and reads them back.
 void AddProgressOptions(CommandSpec& spec);
+// --verbose: details on stderr that a user rarely needs (the search index's parameters).
+void AddVerboseOption(CommandSpec& spec);
 ProgressMode ProgressModeFrom(const boost::program_options::variables_map& vm);
 
 // Thousands separators: 40346 -> "40,346".

@@ -191,6 +191,7 @@ CommandSpec MineCommandSpec() {
   spec.options.add_options()("out", po::value<std::string>(), "output folder (created if missing)");
   AddTableFlags(spec, AllTableFlags());
   AddProgressOptions(spec);
+  AddVerboseOption(spec);
   spec.positional = {{"input", -1}};
   return spec;
 }
@@ -248,6 +249,7 @@ int RunMineCommand(const std::vector<std::string>& args, const MineAcrossRanks& 
   hooks.note = [&](const std::string& message) {
     if (!other_rank) progress.Note(message);
   };
+  if (vm.count("verbose")) hooks.detail = hooks.note;
   Result<MinePipelineResult> result = RunMine(options, inputs, std::move(hooks));
   stages.End();
   if (!result.ok()) return ReportError("mine", result.status());

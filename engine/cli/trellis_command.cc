@@ -98,6 +98,7 @@ CommandSpec TrellisCommandSpec() {
       "audit", "compare the existing trellis with exact eps-NN on sampled columns")(
       "sample", po::value<uint64_t>()->default_value(1000), "columns sampled by --audit");
   AddProgressOptions(spec);
+  AddVerboseOption(spec);
   spec.positional = {{"archive", 1}};
   return spec;
 }
@@ -188,6 +189,7 @@ int RunTrellis(const std::vector<std::string>& args) {
     stages.Update(name, done, total);
   };
   options->note = [&](const std::string& message) { progress.Note(message); };
+  if (vm.count("verbose")) options->detail = options->note;
   Result<TrellisReport> report = BuildTrellis(**archive, trellis, *options);
   if (!report.ok()) return ReportError("trellis", report.status());
   PrintTrellisReport(trellis, *report);

@@ -146,9 +146,12 @@ int RunVerify(const std::vector<std::string>& args) {
   if (std::filesystem::is_directory(path, error)) return VerifyOutput(path);
   std::string kind = std::filesystem::path(path).extension().string();
   kind = kind.empty() ? "" : kind.substr(1);
-  // A damaged file keeps its name's kind (exit 12); another file is not one verify checks.
-  if (kind != "mfs" && kind != "mtr" && kind != "mpa") kind = KindOf(path);
-  if (kind.empty() && std::filesystem::is_regular_file(path, error)) {
+  // A damaged file keeps its name's kind (exit 12); another regular file is not one verify
+  // checks. Only a regular file is peeked at (opening a FIFO would block): the archive reader
+  // refuses the rest, naming them.
+  const bool regular = std::filesystem::is_regular_file(path, error);
+  if (kind != "mfs" && kind != "mtr" && kind != "mpa") kind = regular ? KindOf(path) : "";
+  if (kind.empty() && regular) {
     std::fprintf(stderr,
                  "motifmine verify: %s is not an archive (.mfs), trellis (.mtr), paths file "
                  "(.mpa) or output folder: nothing to verify\n",

@@ -286,6 +286,7 @@ Status MinePipeline::TrellisStage() {
     TrellisProgress(stage, done, total);
   };
   input.options.note = session_->hooks().note;
+  input.options.detail = session_->hooks().detail;
   input.options.ranks = session_->ranks();
   input.options.file_system = session_->hooks().file_system;
   if (plan_.save_search_cache) input.options.search_cache_path = files.search_cache;

@@ -47,6 +47,7 @@ struct RunHooks {
                      const std::string& unit)>
       progress;
   std::function<void(const std::string& message)> note;  // remarks that are not errors
+  std::function<void(const std::string& message)> detail;  // for --verbose (TrellisOptions)
   // A distributed run (motifmine-mpi; docs/design/distributed.md): every rank runs the pipeline
   // with the group; rank 0 makes the archive, writes in the folder, grows, clusters and reports;
   // the others share the trellis's work. null: one process.

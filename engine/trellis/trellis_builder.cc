@@ -359,7 +359,7 @@ Result<TrellisReport> BuildTrellis(const FrameFileReader& reader, const std::str
   MOTIF_ASSIGN_OR_RETURN(TrellisSearch search, MakeTrellisSearch(features, rules, exact, lsh,
                                                                  options.threads, options.ranks));
   if (search.lsh != nullptr) {
-    note("LSH index: " + search.lsh->DescribeParams());
+    if (options.detail) options.detail("LSH index: " + search.lsh->DescribeParams());
     report.lsh_resolved = search.lsh->options();
   }
   report.index_seconds = SecondsSince(start);

@@ -76,6 +76,8 @@ struct TrellisOptions {
   // Stages: "features", "eps", "index", "trellis"; (done, total) in frames / pairs / columns.
   std::function<void(const std::string& stage, uint64_t done, uint64_t total)> progress;
   std::function<void(const std::string&)> note;
+  // Details for those who ask (the tool's --verbose): the search index's parameters.
+  std::function<void(const std::string&)> detail;
   // A distributed run (motifmine-mpi, docs/design/distributed.md): every rank calls BuildTrellis
   // with the group. The ranks share the work of the features, the LSH index and the columns
   // (distributed_columns.h); rank 0 alone reads and writes trellis_path, and its report is the

@@ -200,6 +200,20 @@ TEST(MotifmineTool, ReportAndExportMotifWorkFromAnyDirectory) {
             std::string::npos);  // known by its bytes, whatever its name
 }
 
+// No debug lines by default: the LSH index's parameters only with --verbose.
+TEST(MotifmineTool, TheSearchIndexParametersPrintOnlyWithVerbose) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("s.mfs");
+  ASSERT_EQ(RunTool("synth " + archive + " --frames 6000 --motifs 1 --seed 2 --quiet").exit_code, 0);
+  const std::string mine = "mine " + archive + " --search lsh --no-report --out ";
+  const RunResult plain = RunTool(mine + dir.File("plain"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_EQ(plain.output.find("LSH index:"), std::string::npos) << plain.output;
+  const RunResult verbose = RunTool(mine + dir.File("verbose") + " --verbose");
+  ASSERT_EQ(verbose.exit_code, 0) << verbose.output;
+  EXPECT_NE(verbose.output.find("LSH index: lsh embedding="), std::string::npos) << verbose.output;
+}
+
 TEST(MotifmineTool, SynthInfoVerifyAndDamage) {
   testing::TempDir dir;
   const std::string archive = dir.File("s.mfs");
