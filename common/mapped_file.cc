@@ -53,6 +53,12 @@ Status MappedFile::CheckNotCut() const {
                             std::to_string(size_) + " bytes when opened, now " + now_text);
 }
 
+Status MappedFile::ExplainRead(Status read) const {
+  if (read.ok() && !cut()) return read;
+  Status cut_status = CheckNotCut();
+  return cut_status.ok() ? read : cut_status;
+}
+
 // posix_madvise (what boost's advice_dontneed calls) is a no-op in glibc: madvise is used.
 uint64_t MappedFile::ReleasePages(uint64_t begin_offset, uint64_t end_offset) const {
   static const uint64_t page_bytes = static_cast<uint64_t>(::sysconf(_SC_PAGESIZE));

@@ -32,6 +32,9 @@ class MappedFile {
   // shorter than when mapped. A reader calls this after each block it decodes when `cut()`, and
   // before it reports any damage in what it read, so that a cut is named as such.
   Status CheckNotCut() const;
+  // `read` (the status of decoding bytes of this file), unless the file was cut: then the cut,
+  // which explains the zeros read. The one check every reader makes after reading.
+  Status ExplainRead(Status read) const;
 
   // Gives the whole pages of bytes [begin_offset, end_offset) back to the kernel (best effort;
   // they are read from the file again if touched) and returns the page-aligned end released.

@@ -65,11 +65,9 @@ using TakesReadFirst = std::vector<Result<Take>>;
 Status StopForTake(const Status& status) {
   if (!status.option().empty()) return status;  // it names its own option already (asf)
   const bool other_family = status.message().find("skeleton family") != std::string::npos;
+  const std::string why = other_family ? "an archive holds one skeleton family; " : "";
   return Status::FromCode(status.code(),
-                          status.message() +
-                              (other_family ? " (an archive holds one skeleton family;"
-                                            : " (") +
-                              (other_family ? " " : "") + "skip_bad imports the other takes)")
+                          status.message() + " (" + why + "skip_bad imports the other takes)")
       .WithOption("skip_bad");
 }
 

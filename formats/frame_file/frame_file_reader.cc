@@ -37,13 +37,11 @@ class FrameFileReader::Impl {
     const BlockHandle& block = metadata().blocks[block_idx];
     Status status = frame_file::DecodeBlock(metadata().columns, metadata().joint_count, block,
                                             data + block.offset, rows);
-    // Zeros read past a new end are the cut's fault, not the block's.
-    if (!status.ok() || file->cut()) MOTIF_RETURN_IF_ERROR(file->CheckNotCut());
     if (!status.ok()) {
-      return status.WithContext(path + ": block " + std::to_string(block_idx) + " at offset " +
-                                Hex(block.offset));
+      status = status.WithContext(path + ": block " + std::to_string(block_idx) + " at offset " +
+                                  Hex(block.offset));
     }
-    return Status::Ok();
+    return file->ExplainRead(status);  // zeros past a new end are the cut's fault, not the block's
   }
 
   // Gives the whole pages of file bytes [begin_offset, end_offset) back to the kernel (the
@@ -120,8 +118,8 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::Open(const std::string
   impl->data = impl->file->data();
   impl->size = impl->file->size();
   Result<frame_file::LoadedArchive> loaded = frame_file::LoadArchive(path, impl->data, impl->size);
-  MOTIF_RETURN_IF_ERROR(impl->file->CheckNotCut());
-  MOTIF_ASSIGN_OR_RETURN(impl->archive, std::move(loaded));
+  if (!loaded.ok()) return impl->file->ExplainRead(loaded.status());
+  impl->archive = std::move(loaded).value();
   std::unique_ptr<FrameFileReader> reader(new FrameFileReader(std::move(impl)));
   if (!reader->impl_->archive.fallback_reason.empty()) {
     OlderVersionHandler handler;
@@ -144,8 +142,8 @@ Result<std::unique_ptr<FrameFileReader>> FrameFileReader::OpenCommit(const std::
   impl->size = impl->file->size();
   Result<frame_file::LoadedArchive> loaded =
       frame_file::LoadArchiveCommit(path, impl->data, impl->size, generation, committed_length);
-  MOTIF_RETURN_IF_ERROR(impl->file->CheckNotCut());
-  MOTIF_ASSIGN_OR_RETURN(impl->archive, std::move(loaded));
+  if (!loaded.ok()) return impl->file->ExplainRead(loaded.status());
+  impl->archive = std::move(loaded).value();
   return std::unique_ptr<FrameFileReader>(new FrameFileReader(std::move(impl)));
 }
 

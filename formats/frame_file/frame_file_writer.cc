@@ -46,7 +46,7 @@ Status CheckFolderExists(const std::string& path) {
 Result<LoadedArchive> LoadArchiveFile(const std::string& path) {
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<MappedFile> file, MappedFile::Open(path));
   Result<LoadedArchive> loaded = frame_file::LoadArchive(path, file->data(), file->size());
-  MOTIF_RETURN_IF_ERROR(file->CheckNotCut());
+  if (!loaded.ok()) return file->ExplainRead(loaded.status());
   return loaded;
 }
 

@@ -136,13 +136,11 @@ class TrellisFileReader::Impl {
     limits.eps = header.params.eps;
     Status status =
         ThreadDecoder().Decode(data + handle.offset, handle, limits, block, decode_distances);
-    // Zeros read past a new end are the cut's fault, not the block's.
-    if (!status.ok() || file->cut()) MOTIF_RETURN_IF_ERROR(file->CheckNotCut());
     if (!status.ok()) {
-      return status.WithContext(path + ": block " + std::to_string(block_idx) + " at offset " +
-                                Hex(handle.offset));
+      status = status.WithContext(path + ": block " + std::to_string(block_idx) + " at offset " +
+                                  Hex(handle.offset));
     }
-    return Status::Ok();
+    return file->ExplainRead(status);  // zeros past a new end are the cut's fault, not the block's
   }
 
   // Gives the whole pages of file bytes [begin_offset, end_offset) back to the kernel and
@@ -158,9 +156,7 @@ Result<std::unique_ptr<TrellisFileReader>> TrellisFileReader::Open(const std::st
   MOTIF_ASSIGN_OR_RETURN(impl->file, MappedFile::Open(path));
   impl->data = impl->file->data();
   impl->size = impl->file->size();
-  Status valid = impl->Validate();
-  MOTIF_RETURN_IF_ERROR(impl->file->CheckNotCut());
-  MOTIF_RETURN_IF_ERROR(valid);
+  MOTIF_RETURN_IF_ERROR(impl->file->ExplainRead(impl->Validate()));
   return std::unique_ptr<TrellisFileReader>(new TrellisFileReader(std::move(impl)));
 }
 
@@ -199,9 +195,9 @@ Status TrellisFileReader::ReadEncodedBlock(uint64_t block_idx, const uint8_t** b
   const uint64_t body = handle.bytes - trellis_file::kBlockTrailerBytes;
   if (trellis_file::LoadU64(data + body) != handle.checksum ||
       trellis_file::Checksum64(data, body) != handle.checksum) {
-    MOTIF_RETURN_IF_ERROR(impl_->file->CheckNotCut());
-    return Status::Corruption(impl_->path + ": block " + std::to_string(block_idx) + " at offset " +
-                              Hex(handle.offset) + ": checksum mismatch");
+    return impl_->file->ExplainRead(
+        Status::Corruption(impl_->path + ": block " + std::to_string(block_idx) + " at offset " +
+                           Hex(handle.offset) + ": checksum mismatch"));
   }
   *bytes = data;
   *size = handle.bytes;
