@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "formats/import/animated_root.h"
 #include "formats/import/text_scanner.h"
 #include "formats/motion/quaternion_math.h"
 
@@ -36,7 +37,8 @@ struct JointLayout {
 // Where each value of a frame line goes.
 struct BvhFrameLayout {
   std::vector<JointLayout> joints;
-  std::array<int, 3> root_position_channel = {-1, -1, -1};  // -1: the root's OFFSET
+  // The position channels of the root chain's joints (RootChainMotion); -1: the joint's OFFSET.
+  std::vector<std::array<int, 3>> chain_position_channel;
   int channel_count = 0;
 };
 
@@ -109,7 +111,9 @@ class BvhParser {
     take.skeleton = Skeleton("custom", joints_);
     Status valid = take.skeleton.Validate();
     if (!valid.ok()) return Error(joint_lines_.empty() ? 1 : joint_lines_[0], valid.message());
-    MOTIF_RETURN_IF_ERROR(ParseMotion(fps_override, &take));
+    RootChainMotion chain;
+    MOTIF_RETURN_IF_ERROR(ParseMotion(fps_override, &take, &chain));
+    MoveRootBelowStaticJoints(chain, StaticJointsAboveRoot(chain, take), &take);
     return take;
   }
 
@@ -297,9 +301,30 @@ class BvhParser {
   }
 
   // The channels in the order of a frame line: rotations per joint, the root's position.
+  // The file's root and each joint below it that is its parent's only child and has position
+  // channels: joints 0 .. count - 1 (depth-first order puts an only child next).
+  size_t RootChainLength() const {
+    std::vector<int> child_count(joints_.size(), 0);
+    for (const Joint& joint : joints_) {
+      if (joint.parent >= 0) ++child_count[joint.parent];
+    }
+    size_t count = 1;
+    while (count < joints_.size() && joints_[count].parent == static_cast<int>(count) - 1 &&
+           child_count[count - 1] == 1 && HasPositionChannel(joints_[count])) {
+      ++count;
+    }
+    return count;
+  }
+
+  static bool HasPositionChannel(const Joint& joint) {
+    return std::any_of(joint.channels.begin(), joint.channels.end(),
+                       [](ChannelType type) { return !IsRotation(type); });
+  }
+
   BvhFrameLayout BuildFrameLayout() const {
     BvhFrameLayout frame;
     frame.joints.resize(joints_.size());
+    frame.chain_position_channel.assign(RootChainLength(), {-1, -1, -1});
     for (size_t joint_idx = 0; joint_idx < joints_.size(); ++joint_idx) {
       for (ChannelType type : joints_[joint_idx].channels) {
         if (IsRotation(type)) {
@@ -307,8 +332,9 @@ class BvhParser {
           layout.rotation_axes[layout.rotation_count] = AxisOf(type);
           layout.rotation_channel[layout.rotation_count] = frame.channel_count;
           ++layout.rotation_count;
-        } else if (joint_idx == 0) {
-          frame.root_position_channel[static_cast<int>(AxisOf(type))] = frame.channel_count;
+        } else if (joint_idx < frame.chain_position_channel.size()) {
+          frame.chain_position_channel[joint_idx][static_cast<int>(AxisOf(type))] =
+              frame.channel_count;
         }
         ++frame.channel_count;
       }
@@ -373,16 +399,20 @@ class BvhParser {
     return Status::Ok();
   }
 
-  // One frame's values as the root position and every joint's rotation.
-  void AppendPose(const BvhFrameLayout& frame, const std::vector<double>& values,
-                  Take* take) const {
-    const std::array<double, 3>& root_offset = joints_[0].offset;
-    Eigen::Vector3d position;
-    for (int axis = 0; axis < 3; ++axis) {
-      const int channel = frame.root_position_channel[axis];
-      position[axis] = channel >= 0 ? values[channel] : root_offset[axis];
+  // One frame's values as the root chain's translations, the root position and every joint's
+  // rotation.
+  void AppendPose(const BvhFrameLayout& frame, const std::vector<double>& values, Take* take,
+                  RootChainMotion* chain) const {
+    for (size_t joint_idx = 0; joint_idx < frame.chain_position_channel.size(); ++joint_idx) {
+      const std::array<double, 3>& offset = joints_[joint_idx].offset;
+      Eigen::Vector3d translation;
+      for (int axis = 0; axis < 3; ++axis) {
+        const int channel = frame.chain_position_channel[joint_idx][axis];
+        translation[axis] = channel >= 0 ? values[channel] : offset[axis];
+      }
+      chain->translations.push_back(translation);
     }
-    take->root_positions.push_back(position);
+    take->root_positions.push_back(chain->translations[chain->translations.size() - chain->count]);
     for (size_t joint_idx = 0; joint_idx < joints_.size(); ++joint_idx) {
       const JointLayout& layout = frame.joints[joint_idx];
       Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
@@ -414,12 +444,14 @@ class BvhParser {
 
   // The `frame_count` frame lines declared at line `frames_line`, and not one more.
   Status ReadFrames(const BvhFrameLayout& frame, int64_t frame_count, int frames_line,
-                    LineCursor* lines, Take* take) const {
+                    LineCursor* lines, Take* take, RootChainMotion* chain) const {
     // Never trust the declared count for memory: a damaged header may claim billions.
     const size_t max_plausible = tokenizer_.Rest().size() / (2 * frame.channel_count) + 1;
     const size_t reserve_frames = std::min<size_t>(static_cast<size_t>(frame_count), max_plausible);
     take->root_positions.reserve(reserve_frames);
     take->rotations.reserve(reserve_frames * joints_.size());
+    chain->count = frame.chain_position_channel.size();
+    chain->translations.reserve(reserve_frames * chain->count);
     std::string_view line;
     std::vector<double> values(frame.channel_count);
     for (int64_t frame_idx = 0; frame_idx < frame_count; ++frame_idx) {
@@ -431,7 +463,7 @@ class BvhParser {
       }
       MOTIF_RETURN_IF_ERROR(ParseFrameLine(line, lines->line_number(), frame_idx, &values));
       MOTIF_RETURN_IF_ERROR(CheckRotations(frame, values, lines->line_number(), frame_idx));
-      AppendPose(frame, values, take);
+      AppendPose(frame, values, take, chain);
     }
     if (NextNonBlank(lines, &line)) {
       return Error(lines->line_number(),
@@ -441,7 +473,7 @@ class BvhParser {
     return Status::Ok();
   }
 
-  Status ParseMotion(double fps_override, Take* take) {
+  Status ParseMotion(double fps_override, Take* take, RootChainMotion* chain) {
     const BvhFrameLayout frame = BuildFrameLayout();
     if (frame.channel_count == 0) return Error(motion_line_, "the hierarchy declares no channels");
     LineCursor lines(tokenizer_.Rest(), motion_line_);
@@ -452,7 +484,7 @@ class BvhParser {
     MOTIF_RETURN_IF_ERROR(ReadFrameRate(&lines, fps_override, &fps));
     take->fps = fps;
     take->source_fps = fps;
-    return ReadFrames(frame, frame_count, frames_line, &lines, take);
+    return ReadFrames(frame, frame_count, frames_line, &lines, take, chain);
   }
 
   Status ParseFrameLine(std::string_view line, int line_number, int64_t frame_idx,
