@@ -13,4 +13,14 @@ std::string MocapDir() {
   return std::filesystem::weakly_canonical(dir, error).string();
 }
 
+std::string StudioRigDir() {
+  const char* from_env = std::getenv("MOTIF_BANDAI2_DIR");
+  const std::string dir = from_env && *from_env
+                              ? std::string(from_env)
+                              : (std::filesystem::path(MOTIF_MOCAP_DIR) / ".." / "bandai2").string();
+  std::error_code error;
+  if (!std::filesystem::is_directory(dir + "/bvh", error)) return "";
+  return std::filesystem::weakly_canonical(dir, error).string();
+}
+
 }  // namespace motif::testing

@@ -11,6 +11,10 @@ namespace motif::testing {
 // The mocap folder; empty if it does not exist.
 std::string MocapDir();
 
+// The studio rig's takes (../shared/data/bandai2 beside the repository, or $MOTIF_BANDAI2_DIR):
+// the folder holding bvh/; empty if it does not exist.
+std::string StudioRigDir();
+
 }  // namespace motif::testing
 
 #define MOTIF_REQUIRE_MOCAP_DATA()                                                          \
@@ -19,4 +23,12 @@ std::string MocapDir();
       GTEST_SKIP() << "real CMU takes not found (../shared/data/mocap or $MOTIF_MOCAP_DIR)" \
                       ": skipping this test";                                               \
     }                                                                                       \
+  } while (0)
+
+#define MOTIF_REQUIRE_STUDIO_RIG_DATA()                                                 \
+  do {                                                                                  \
+    if (::motif::testing::StudioRigDir().empty()) {                                     \
+      GTEST_SKIP() << "studio rig takes not found (../shared/data/bandai2 or "          \
+                      "$MOTIF_BANDAI2_DIR): skipping this test";                        \
+    }                                                                                   \
   } while (0)

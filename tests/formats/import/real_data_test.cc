@@ -163,5 +163,34 @@ TEST(RealData, TheDroppedFrameIsTheConverterPose) {
   EXPECT_GE(bent_joints, 5);
 }
 
+// The studio rig (../shared/data/bandai2) animates Hips under a static joint_Root: the import
+// makes Hips the root, so a walk travels and a turn turns in the root's columns.
+Take ImportStudioTake(const std::string& name) {
+  Result<std::vector<TakeSource>> sources =
+      DiscoverTakes({testing::StudioRigDir() + "/bvh/" + name + ".bvh"}, {});
+  EXPECT_TRUE(sources.ok()) << sources.status().ToString();
+  if (!sources.ok() || sources->empty()) return Take();
+  Result<Take> take = ImportTake(sources->front(), {});
+  EXPECT_TRUE(take.ok()) << take.status().ToString();
+  return take.ok() ? std::move(take).value() : Take();
+}
+
+TEST(RealData, AStudioRigsRootIsItsAnimatedHipsSoAWalkTravelsAndATurnTurns) {
+  MOTIF_REQUIRE_STUDIO_RIG_DATA();
+  const Take walk = ImportStudioTake("dataset-2_walk_normal_001");
+  ASSERT_GT(walk.frame_count(), 10u);
+  EXPECT_EQ(walk.skeleton.joint(0).name, "Hips");
+  EXPECT_EQ(walk.skeleton.FindJoint("joint_Root"), -1);
+  Eigen::Vector3d travel = walk.root_positions.back() - walk.root_positions.front();
+  travel.y() = 0;
+  EXPECT_GT(travel.norm(), 100.0);  // cm: a walk of over a metre
+  const Take turn = ImportStudioTake("dataset-2_walk-turn-left_normal_001");
+  ASSERT_GT(turn.frame_count(), 10u);
+  const double turned = std::remainder(
+      HeadingOf(turn.rotation(turn.frame_count() - 1, 0)) - HeadingOf(turn.rotation(0, 0)),
+      2 * kPi);
+  EXPECT_GT(turned, kPi / 4) << "the heading turned by " << turned << " rad";
+}
+
 }  // namespace
 }  // namespace motif
