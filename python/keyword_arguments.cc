@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <utility>
 
 namespace motifmine_python {
 namespace {
@@ -34,6 +35,65 @@ std::optional<motifmine::OptionInfo> OptionRow(const std::string& key) {
   return std::nullopt;
 }
 
+// Older names the table knows as aliases that are not the option itself, and their kind.
+const std::vector<std::pair<std::string, std::string>>& TranslatedKeywords() {
+  static const std::vector<std::pair<std::string, std::string>> kTranslated = {
+      {"min_length_seconds", "number"}, {"min_length_frames", "count"}, {"write_report", "switch"}};
+  return kTranslated;
+}
+
+// The edit distance (insertions, deletions, substitutions) between two keywords.
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t col = 0; col <= b.size(); ++col) row[col] = col;
+  for (size_t a_idx = 1; a_idx <= a.size(); ++a_idx) {
+    size_t diagonal = row[0];
+    row[0] = a_idx;
+    for (size_t b_idx = 1; b_idx <= b.size(); ++b_idx) {
+      const size_t above = row[b_idx];
+      const size_t substitute = diagonal + (a[a_idx - 1] == b[b_idx - 1] ? 0 : 1);
+      row[b_idx] = std::min({above + 1, row[b_idx - 1] + 1, substitute});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The valid keyword nearest `key` (the table's keywords first, then their aliases and the older
+// names, then `others`), or "" when none is near enough to be a slip.
+std::string ClosestKeyword(const std::string& key, const std::vector<std::string>& others) {
+  std::vector<std::string> candidates;
+  for (const motifmine::OptionInfo& row : motifmine::MineOptionTable()) {
+    std::string keyword = row.name;
+    std::replace(keyword.begin(), keyword.end(), '-', '_');
+    candidates.push_back(keyword);
+  }
+  for (const motifmine::OptionInfo& row : motifmine::MineOptionTable()) {
+    candidates.insert(candidates.end(), row.aliases.begin(), row.aliases.end());
+  }
+  for (const auto& [name, kind] : TranslatedKeywords()) candidates.push_back(name);
+  candidates.insert(candidates.end(), others.begin(), others.end());
+  std::string best;
+  size_t best_distance = std::max<size_t>(2, key.size() / 3) + 1;  // farther: not a slip
+  for (const std::string& candidate : candidates) {
+    const size_t distance = EditDistance(key, candidate);
+    if (distance < best_distance) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+// TypeError for a keyword no option has, naming the nearest one.
+[[noreturn]] void UnknownKeyword(const Argument& argument, const std::vector<std::string>& others) {
+  const std::string key = argument.name;
+  const std::string closest = ClosestKeyword(key, others);
+  throw py::type_error(std::string(argument.function) + ": unknown keyword '" + key + "'" +
+                       (closest.empty() ? std::string(" (motifmine.option_table() lists them)")
+                                        : ": did you mean '" + closest + "'?"));
+}
+
 // A keyword's value as the text the option table reads: True/False for a switch, a number, or
 // text ("auto", "0.5s", a path); TypeError naming the keyword for another kind of value.
 std::string OptionText(const Argument& argument, const std::string& type, py::handle value) {
@@ -62,23 +122,19 @@ motifmine::Status NamingTheKeyword(const motifmine::Status& status, const std::s
   return motifmine::Status(status.code(), key + message.substr(option.size()));
 }
 
-// Sets the table's option named by `argument` (or an older alias) from its value.
-void SetTableKeyword(motifmine::MineOptions* options, const Argument& argument, py::handle value) {
+// Sets the table's option named by `argument` (or an older alias) from its value; an unknown
+// one is a TypeError naming the nearest of the table's keywords and `others`.
+void SetTableKeyword(motifmine::MineOptions* options, const Argument& argument, py::handle value,
+                     const std::vector<std::string>& others = {}) {
   const std::string key = argument.name;
-  // Older names the table knows as aliases that are not the option itself.
-  static const std::vector<std::pair<std::string, std::string>> kTranslated = {
-      {"min_length_seconds", "number"}, {"min_length_frames", "count"}, {"write_report", "switch"}};
   std::string type;
-  for (const auto& [name, kind] : kTranslated) {
+  for (const auto& [name, kind] : TranslatedKeywords()) {
     if (key == name) type = kind;
   }
   std::string option = key;
   if (type.empty()) {
     const std::optional<motifmine::OptionInfo> row = OptionRow(key);
-    if (!row) {
-      throw py::type_error(std::string(argument.function) +
-                           " got an unexpected keyword argument '" + key + "'");
-    }
+    if (!row) UnknownKeyword(argument, others);
     type = row->type;
     option = row->name;
   }
@@ -147,7 +203,10 @@ uint64_t TableWholeArgument(const Argument& argument, const GivenInt& given) {
 }
 
 void SetMineKeyword(motifmine::MineOptions* options, const std::string& key, py::handle value) {
-  SetTableKeyword(options, {"mine()", key.c_str()}, value);
+  // mine()'s own arguments, for a slip in one of them (it reaches **kwargs).
+  static const std::vector<std::string> kMineArguments = {"inputs", "out_dir", "progress",
+                                                          "allow_older"};
+  SetTableKeyword(options, {"mine()", key.c_str()}, value, kMineArguments);
 }
 
 }  // namespace motifmine_python

@@ -58,8 +58,8 @@ uint64_t WholeArgument(const Argument& argument, const GivenInt& given, uint64_t
 uint64_t TableWholeArgument(const Argument& argument, const GivenInt& given);
 
 // Sets mine()'s option `key` (the table's name with '_' for '-', or an older alias) from its
-// value: TypeError for an unknown keyword or a value of the wrong kind, OptionFailure for one
-// out of range, naming the keyword.
+// value: TypeError for an unknown keyword (naming the nearest valid one: "did you mean
+// 'kmax'?") or a value of the wrong kind, OptionFailure for one out of range, naming the keyword.
 void SetMineKeyword(motifmine::MineOptions* options, const std::string& key, py::handle value);
 
 // The signature's name of each kind.

@@ -15,14 +15,20 @@
 
 #include <motifmine/motifmine.h>
 
+#include "archive_pose.h"
 #include "keyword_arguments.h"
+#include "reprs.h"
+#include "status_error.h"
 
 namespace py = pybind11;
 
 namespace {
 
+using motifmine_python::AddPoseMethods;
 using motifmine_python::Argument;
+using motifmine_python::BindSkeleton;
 using motifmine_python::CallbackArgument;
+using motifmine_python::Check;
 using motifmine_python::GivenBool;
 using motifmine_python::GivenCallable;
 using motifmine_python::GivenInt;
@@ -30,20 +36,12 @@ using motifmine_python::GivenStr;
 using motifmine_python::GivenStrList;
 using motifmine_python::OptionFailure;
 using motifmine_python::SetMineKeyword;
+using motifmine_python::StatusError;
 using motifmine_python::SwitchArgument;
 using motifmine_python::TableWholeArgument;
 using motifmine_python::TextArgument;
 using motifmine_python::TextListArgument;
 using motifmine_python::WholeArgument;
-
-// A failed Status on its way to Python.
-struct StatusError {
-  motifmine::Status status;
-};
-
-void Check(const motifmine::Status& status) {
-  if (!status.ok()) throw StatusError{status};
-}
 
 // allow_older=True for one call: this thread may work on an archive's previous version when
 // its newest commit is damaged (motifmine::AllowOlderVersions); refused otherwise.
@@ -122,6 +120,18 @@ motifmine::MineResult Mine(const GivenStrList& inputs_given, const GivenStr& out
   motifmine::MineResult result;
   Check(WithoutGil(progress, &options.progress,
                    [&] { return motifmine::Mine(inputs, options, &result); }));
+  return result;
+}
+
+motifmine::MineResult Load(const GivenStr& out_dir_given) {
+  const std::string out_dir = TextArgument({"load()", "out_dir"}, out_dir_given);
+  motifmine::MineResult result;
+  motifmine::Status status;
+  {
+    py::gil_scoped_release release;
+    status = motifmine::LoadMineResult(out_dir, &result);
+  }
+  Check(status);
   return result;
 }
 
@@ -229,11 +239,6 @@ std::vector<motifmine::SearchMatch> Search(const GivenStr& archive_given,
   return matches;
 }
 
-std::string InstanceRepr(const motifmine::Instance& instance) {
-  return "Instance(clip='" + instance.clip + "', start=" + std::to_string(instance.start) +
-         ", end=" + std::to_string(instance.end) + ")";
-}
-
 }  // namespace
 
 PYBIND11_MODULE(motifmine, m) {
@@ -265,14 +270,14 @@ PYBIND11_MODULE(motifmine, m) {
       .def_readonly("clip", &motifmine::Instance::clip)
       .def_readonly("start", &motifmine::Instance::start)
       .def_readonly("end", &motifmine::Instance::end)
-      .def("__repr__", &InstanceRepr);
+      .def_readonly("fps", &motifmine::Instance::fps, "the clip's frame rate")
+      .def_property_readonly("seconds", &motifmine_python::InstanceSeconds,
+                             "(end - start) / fps; 0 when the rate is unknown")
+      .def("__repr__", &motifmine_python::InstanceRepr);
   py::class_<motifmine::Motif>(m, "Motif")
       .def_readonly("id", &motifmine::Motif::id)
       .def_readonly("instances", &motifmine::Motif::instances)
-      .def("__repr__", [](const motifmine::Motif& motif) {
-        return "Motif(id=" + std::to_string(motif.id) + ", " +
-               std::to_string(motif.instances.size()) + " instances)";
-      });
+      .def("__repr__", &motifmine_python::MotifRepr);
   py::class_<motifmine::Clip>(m, "Clip")
       .def_readonly("name", &motifmine::Clip::name)
       .def_readonly("source", &motifmine::Clip::source)
@@ -300,7 +305,8 @@ PYBIND11_MODULE(motifmine, m) {
       .def_readonly("timings", &motifmine::MineResult::timings)
       .def_readonly("archive_path", &motifmine::MineResult::archive_path)
       .def_readonly("motifs_path", &motifmine::MineResult::motifs_path)
-      .def_readonly("skipped_takes", &motifmine::MineResult::skipped_takes);
+      .def_readonly("skipped_takes", &motifmine::MineResult::skipped_takes)
+      .def("__repr__", &motifmine_python::MineResultRepr);
   py::class_<motifmine::ImportResult>(m, "ImportResult")
       .def_readonly("takes_imported", &motifmine::ImportResult::takes_imported)
       .def_readonly("takes_already_present", &motifmine::ImportResult::takes_already_present)
@@ -316,6 +322,11 @@ PYBIND11_MODULE(motifmine, m) {
         "min_length_seconds, min_length_frames and write_report. "
         "progress(stage, done, total) is called as it goes. An archive whose newest commit is "
         "damaged is refused (motifmine.Error, code 12) unless allow_older=True.");
+  m.def("load", &Load, py::arg("out_dir"),
+        "The MineResult of an earlier run, read back from the folder `mine` (or `motifmine mine "
+        "--out`) wrote, without mining again: motifs, clips and parameters from motifs.json, "
+        "timings and eps_how from run.json while it describes that motifs.json. A missing "
+        "folder or one without motifs.json raises motifmine.Error (code 11) naming the path.");
   m.def(
       "option_table",
       [] {
@@ -379,14 +390,20 @@ PYBIND11_MODULE(motifmine, m) {
         "The takes with a window most like frames [start, end) of clip, best first, as "
         "`motifmine search` finds them.");
 
-  py::class_<motifmine::Archive>(m, "Archive")
+  BindSkeleton(m);
+  py::class_<motifmine::Archive> archive(m, "Archive");
+  archive
       .def(py::init(&OpenArchive), py::arg("path"), py::kw_only(), py::arg("allow_older") = kFalse)
       .def_property_readonly("path", &motifmine::Archive::path)
       .def_property_readonly("frames", &motifmine::Archive::frames)
       .def_property_readonly("fps", &motifmine::Archive::fps)
       .def_property_readonly("clips", &motifmine::Archive::clips)
-      .def_property_readonly("joint_names", &motifmine::Archive::joint_names)
+      .def_property_readonly("joint_names", &motifmine::Archive::joint_names,
+                             "the archive's canonical joint names ('lfemur'); "
+                             "skeleton.source_joint_names has the imported file's")
       .def("rotations", &Rotations, py::arg("clip"), py::arg("start"), py::arg("end"),
            "float32 array (frames, joints, 4): unit quaternions (w, x, y, z), each joint's "
-           "relative to its parent, the root's without its heading");
+           "relative to its parent, the root's without its heading")
+      .def("__repr__", &motifmine_python::ArchiveRepr);
+  AddPoseMethods(archive);
 }

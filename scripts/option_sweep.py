@@ -91,6 +91,12 @@ PY_BASE = {
     "option_table": {},
     "Archive": {"path": "{F}/tiny.mfs"},
     "Archive.rotations": {"clip": CLIP, "start": 0, "end": 10},
+    "Archive.clip_skeleton": {"clip": CLIP},
+    "Archive.root_positions": {"clip": CLIP, "start": 0, "end": 10},
+    "Archive.root_rotations": {"clip": CLIP, "start": 0, "end": 10},
+    "Archive.headings": {"clip": CLIP, "start": 0, "end": 10},
+    "Archive.world_positions": {"clip": CLIP, "start": 0, "end": 10},
+    "load": {"out_dir": "{F}/mined"},
 }
 # Copied into {R} before the call: build_words writes beside its archive (words made with the
 # same settings, so an accepted call reuses them).

@@ -2,7 +2,9 @@
 # The library as a downstream project meets it: installs BUILD (default build/) into a temporary
 # prefix, configures and builds examples/mine_archive against it with find_package(motifmine),
 # runs it on a built-in synthetic archive, and checks that it finds the motifs the installed tool
-# finds on the same archive. Run by ctest as install_and_example (docs/library.md).
+# finds on the same archive; the installed Python module, with PYTHONPATH unset, loads the mined
+# folder and rebuilds a pose as export writes it. Run by ctest as install_and_example
+# (docs/library.md).
 #
 #   scripts/test_install.sh [BUILD]
 set -euo pipefail
@@ -32,16 +34,35 @@ if ! diff <(strip "$prefix/library/motifs.json") <(strip "$prefix/tool/motifs.js
 fi
 # The installed Python module imports from the prefix, with no LD_LIBRARY_PATH: its RUNPATH is
 # relative to its own folder (python/CMakeLists.txt). Skipped when the module was not built.
+# PYTHONPATH unset: the module is found by its folder alone, never the build tree's. It loads
+# the folder the example mined (motifmine.load: the same motifs as motifs.json) and rebuilds a
+# pose whose forward kinematics is the BVH the installed tool exports (python/tests/
+# test_pose_and_load.py's check, its FK and BVH reader).
 module="$(find "$prefix/usr" -name 'motifmine*.so' -path '*dist-packages*' | head -1)"
 if [ -n "$module" ]; then
-  frames="$(env -u LD_LIBRARY_PATH PYTHONPATH="$(dirname "$module")" /usr/bin/python3 -c \
-    "import motifmine, sys; print(motifmine.Archive(sys.argv[1]).frames)" \
-    "$prefix/library/archive.mfs")"
-  if [ "$frames" != 20000 ]; then
-    echo "the installed Python module read $frames frames, not 20000" >&2
-    exit 1
-  fi
-  echo "the installed Python module ($module) imports from the prefix and reads the archive"
+  env -u LD_LIBRARY_PATH -u PYTHONPATH MOTIFMINE_TOOL="$prefix/usr/bin/motifmine" \
+    /usr/bin/python3 - "$(dirname "$module")" "$root/python/tests" "$prefix/library" \
+    "$prefix/pose" <<'PYTHON'
+import json, os, pathlib, sys
+sys.path[:0] = sys.argv[1:3]
+import motifmine
+import test_pose_and_load as check
+module_dir, _, mined, pose_dir = sys.argv[1:]
+assert motifmine.__file__.startswith(module_dir), motifmine.__file__
+archive = motifmine.Archive(os.path.join(mined, "archive.mfs"))
+assert archive.frames == 20000, archive.frames
+loaded = motifmine.load(mined)
+with open(os.path.join(mined, "motifs.json")) as f:
+    expected = json.load(f)["motifs"]
+got = [[(i.clip, i.start, i.end) for i in m.instances] for m in loaded.motifs]
+assert got == [[(i["clip"], i["start"], i["end"]) for i in m["instances"]] for m in expected]
+instance = loaded.motifs[0].instances[0]
+os.makedirs(pose_dir)
+check.check_pose_is_exports(archive, instance.clip, instance.start, instance.end,
+                            pathlib.Path(pose_dir))
+print("the installed Python module (%s) imports from the prefix, loads %r and rebuilds the "
+      "pose of %r as export writes it" % (motifmine.__file__, loaded, instance))
+PYTHON
 else
   echo "no Python module installed: its import from the prefix is not checked"
 fi

@@ -2,18 +2,35 @@
 // FrameFileReader and ImportIntoArchive.
 #include <utility>
 
+#include "engine/api/archive_impl.h"
 #include "engine/api/public_status.h"
 #include "engine/ingest/archive_import.h"
-#include "formats/frame_file/frame_file_reader.h"
 #include "motifmine/archive.h"
 
 namespace motifmine {
 
-class Archive::Impl {
- public:
-  std::unique_ptr<motif::FrameFileReader> reader;
-  std::vector<Clip> clips;
-};
+Status Archive::Impl::FindClip(const std::string& clip, const motif::ClipInfo** info) const {
+  for (const motif::ClipInfo& candidate : reader->clips()) {
+    if (candidate.name == clip) *info = &candidate;
+  }
+  if (*info == nullptr) {
+    return {Status::Code::kNotFound, reader->path() + ": no clip named '" + clip + "'"};
+  }
+  return {};
+}
+
+Status Archive::Impl::FindRange(const std::string& clip, uint64_t start, uint64_t end,
+                                const motif::ClipInfo** info) const {
+  *info = nullptr;
+  if (Status found = FindClip(clip, info); !found.ok()) return found;
+  if (start > end || end > (*info)->frame_count) {
+    return {Status::Code::kInvalidArgument, "start and end: frames [" + std::to_string(start) +
+                                                ", " + std::to_string(end) + ") are not in clip '" +
+                                                clip + "' of " +
+                                                std::to_string((*info)->frame_count) + " frames"};
+  }
+  return {};
+}
 
 Archive::Archive(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Archive::~Archive() = default;
@@ -45,18 +62,8 @@ std::vector<std::string> Archive::joint_names() const {
 
 Status Archive::Rotations(const std::string& clip, uint64_t start, uint64_t end,
                           std::vector<float>* rotations) const {
-  const Clip* found = nullptr;
-  for (const Clip& candidate : impl_->clips) {
-    if (candidate.name == clip) found = &candidate;
-  }
-  if (found == nullptr) {
-    return {Status::Code::kNotFound, path() + ": no clip named '" + clip + "'"};
-  }
-  if (start > end || end > found->frames) {
-    return {Status::Code::kInvalidArgument,
-            "start and end: frames [" + std::to_string(start) + ", " + std::to_string(end) +
-                ") are not in clip '" + clip + "' of " + std::to_string(found->frames) + " frames"};
-  }
+  const motif::ClipInfo* found = nullptr;
+  if (Status in_clip = impl_->FindRange(clip, start, end, &found); !in_clip.ok()) return in_clip;
   std::vector<float> rows;
   motif::Status read = impl_->reader->ReadFrames(found->first_frame + start, end - start, &rows);
   if (!read.ok()) return motif::ToPublicStatus(read);

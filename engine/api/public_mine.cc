@@ -2,6 +2,7 @@
 // engine's own options type), and its result copied into the public types.
 #include <utility>
 
+#include "engine/api/public_motifs.h"
 #include "engine/api/public_status.h"
 #include "engine/pipeline/mine_pipeline.h"
 #include "motifmine/mine.h"
@@ -12,17 +13,7 @@ namespace {
 
 void CopyResult(const motif::MinePipelineResult& run, MineResult* result) {
   *result = MineResult();
-  for (size_t rank = 0; rank < run.document.motifs.size(); ++rank) {
-    Motif motif;
-    motif.id = static_cast<uint32_t>(rank);
-    for (const motif::MotifsJsonInstance& instance : run.document.motifs[rank].instances) {
-      motif.instances.push_back({instance.clip, instance.start, instance.end});
-    }
-    result->motifs.push_back(std::move(motif));
-  }
-  for (const motif::MotifsJsonClip& clip : run.document.clips) {
-    result->clips.push_back({clip.name, clip.source, clip.first_frame, clip.frames, clip.fps});
-  }
+  motif::CopyMotifsDocument(run.document, result);
   result->parameters = {run.trellis.params.eps,      run.trellis.eps_how,
                         run.trellis.params.k_max,    run.paths.params.branch,
                         run.paths.params.min_length, run.trellis.params.seed};

@@ -3,6 +3,7 @@
 // (<motifmine/motifmine.h>); no third-party type.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -19,6 +20,24 @@ struct Clip {
   uint64_t first_frame = 0;  // global frame index of its first frame
   uint64_t frames = 0;
   double fps = 0;
+};
+
+// A skeleton: its joints in frame order, parents first (joint 0 is the root).
+struct Skeleton {
+  std::string family;                    // "cmu31" (CMU's 31 joints) or "custom"
+  std::vector<std::string> joint_names;  // the archive's names (canonical: "lfemur")
+  // The names of the file the take was imported from ("LeftUpLeg" for a BVH take's "lfemur"),
+  // as `motifmine export` writes them; the canonical name where the import kept the name.
+  std::vector<std::string> source_joint_names;
+  std::vector<int32_t> parents;                // -1 for the root
+  std::vector<std::array<double, 3>> offsets;  // from the parent, rest pose, the take's units
+};
+
+// The root of frames [start, end) of a clip: what a pose needs beyond the joints' rotations.
+struct RootMotion {
+  std::vector<double> positions;  // frames x 3: world position, as `motifmine export` writes it
+  std::vector<double> rotations;  // frames x 4: world rotation (w, x, y, z), heading included
+  std::vector<double> headings;   // frames: radians about the vertical Y axis, unwrapped
 };
 
 // Whether this thread's calls (Archive::Open, Mine, BuildWords, LoadSignatures,
@@ -43,6 +62,26 @@ class MOTIFMINE_API Archive {
   double fps() const;
   const std::vector<Clip>& clips() const;
   std::vector<std::string> joint_names() const;  // the skeleton's joints, in frame order
+  // The archive's skeleton (its skeleton table): canonical joint names and the archive's rest
+  // offsets; source_joint_names are those all its clips share, the canonical names where
+  // clips imported from different kinds of file name a joint differently.
+  Skeleton skeleton() const;
+
+  // `clip`'s own skeleton: its source joint names and its bone offsets (subjects differ in
+  // bone lengths), as `motifmine export` writes them. NotFound for an unknown clip.
+  Status ClipSkeleton(const std::string& clip, Skeleton* skeleton) const;
+
+  // The root of frames [start, end) of `clip`: positions integrated from the clip's first frame
+  // by the code `motifmine export` uses (formats/motion/pose_frames.h), so frames [0, end) are
+  // read. NotFound for an unknown clip, InvalidArgument for a range outside it.
+  Status Root(const std::string& clip, uint64_t start, uint64_t end, RootMotion* root) const;
+
+  // The world positions of the joints of frames [start, end) of `clip`: (end - start) x joints x
+  // 3 doubles, by forward kinematics over the clip's own skeleton (the root at its position, a
+  // joint at its parent's position plus its offset turned by the parent's world rotation).
+  // Errors as Root.
+  Status WorldPositions(const std::string& clip, uint64_t start, uint64_t end,
+                        std::vector<double>* positions) const;
 
   // The joints' rotations of frames [start, end) of `clip` (frames within the clip, end
   // exclusive): (end - start) x joints x 4 floats, unit quaternions (w, x, y, z), each joint's

@@ -19,6 +19,7 @@ struct Instance {
   std::string clip;
   uint64_t start = 0;  // first frame within the clip
   uint64_t end = 0;    // one past the last
+  double fps = 0;      // the clip's frame rate (0 when unknown)
 };
 
 struct Motif {
@@ -58,5 +59,14 @@ struct MineResult {
 // and the codes of docs/guide.md otherwise, the message naming the file.
 MOTIFMINE_API Status Mine(const std::vector<std::string>& inputs, const MineOptions& options,
                           MineResult* result);
+
+// The result of an earlier run read back from its output folder, without mining again: the
+// motifs, clips and parameters of OUT/motifs.json, and the timings and how eps was chosen from
+// OUT/run.json while it still describes that motifs.json (empty otherwise; skipped_takes are
+// not recorded, so they are empty). archive_path is the archive motifs.json names, or
+// OUT/archive.mfs when that one is gone and the folder holds one. NotFound naming the path for
+// a missing folder or a folder without motifs.json; InvalidArgument / NotSupported for a
+// malformed motifs.json.
+MOTIFMINE_API Status LoadMineResult(const std::string& out_dir, MineResult* result);
 
 }  // namespace motifmine

@@ -1,6 +1,9 @@
 // motifmine::Mine, the library's whole job: the same motifs as `motifmine mine` on the same input,
-// its defaults those of the tool, and a failing call's Status with the tool's code and message.
+// its defaults those of the tool, and a failing call's Status with the tool's code and message;
+// a mined folder loaded back, and an archive's root and pose.
+#include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -71,6 +74,74 @@ TEST(PublicApi, MineFindsTheToolsMotifsOnTheSyntheticArchive) {
             (std::vector<std::string>{"synth", "trellis features", "trellis", "grow", "cluster"}));
   ASSERT_EQ(result.timings.size(), 4u);
   EXPECT_EQ(result.timings[0].stage, "synth");
+}
+
+TEST(PublicApi, LoadMineResultGivesBackTheMinedResult) {
+  motif::testing::TempDir dir;
+  motifmine::MineOptions options;
+  options.out_dir = dir.File("out");
+  options.synth_frames = 15000;
+  options.synth_motifs = 2;
+  options.write_report = false;
+  motifmine::MineResult mined;
+  ASSERT_TRUE(motifmine::Mine({}, options, &mined).ok());
+  motifmine::MineResult loaded;
+  const motifmine::Status status = motifmine::LoadMineResult(dir.File("out"), &loaded);
+  ASSERT_TRUE(status.ok()) << status.ToString();
+  ASSERT_EQ(loaded.motifs.size(), mined.motifs.size());
+  for (size_t m = 0; m < mined.motifs.size(); ++m) {
+    ASSERT_EQ(loaded.motifs[m].instances.size(), mined.motifs[m].instances.size());
+    for (size_t i = 0; i < mined.motifs[m].instances.size(); ++i) {
+      const motifmine::Instance& a = loaded.motifs[m].instances[i];
+      const motifmine::Instance& b = mined.motifs[m].instances[i];
+      EXPECT_EQ(std::tie(a.clip, a.start, a.end, a.fps), std::tie(b.clip, b.start, b.end, b.fps));
+      EXPECT_EQ(a.fps, 120.0);
+    }
+  }
+  EXPECT_EQ(loaded.parameters.eps, mined.parameters.eps);
+  EXPECT_EQ(loaded.parameters.eps_how, mined.parameters.eps_how);
+  EXPECT_EQ(loaded.parameters.k_max, mined.parameters.k_max);
+  EXPECT_EQ(loaded.archive_path, mined.archive_path);
+  ASSERT_EQ(loaded.timings.size(), mined.timings.size());
+  EXPECT_EQ(loaded.timings[0].stage, "synth");
+
+  EXPECT_EQ(motifmine::LoadMineResult(dir.File("absent"), &loaded).code(),
+            motifmine::Status::Code::kNotFound);
+  const motifmine::Status empty = motifmine::LoadMineResult(dir.path(), &loaded);
+  EXPECT_EQ(empty.code(), motifmine::Status::Code::kNotFound);
+  EXPECT_NE(empty.message().find(dir.File("motifs.json")), std::string::npos) << empty.ToString();
+}
+
+TEST(PublicApi, AnArchivesRootIsWhereItsPoseStands) {
+  motif::testing::TempDir dir;
+  ASSERT_EQ(RunTool("synth " + dir.File("s.mfs") + " --frames 15000 --motifs 2 --quiet").exit_code,
+            0);
+  std::unique_ptr<motifmine::Archive> archive;
+  ASSERT_TRUE(motifmine::Archive::Open(dir.File("s.mfs"), &archive).ok());
+  const std::string clip = archive->clips()[0].name;
+  motifmine::RootMotion root;
+  ASSERT_TRUE(archive->Root(clip, 100, 110, &root).ok());
+  std::vector<double> positions;
+  ASSERT_TRUE(archive->WorldPositions(clip, 100, 110, &positions).ok());
+  const size_t joints = archive->joint_names().size();
+  ASSERT_EQ(root.positions.size(), 30u);
+  ASSERT_EQ(root.rotations.size(), 40u);
+  ASSERT_EQ(root.headings.size(), 10u);
+  ASSERT_EQ(positions.size(), 10 * joints * 3);
+  for (size_t frame = 0; frame < 10; ++frame) {  // joint 0 of a pose is the root
+    for (size_t axis = 0; axis < 3; ++axis) {
+      EXPECT_EQ(positions[frame * joints * 3 + axis], root.positions[frame * 3 + axis]);
+    }
+  }
+  motifmine::Skeleton skeleton;
+  ASSERT_TRUE(archive->ClipSkeleton(clip, &skeleton).ok());
+  EXPECT_EQ(skeleton.family, "cmu31");
+  EXPECT_EQ(skeleton.joint_names, archive->joint_names());
+  EXPECT_EQ(skeleton.parents[0], -1);
+  EXPECT_EQ(archive->ClipSkeleton("no_such_clip", &skeleton).code(),
+            motifmine::Status::Code::kNotFound);
+  EXPECT_EQ(archive->Root(clip, 0, archive->clips()[0].frames + 1, &root).code(),
+            motifmine::Status::Code::kInvalidArgument);
 }
 
 TEST(PublicApi, DefaultsAreTheTools) {
