@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine/cli/mined_folder.h"
 #include "engine/cli/numeric_options.h"
 #include "engine/cli/table_options.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -74,6 +75,18 @@ void InstallOlderVersionPolicy(const std::string& command, bool allow_older) {
       });
 }
 
+// ARCHIVE given as a folder `mine` wrote: the archive mined there (mined_folder.h).
+void UseTheArchiveOfAMinedFolder(const std::string& command, po::variables_map* vm) {
+  if (!ReadsArchiveArgument(command) || !vm->count("archive")) return;
+  boost::any& value = vm->at("archive").value();
+  const std::string* given = boost::any_cast<std::string>(&value);
+  if (given == nullptr) return;
+  const std::string mined = ArchiveOfMinedFolder(*given);
+  if (mined.empty()) return;
+  vm->insert({kMinedFolderKey, po::variable_value(boost::any(*given), false)});
+  value = mined;
+}
+
 }  // namespace
 
 int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::variables_map* vm) {
@@ -132,6 +145,7 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
       return kExitUsage;
     }
   }
+  UseTheArchiveOfAMinedFolder(spec.name, vm);
   if (vm->count("progress")) {
     ProgressMode mode;
     if (!ParseProgressMode((*vm)["progress"].as<std::string>(), &mode)) {

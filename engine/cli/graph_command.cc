@@ -9,6 +9,7 @@
 
 #include "common/file_util.h"
 #include "engine/cli/cli_common.h"
+#include "engine/cli/mined_folder.h"
 #include "engine/cli/table_options.h"
 #include "engine/cli/words_on_demand.h"
 #include "engine/graph/motion_graph.h"
@@ -152,6 +153,7 @@ Status EnsureGraphTrellis(const FrameFileReader& archive, const std::string& arc
 
 // The command line of a run, checked.
 struct GraphArgs {
+  std::string mined_folder;
   std::string start;
   std::string out;
   std::string prefix;
@@ -169,7 +171,8 @@ CommandSpec GraphCommandSpec() {
       "motifmine graph ARCHIVE --start CLIP --seconds S --out DIR [--unconstrained] [--seed N]";
   spec.summary =
       "Builds a motion graph of ARCHIVE: transitions between frames whose short windows of\n"
-      "poses match (found in the matching trellis, ARCHIVE.mtr, built first when missing),\n"
+      "poses match (found in the matching trellis: the one `mine` wrote when ARCHIVE is its\n"
+      "output folder, else ARCHIVE.mtr, built first when missing),\n"
       "local minima of the window's distance, blended over the window; by default a transition\n"
       "is kept only when the signatures of the 12 motion words before it and the 12 after it\n"
       "are close (--unconstrained keeps them all); the largest strongly connected component is\n"
@@ -184,7 +187,9 @@ CommandSpec GraphCommandSpec() {
       "seconds the walk plays after arriving by a transition before it may take another")(
       "window", po::value<double>()->default_value(0.25),
       "seconds of the window matched and blended at a transition")(
-      "trellis", po::value<std::string>()->default_value(""), "default: ARCHIVE.mtr")(
+      "trellis", po::value<std::string>()->default_value(""),
+      "default: the trellis `mine` wrote beside ARCHIVE when it is of this archive version, "
+      "else ARCHIVE.mtr")(
       "prefix", po::value<std::string>()->default_value(""),
       "read PREFIX.mwm and PREFIX.mws (default: ARCHIVE without .mfs)");
   AddTableFlags(spec, kRunFlags);
@@ -198,7 +203,10 @@ void ReadGraphArgs(const po::variables_map& vm, GraphArgs* args, GraphRun* run) 
   run->archive = vm["archive"].as<std::string>();
   run->constrained = !vm["unconstrained"].as<bool>();
   run->trellis = vm["trellis"].as<std::string>();
-  if (run->trellis.empty()) run->trellis = DefaultTrellisPath(run->archive);
+  // Where `mine` may have left a trellis: the folder given as ARCHIVE, else the archive's.
+  args->mined_folder = vm.count(kMinedFolderKey)
+                           ? vm[kMinedFolderKey].as<std::string>()
+                           : std::filesystem::path(run->archive).parent_path().string();
   args->start = vm["start"].as<std::string>();
   args->out = vm["out"].as<std::string>();
   args->prefix = vm["prefix"].as<std::string>();
@@ -223,6 +231,10 @@ Result<uint32_t> StartClip(const FrameFileReader& reader, const std::string& sta
 Result<MotionGraph> BuildGraph(const FrameFileReader& reader, const GraphArgs& args,
                                uint32_t window, GraphRun* run, ProgressReporter* progress) {
   auto clock = std::chrono::steady_clock::now();
+  // Not given: the trellis `mine` left beside the archive when it is of this version, else
+  // ARCHIVE.mtr.
+  if (run->trellis.empty()) run->trellis = MinedTrellisOf(args.mined_folder, reader);
+  if (run->trellis.empty()) run->trellis = DefaultTrellisPath(run->archive);
   MOTIF_RETURN_IF_ERROR(
       EnsureGraphTrellis(reader, run->archive, run->trellis, args.threads, progress));
   MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<TrellisFileReader> trellis,

@@ -94,6 +94,7 @@ Result<ReportInfo> ReportInfoFor(const MinedMotifs& mined, const std::string& tr
       if (timing.stage != "report") info.timings.push_back({timing.stage, timing.seconds});
     }
     info.peak_memory_bytes = run->peak_memory_bytes;
+    info.descriptions = run->descriptions;
     if (info.truth_path.empty()) info.truth_path = run->truth_path;
   } else if (!run.status().IsNotFound()) {
     std::fprintf(stderr, "motifmine report: note: %s not used: %s\n", run_path.c_str(),

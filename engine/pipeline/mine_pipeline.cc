@@ -56,15 +56,6 @@ const char* TrellisProgressUnit(const std::string& stage) {
   return "columns";
 }
 
-// Whether `path` is a finished trellis of exactly this archive version.
-bool TrellisOfArchive(const std::string& path, const FrameFileReader& archive) {
-  std::error_code error;
-  if (!fs::exists(path, error)) return false;
-  Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(path);
-  return trellis.ok() && (*trellis)->params().archive_identity == archive.summary().identity &&
-         (*trellis)->params().frame_count == archive.frame_count();
-}
-
 }  // namespace
 
 MinePipeline::MinePipeline(RunSession* session, StagePlan plan)
@@ -265,7 +256,7 @@ Status MinePipeline::TrellisStage() {
   if (step == TrellisStep::kSkip) return Status::Ok();
   const RunFiles& files = session_->files();
   if (step == TrellisStep::kAnyOfArchive) {
-    step = TrellisOfArchive(files.trellis, session_->archive()) ? TrellisStep::kLink
+    step = IsTrellisOfArchive(files.trellis, session_->archive()) ? TrellisStep::kLink
                                                                 : TrellisStep::kBuild;
   }
   const Clock::time_point start = Clock::now();
@@ -399,6 +390,7 @@ Status MinePipeline::WriteRunStage() {
   }
   record.total_seconds = result_.total_seconds;
   record.peak_memory_bytes = result_.peak_memory_bytes;
+  record.descriptions.insert(descriptions_.begin(), descriptions_.end());
   if (!result_.truth_path.empty()) {
     std::error_code error;
     const fs::path truth =
@@ -424,6 +416,7 @@ Status MinePipeline::ReportStage() {
   info.peak_memory_bytes = result_.peak_memory_bytes;
   info.planted_score = result_.score;
   info.truth_path = result_.truth_path;
+  info.descriptions.insert(descriptions_.begin(), descriptions_.end());
   result_.report_path = session_->files().report;
   MOTIF_RETURN_IF_ERROR(WriteReportHtml(result_.report_path, result_.document, session_->archive(),
                                         info, ReportOptionsFor(session_->options())));

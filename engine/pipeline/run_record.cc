@@ -33,6 +33,7 @@ Status WriteRunRecord(const std::string& path, const RunRecord& record) {
   json["total_seconds"] = record.total_seconds;
   json["peak_memory_bytes"] = record.peak_memory_bytes;
   json["truth"] = record.truth_path;
+  if (!record.descriptions.empty()) json["descriptions"] = record.descriptions;
   return AtomicWriteFile(path, json.dump(2) + "\n");
 }
 
@@ -60,6 +61,9 @@ Result<RunRecord> ReadRunRecord(const std::string& path, const std::string& moti
     }
     record.total_seconds = json.at("total_seconds").get<double>();
     record.peak_memory_bytes = json.at("peak_memory_bytes").get<uint64_t>();
+    if (json.contains("descriptions")) {
+      record.descriptions = json.at("descriptions").get<std::map<std::string, std::string>>();
+    }
     const std::string truth = json.at("truth").get<std::string>();
     if (!truth.empty()) {
       record.truth_path = std::filesystem::path(truth).is_absolute()

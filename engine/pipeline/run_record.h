@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct RunRecord {
   double total_seconds = 0;
   uint64_t peak_memory_bytes = 0;
   std::string truth_path;  // a synthetic archive's truth file, relative to run.json's folder
+  // --descriptions of the run, by clip name (the report shows them over the archive's).
+  std::map<std::string, std::string> descriptions;
 };
 
 // Writes `record` to `path` atomically.

@@ -333,9 +333,8 @@ void AppendTimelineBar(const ClipInfo& clip, std::vector<TimelineMark>* clip_mar
   out += "</svg></span></div>\n";
 }
 
-void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reader,
-                    std::string* html) {
-  const double fps = reader.fps();
+void AppendTimeline(const MotifsDocument& document, const std::vector<ClipInfo>& clips,
+                    double fps, std::string* html) {
   std::unordered_map<std::string, std::vector<TimelineMark>> marks;
   for (const MotifsJsonMotif& motif : document.motifs) {
     for (const MotifsJsonInstance& instance : motif.instances) {
@@ -343,7 +342,7 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
     }
   }
   uint64_t longest = 1;
-  for (const ClipInfo& clip : reader.clips()) longest = std::max(longest, clip.frame_count);
+  for (const ClipInfo& clip : clips) longest = std::max(longest, clip.frame_count);
   std::string& out = *html;
   out +=
       "<section id=\"timeline\"><h2>Timeline</h2><p class=\"note\">One bar per clip that "
@@ -351,7 +350,7 @@ void AppendTimeline(const MotifsDocument& document, const FrameFileReader& reade
       "motif. Hover for its frames, click to go to its motif.</p>\n";
   AppendTimeAxis(longest, fps, &out);
   std::vector<const ClipInfo*> empty_clips;
-  for (const ClipInfo& clip : reader.clips()) {
+  for (const ClipInfo& clip : clips) {
     auto found = marks.find(clip.name);
     if (found == marks.end()) {
       empty_clips.push_back(&clip);
@@ -676,13 +675,25 @@ void AppendPlaybackAndScripts(const MotifsDocument& document, const PlaybackBloc
   if (any_player) *html += std::string("<script>") + kInstancePlayerScript + "</script>\n";
 }
 
+// The archive's clips with the descriptions given to the run over the stored ones.
+std::vector<ClipInfo> DescribedClips(const FrameFileReader& reader, const ReportInfo& info) {
+  std::vector<ClipInfo> clips = reader.clips();
+  for (ClipInfo& clip : clips) {
+    if (auto given = info.descriptions.find(clip.name); given != info.descriptions.end()) {
+      clip.description = given->second;
+    }
+  }
+  return clips;
+}
+
 }  // namespace
 
 Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFileReader& reader,
                                    const ReportInfo& info, const ReportOptions& options) {
   MOTIF_RETURN_IF_ERROR(CheckMotifsMatchArchive(document, "the motifs document", reader));
+  const std::vector<ClipInfo> clips = DescribedClips(reader, info);
   ReportClipsByName clips_by_name;
-  for (const ClipInfo& clip : reader.clips()) clips_by_name.emplace(clip.name, &clip);
+  for (const ClipInfo& clip : clips) clips_by_name.emplace(clip.name, &clip);
   const uint64_t instance_count = CountInstances(document);
   const uint64_t covered_frames = CoveredFrames(document, clips_by_name);
   KeyframeFigures renderer(reader, options.view, options.keyframes);
@@ -694,7 +705,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
   html.reserve(1 << 20);
   AppendReportPageStart(document, archive, &html);
   AppendOverview(document, reader, info, options, instance_count, covered_frames, &html);
-  AppendTimeline(document, reader, &html);
+  AppendTimeline(document, clips, reader.fps(), &html);
   MOTIF_ASSIGN_OR_RETURN(PlaybackBlocks playback,
                          PlaybackData(document, reader, renderer.layout(), archive, clips_by_name,
                                       options.playback_bytes));

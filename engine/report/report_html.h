@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,6 +44,9 @@ struct ReportInfo {
   uint64_t peak_memory_bytes = 0;          // 0: not recorded
   std::optional<PlantedMotifScore> planted_score;  // against a synthetic archive's truth
   std::string truth_path;                          // where the planted motifs came from
+  // Descriptions given to this run by clip name, shown over those the archive stored at import
+  // (a rerun's --descriptions reaches takes imported before it).
+  std::map<std::string, std::string> descriptions;
 };
 
 struct ReportOptions {

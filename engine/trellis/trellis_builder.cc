@@ -288,6 +288,14 @@ uint64_t WeightsHash(const std::vector<float>& weights) {
   return Checksum64(weights.data(), weights.size() * sizeof(float));
 }
 
+bool IsTrellisOfArchive(const std::string& path, const FrameFileReader& archive) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return false;
+  Result<std::unique_ptr<TrellisFileReader>> trellis = TrellisFileReader::Open(path);
+  return trellis.ok() && (*trellis)->params().archive_identity == archive.summary().identity &&
+         (*trellis)->params().frame_count == archive.frame_count();
+}
+
 std::string DefaultTrellisPath(const std::string& archive_path) {
   std::filesystem::path path(archive_path);
   if (path.extension() == ".mfs") path.replace_extension("");

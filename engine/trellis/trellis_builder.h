@@ -133,6 +133,9 @@ uint64_t WeightsHash(const std::vector<float>& weights);
 // "<archive without .mfs>.mtr": where `motifmine trellis` writes an archive's trellis.
 std::string DefaultTrellisPath(const std::string& archive_path);
 
+// Whether `path` is a finished trellis of exactly the archive version `archive` reads.
+bool IsTrellisOfArchive(const std::string& path, const FrameFileReader& archive);
+
 // Builds (or reuses, or resumes) the trellis of the archive version `archive` reads at
 // `trellis_path`. InvalidOption for an impossible option (naming it: "kmax", "eps", "search");
 // NotSupported for 2^32 frames or more; the errors of the reader, the weights file, the search

@@ -499,6 +499,18 @@ TEST(MotifmineTool, TakeDescriptionsFromAnIndexReachInfoAndTheReport) {
   // mine --playback-mb 0 passes to the report: no player data in the page.
   EXPECT_EQ(html.find("id=\"play-figure\""), std::string::npos);
   EXPECT_NE(html.find("No player in this page"), std::string::npos);
+  // A rerun into the same folder with another index: its takes were imported already, and the
+  // report shows the new descriptions; `report` run again keeps them (run.json).
+  const std::string second = dir.File("second.tsv");
+  ASSERT_TRUE(AtomicWriteFile(second, "file\tdescription\nsynth_000000.bvh\twaves\n").ok());
+  const RunResult rerun = RunTool("mine " + dir.File("takes") + " --descriptions " + second +
+                                  " --out " + dir.File("m") + " --playback-mb 0 --quiet");
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  const std::string described = "synth_000000<small> \u2014 waves</small>";
+  EXPECT_NE(ReadFileToString(dir.File("m/report.html")).value().find(described),
+            std::string::npos);
+  ASSERT_EQ(RunTool("report " + dir.File("m") + " --out " + dir.File("again.html")).exit_code, 0);
+  EXPECT_NE(ReadFileToString(dir.File("again.html")).value().find(described), std::string::npos);
 
   const std::string bad = dir.File("bad.tsv");
   ASSERT_TRUE(AtomicWriteFile(bad, "name\tdescription\nx\ty\n").ok());

@@ -86,5 +86,27 @@ TEST_F(GraphCliTest, GraphWritesTheWalkItsPiecesAndTheGraph) {
   expect(" --seconds 5", 2, "start");
 }
 
+// A folder `mine` wrote stands for its archive (graph, info, export), and graph walks on the
+// trellis mine left there instead of building a second one beside the archive.
+TEST_F(GraphCliTest, AMinedFolderStandsForItsArchiveAndGraphUsesItsTrellis) {
+  const std::string mined = dir_->File("mined");
+  ASSERT_EQ(RunTool("mine " + archive_ + " --out " + mined + " --quiet").exit_code, 0);
+  ASSERT_TRUE(FileExists(mined + "/trellis.mtr"));
+  const std::string trellis_bytes = ReadBytes(mined + "/trellis.mtr");
+  const std::string beside = archive_.substr(0, archive_.size() - 4) + ".mtr";
+  std::remove(beside.c_str());
+  RunResult run = RunTool("graph " + mined + " --start class0_0 --seconds 5 --out " +
+                          dir_->File("graph-mined") + " --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(ReadJson(dir_->File("graph-mined/graph.json"))["trellis"], mined + "/trellis.mtr");
+  EXPECT_FALSE(FileExists(beside)) << "graph built a second trellis";
+  EXPECT_EQ(ReadBytes(mined + "/trellis.mtr"), trellis_bytes);
+  const RunResult info = RunTool("info " + mined + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_EQ(nlohmann::json::parse(info.output)["archive"], archive_);
+  EXPECT_EQ(RunTool("export " + mined + " --clip class0_0 --out " + dir_->File("c.bvh")).exit_code,
+            0);
+}
+
 }  // namespace
 }  // namespace motif::testing
