@@ -2,6 +2,7 @@
 #include "engine/report/report_html.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -155,6 +156,13 @@ int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args, po::va
     }
   }
   return -1;
+}
+
+po::typed_value<double>* NumberWithDefault(double value) {
+  char text[32];
+  const auto [end, error] = std::to_chars(text, text + sizeof(text), value);
+  return po::value<double>()->default_value(
+      value, error == std::errc() ? std::string(text, end) : std::to_string(value));
 }
 
 std::string CountOf(uint64_t count, const std::string& noun) {

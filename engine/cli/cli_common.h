@@ -57,6 +57,10 @@ struct CommandSpec {
 int ParseCommand(CommandSpec& spec, const std::vector<std::string>& args,
                  boost::program_options::variables_map* vm);
 
+// A number option whose help shows its default as a person writes it ("0.2", not
+// "0.20000000000000001": the shortest text that reads back as the same double).
+boost::program_options::typed_value<double>* NumberWithDefault(double value);
+
 // Adds --quiet and --progress=auto|json|quiet, and reads them back.
 void AddProgressOptions(CommandSpec& spec);
 // --verbose: details on stderr that a user rarely needs (the search index's parameters).

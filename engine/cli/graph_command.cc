@@ -183,9 +183,9 @@ CommandSpec GraphCommandSpec() {
       "seconds", po::value<double>()->required(), "length of the walk")(
       "out", po::value<std::string>()->required(), "output folder")(
       "unconstrained", po::bool_switch(), "keep transitions whatever their signatures")(
-      "min-piece", po::value<double>()->default_value(1.0),
+      "min-piece", NumberWithDefault(1.0),
       "seconds the walk plays after arriving by a transition before it may take another")(
-      "window", po::value<double>()->default_value(0.25),
+      "window", NumberWithDefault(0.25),
       "seconds of the window matched and blended at a transition")(
       "trellis", po::value<std::string>()->default_value(""),
       "default: the trellis `mine` wrote beside ARCHIVE when it is of this archive version, "

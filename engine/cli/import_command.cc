@@ -22,13 +22,13 @@ void AddImportOptions(CommandSpec& spec) {
       "content) is skipped. An AMC file is paired with the ASF in its folder (or the one sharing\n"
       "its subject prefix); --asf names it outright.";
   spec.options.add_options()(
-      "fps", po::value<double>()->default_value(0),
+      "fps", NumberWithDefault(0),
       "frame rate of a NEW archive (takes at other rates are resampled); default: the first "
       "take's rate")("asf", po::value<std::string>()->default_value(""),
                      "the ASF skeleton for every AMC file")(
-      "amc-fps", po::value<double>()->default_value(120.0),
+      "amc-fps", NumberWithDefault(120.0),
       "frame rate of AMC files (they store none)")(
-      "bvh-fps", po::value<double>()->default_value(0),
+      "bvh-fps", NumberWithDefault(0),
       "override every BVH file's Frame Time with this rate")(
       "first-frame", po::value<std::string>()->default_value("auto"),
       "auto: drop a first frame that is a converter's T-pose (discontinuous with the take); "

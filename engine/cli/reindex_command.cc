@@ -169,9 +169,9 @@ CommandSpec ReindexCommandSpec() {
   AddTableFlags(spec, {"seed"}, TableDefaults::kRecorded);
   AddTableFlags(spec, {"threads", "skip-bad", "no-report"});
   spec.options.add_options()(
-      "min-age", po::value<double>()->default_value(60),
+      "min-age", NumberWithDefault(60),
       "seconds since a take's last change before it is imported (files still being copied "
-      "wait for the next run)")("fps", po::value<double>()->default_value(0),
+      "wait for the next run)")("fps", NumberWithDefault(0),
                                 "frame rate of a NEW archive")(
       "first-frame", po::value<std::string>()->default_value("auto"),
       "auto: drop a first frame that is a converter's T-pose; keep; drop");

@@ -54,24 +54,24 @@ void AddSynthOptions(CommandSpec& spec) {
   SynthOptions defaults;
   spec.options.add_options()("frames", po::value<uint64_t>()->required(), "total frames")(
       "motifs", po::value<uint32_t>()->default_value(defaults.motifs), "planted motifs")(
-      "fps", po::value<double>()->default_value(defaults.fps), "frame rate")(
+      "fps", NumberWithDefault(defaults.fps), "frame rate")(
       "from", po::value<std::vector<std::string>>()->multitoken(),
       "re-sequence these real takes (BVH/ASF/AMC files or folders)")(
-      "clip-seconds-min", po::value<double>()->default_value(defaults.clip_seconds_min), "")(
-      "clip-seconds-max", po::value<double>()->default_value(defaults.clip_seconds_max),
+      "clip-seconds-min", NumberWithDefault(defaults.clip_seconds_min), "")(
+      "clip-seconds-max", NumberWithDefault(defaults.clip_seconds_max),
       "clip lengths are drawn from [min, max] seconds")(
-      "motif-seconds-min", po::value<double>()->default_value(defaults.motif_seconds_min), "")(
-      "motif-seconds-max", po::value<double>()->default_value(defaults.motif_seconds_max),
+      "motif-seconds-min", NumberWithDefault(defaults.motif_seconds_min), "")(
+      "motif-seconds-max", NumberWithDefault(defaults.motif_seconds_max),
       "motif lengths are drawn from [min, max] seconds")(
       "instances-min", po::value<uint32_t>()->default_value(defaults.instances_min), "")(
       "instances-max", po::value<uint32_t>()->default_value(defaults.instances_max),
       "planted instances per motif")("noise-degrees",
-                                     po::value<double>()->default_value(defaults.noise_degrees),
+                                     NumberWithDefault(defaults.noise_degrees),
                                      "noise added to each planted instance (degrees, std dev)")(
-      "background-variation", po::value<double>()->default_value(kRecommendedBackgroundVariation),
+      "background-variation", NumberWithDefault(kRecommendedBackgroundVariation),
       "procedural: smooth variation of each background segment (degrees, std dev), so the "
       "background does not repeat")("gap-seconds",
-                                    po::value<double>()->default_value(defaults.gap_seconds),
+                                    NumberWithDefault(defaults.gap_seconds),
                                     "least untouched background between planted instances")(
       "block-frames", po::value<uint32_t>()->default_value(4096), "frames per column block")(
       "force", "replace OUT.mfs if it exists");

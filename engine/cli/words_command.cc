@@ -72,19 +72,19 @@ void AddWordsCommandOptions(CommandSpec& spec) {
       "frames per word")("stride",
                          po::value<uint32_t>()->default_value(defaults.words.stride_frames),
                          "frames between word starts")(
-      "word-fps", po::value<double>()->default_value(defaults.words.word_fps),
+      "word-fps", NumberWithDefault(defaults.words.word_fps),
       "rate the words are sampled at")(
       "epochs", po::value<uint32_t>()->default_value(defaults.train.epochs), "training epochs")(
       "pool-words", po::value<uint64_t>()->default_value(defaults.pool.max_words),
       "at most this many words are trained on (whole clips, seeded)")(
       "warp-copies", po::value<uint32_t>()->default_value(defaults.pool.warp_copies),
       "time-warped copies per training word")(
-      "held-out", po::value<double>()->default_value(defaults.pool.held_out_fraction),
+      "held-out", NumberWithDefault(defaults.pool.held_out_fraction),
       "fraction of the training clips held out to measure the embedding")(
       "batch", po::value<uint32_t>()->default_value(defaults.train.batch_triplets),
       "triplets per training batch")(
-      "learning-rate", po::value<double>()->default_value(defaults.train.learning_rate),
-      "Adam's learning rate")("margin", po::value<double>()->default_value(defaults.train.margin),
+      "learning-rate", NumberWithDefault(defaults.train.learning_rate),
+      "Adam's learning rate")("margin", NumberWithDefault(defaults.train.margin),
                               "triplet margin")(
       "dims", po::value<uint32_t>()->default_value(defaults.train.shape.embedding_dims),
       "embedding dimensions")(

@@ -34,6 +34,15 @@ TEST(MotifmineTool, HelpForEveryCommand) {
     EXPECT_EQ(result.exit_code, 0) << command << ": " << result.output;
     EXPECT_NE(result.output.find("usage: motifmine " + std::string(command)), std::string::npos);
   }
+  // Every command's defaults as a person writes them: "0.2", never "0.20000000000000001".
+  for (const char* command :
+       {"mine", "reindex", "import", "info", "verify", "export", "synth", "trellis",
+        "inspect-trellis", "grow", "cluster", "report", "score", "export-motif", "words", "search",
+        "classify", "segment", "graph"}) {
+    const std::string help = RunTool(std::string(command) + " --help").output;
+    EXPECT_EQ(help.find("0000000"), std::string::npos) << command << ":\n" << help;
+    EXPECT_EQ(help.find("9999999"), std::string::npos) << command << ":\n" << help;
+  }
   EXPECT_EQ(RunTool("frobnicate").exit_code, 2);
   EXPECT_EQ(RunTool("info").exit_code, 2);  // missing ARCHIVE
   EXPECT_EQ(RunTool("synth x.mfs --frames").exit_code, 2);
