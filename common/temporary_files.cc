@@ -13,9 +13,9 @@ namespace {
 
 // Far more than one process has in flight (a few per stage); a name without a slot is left to
 // the next run's sweep, as after a kill -9.
-constexpr int kSlots = 512;
-std::atomic<char*> tracked[kSlots];
-std::once_flag install_once;
+constexpr int kTrackedSlots = 512;
+std::atomic<char*> tracked[kTrackedSlots];
+std::once_flag termination_handler_once;
 
 void OnTermination(int signal_number) {
   for (std::atomic<char*>& slot : tracked) {
@@ -58,6 +58,6 @@ void UntrackTemporaryFile(const std::string& path) {
   }
 }
 
-void RemoveTemporaryFilesOnTermination() { std::call_once(install_once, Install); }
+void RemoveTemporaryFilesOnTermination() { std::call_once(termination_handler_once, Install); }
 
 }  // namespace motif

@@ -101,18 +101,6 @@ void ProgressReporter::Note(const std::string& message) {
   drawn_in_place_ = false;
 }
 
-std::string FormatDuration(double seconds) {
-  char buffer[32];
-  if (seconds < 60) {
-    std::snprintf(buffer, sizeof buffer, "%.1f s", seconds);
-  } else if (seconds < 3600) {
-    std::snprintf(buffer, sizeof buffer, "%.1f min", seconds / 60);
-  } else {
-    std::snprintf(buffer, sizeof buffer, "%.1f h", seconds / 3600);
-  }
-  return buffer;
-}
-
 double ProgressRate(uint64_t done, double elapsed_seconds) {
   // No rate from the first moments of a stage: a stage reported first with work already done
   // (reused, or faster than the clock) would show billions a second.

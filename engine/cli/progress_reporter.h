@@ -12,6 +12,8 @@
 #include <mutex>
 #include <string>
 
+#include "common/duration_text.h"  // FormatDuration, for the summaries
+
 namespace motif {
 
 enum class ProgressMode { kAuto, kQuiet, kJson };
@@ -64,8 +66,5 @@ double ProgressRate(uint64_t done, double elapsed_seconds);
 std::string ProgressLine(const std::string& stage, const std::string& unit, uint64_t done,
                          uint64_t total, double elapsed_seconds, bool final_line);
 
-// A length of motion as a person writes it: "1.2 s" under a minute, "4.3 min" under an hour,
-// "2.5 h" above ("0.0 min" for a 148-frame take said nothing).
-std::string FormatDuration(double seconds);
 
 }  // namespace motif

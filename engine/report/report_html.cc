@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/duration_text.h"
 #include "common/file_util.h"
 #include "engine/report/instance_alignment.h"
 #include "engine/report/instance_playback.h"
@@ -190,7 +191,7 @@ std::string ViewName(FigureView view) { return view == FigureView::kSide ? "side
 std::string OverviewFramesHtml(const FrameFileReader& reader) {
   const double fps = reader.fps();
   return HtmlCommas(reader.frame_count()) + " (" +
-         HtmlNumber("%.1f min", fps > 0 ? reader.frame_count() / fps / 60.0 : 0.0) + " at " +
+         FormatDuration(fps > 0 ? reader.frame_count() / fps : 0.0) + " at " +
          HtmlNumber("%g fps", fps) + "), " + HtmlCount(reader.clips().size(), "clip") +
          ", skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
          std::to_string(reader.skeleton().joint_count()) + " joints)";

@@ -505,6 +505,8 @@ TEST(MotifmineTool, TakeDescriptionsFromAnIndexReachInfoAndTheReport) {
   const std::string html = ReadFileToString(dir.File("m/report.html")).value();
   EXPECT_NE(html.find("synth_000000<small> \u2014 jumping &lt;jacks&gt; &amp; claps</small>"),
             std::string::npos);
+  // The overview's length as a person writes it (it said "0.8 min").
+  EXPECT_NE(html.find("6,000 (50.0 s at 120 fps)"), std::string::npos);
   // mine --playback-mb 0 passes to the report: no player data in the page.
   EXPECT_EQ(html.find("id=\"play-figure\""), std::string::npos);
   EXPECT_NE(html.find("No player in this page"), std::string::npos);
