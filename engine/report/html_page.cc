@@ -35,12 +35,12 @@ table.t{border-collapse:collapse}table.t td{padding:1px 14px 1px 0}table.t td:nt
 .psmall{display:flex;flex-wrap:wrap;gap:4px}
 .pcell{border:2px solid transparent;cursor:pointer;font-size:10px;text-align:center}
 .pcell.on{border-color:#888}
-.insts{display:flex;flex-wrap:wrap;gap:8px 28px;min-height:138px}
+.insts{display:flex;flex-wrap:wrap;gap:8px 28px;min-height:186px}
 .strip .lbl{font-size:11px;color:#555;white-space:nowrap}
 .strip .kf{color:#888;font-size:10px}
-.figs{display:flex;min-height:120px}
+.figs{display:flex;min-height:168px}
 .fig{flex:none;background:#f6f6f6;margin-right:2px}
-.fig path{fill:none;stroke:currentColor;stroke-width:1.7;stroke-linecap:round;stroke-linejoin:round}
+.fig path{fill:none;stroke-width:2.2;stroke-linecap:round;stroke-linejoin:round}
 button{font:inherit;margin:6px 0}
 )css";
 

@@ -1,7 +1,6 @@
 #include "engine/report/instance_playback.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -14,16 +13,8 @@
 
 namespace motif {
 
-uint8_t JointSide(const std::string& name) {
-  if (name.rfind("Left", 0) == 0 || name.rfind("left", 0) == 0) return 1;
-  if (name.rfind("Right", 0) == 0 || name.rfind("right", 0) == 0) return 2;
-  // CMU: a lower-case l or r before the bone's name ("lfemur", "rhumerus", "lhipjoint").
-  if (name.size() > 2 && (name[0] == 'l' || name[0] == 'r') &&
-      std::islower(static_cast<unsigned char>(name[1])) != 0 && name != "root" &&
-      name != "lowerback" && name != "lowerneck") {
-    return name[0] == 'l' ? 1 : 2;
-  }
-  return 0;
+uint32_t PlaybackStep(double fps) {
+  return static_cast<uint32_t>(std::max(1.0, std::round(fps / kPlaybackFps)));
 }
 
 std::string Base64(const uint8_t* bytes, size_t size) {
@@ -36,16 +27,8 @@ std::string Base64(const uint8_t* bytes, size_t size) {
 
 InstancePlayback::InstancePlayback(const FrameFileReader& reader, const StickFigureLayout& layout)
     : reader_(reader), layout_(layout), cache_(reader) {
-  step_ = static_cast<uint32_t>(std::max(1.0, std::round(reader.fps() / kPlaybackFps)));
-  const Skeleton& skeleton = reader.skeleton();
-  // Pose points: the joints, then one end site per joint that has one, in joint order.
-  std::vector<uint8_t> point_sides;
-  for (const Joint& joint : skeleton.joints()) point_sides.push_back(JointSide(joint.name));
-  for (const Joint& joint : skeleton.joints()) {
-    if (joint.has_end_site) point_sides.push_back(JointSide(joint.name));
-  }
-  for (uint32_t point : layout.points) sides_.push_back(point_sides.at(point));
-  height_ = std::max(1e-9, RestPoseExtent(skeleton));
+  step_ = PlaybackStep(reader.fps());
+  height_ = std::max(1e-9, RestPoseExtent(reader.skeleton()));
 }
 
 Result<PlaybackInstance> InstancePlayback::Encode(const ClipInfo& clip, uint64_t start,
@@ -107,11 +90,12 @@ std::string InstancePlayback::FigureJson() const {
   const size_t root_idx = root == layout_.points.end() ? 0 : root - layout_.points.begin();
   json += ",\"height\":" + std::string(number) + ",\"root\":" + std::to_string(root_idx) +
           ",\"sides\":[";
-  for (size_t idx = 0; idx < sides_.size(); ++idx) {
+  // The strips' sides and colours (stick_figure_svg.h), so the player and they agree.
+  for (size_t idx = 0; idx < layout_.points.size(); ++idx) {
     if (idx) json += ',';
-    json += std::to_string(sides_[idx]);
+    json += std::to_string(layout_.sides.empty() ? 0 : layout_.sides[idx]);
   }
-  json += "],\"chains\":[";
+  json += "],\"colours\":" + LimbSideColoursJson() + ",\"chains\":[";
   for (size_t chain = 0; chain < layout_.chains.size(); ++chain) {
     json += chain ? ",[" : "[";
     for (size_t idx = 0; idx < layout_.chains[chain].size(); ++idx) {

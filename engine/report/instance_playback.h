@@ -20,12 +20,16 @@
 
 #include "common/status.h"
 #include "engine/report/frame_chunk_cache.h"
+#include "engine/report/limb_side.h"  // JointSide: the sides of FigureJson
 #include "engine/report/stick_figure_svg.h"
 #include "formats/frame_file/frame_file_reader.h"
 
 namespace motif {
 
 inline constexpr double kPlaybackFps = 30.0;
+
+// Archive frames per playback sample at `fps`: round(fps / kPlaybackFps), at least 1.
+uint32_t PlaybackStep(double fps);
 
 struct PlaybackInstance {
   uint64_t start = 0;  // clip frames [start, end)
@@ -52,8 +56,9 @@ class InstancePlayback {
   // instances in archive order, and a block is decoded about once.
   Result<PlaybackInstance> Encode(const ClipInfo& clip, uint64_t start, uint64_t end);
 
-  // {"step":S,"fps":F,"height":H,"root":R,"sides":[...],"chains":[[...],...]}: what the page
-  // needs to draw any instance (R and the chains index the layout's points).
+  // {"step":S,"fps":F,"height":H,"root":R,"sides":[...],"colours":[...],"chains":[[...],...]}:
+  // what the page needs to draw any instance (R and the chains index the layout's points; a
+  // bone's colour is colours[sides[its child point]], LimbSideColoursJson).
   std::string FigureJson() const;
 
  private:
@@ -61,13 +66,8 @@ class InstancePlayback {
   const StickFigureLayout& layout_;
   FrameChunkCache cache_;
   uint32_t step_ = 1;
-  std::vector<uint8_t> sides_;  // per layout point
   double height_ = 1;
 };
-
-// Side of a joint from its name: 1 left, 2 right, 0 centre (CMU names "lfemur", "rhumerus",
-// BVH names "LeftUpLeg", "RightArm").
-uint8_t JointSide(const std::string& name);
 
 std::string Base64(const uint8_t* bytes, size_t size);
 

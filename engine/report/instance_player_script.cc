@@ -5,7 +5,7 @@ namespace motif {
 const char kInstancePlayerScript[] = R"js(
 (function(){
 var fe=document.getElementById('play-figure');if(!fe)return;
-var F=JSON.parse(fe.textContent),NP=F.sides.length,COL=['#555','#1f6fd1','#d62728'],players={};
+var F=JSON.parse(fe.textContent),NP=F.sides.length,COL=F.colours,players={};
 window.motifPlayers=players;
 function decode(b){var s=atob(b),n=s.length>>1,a=new Int16Array(n);
 for(var i=0;i<n;i++){var v=s.charCodeAt(2*i)|(s.charCodeAt(2*i+1)<<8);a[i]=v>32767?v-65536:v;}return a;}

@@ -23,23 +23,38 @@ KeyframeFigures::KeyframeFigures(const FrameFileReader& reader, FigureView view,
 Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::Project(const ClipInfo& clip,
                                                                        uint64_t start,
                                                                        uint64_t end) {
-  const uint32_t keyframes = keyframes_;
-  const uint64_t global_start = clip.first_frame + start;
-  const uint64_t global_end = clip.first_frame + end;
-  MOTIF_ASSIGN_OR_RETURN(const float* cached, cache_.Rows(global_start, global_end));
-  std::vector<float> rows(keyframes * stride_);
-  const std::vector<uint64_t> frames = KeyframeFrames(start, end);
-  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) {
-    const float* row = cached + (frames[key_idx] - start) * stride_;
+  return ProjectFrames(clip, KeyframeFrames(start, end));
+}
+
+Result<std::vector<std::vector<FigurePoint>>> KeyframeFigures::ProjectFrames(
+    const ClipInfo& clip, const std::vector<uint64_t>& frames) {
+  const uint64_t global_start = clip.first_frame + frames.front();
+  MOTIF_ASSIGN_OR_RETURN(const float* cached,
+                         cache_.Rows(global_start, clip.first_frame + frames.back() + 1));
+  std::vector<float> rows(frames.size() * stride_);
+  for (size_t key_idx = 0; key_idx < frames.size(); ++key_idx) {
+    const float* row = cached + (frames[key_idx] - frames.front()) * stride_;
     std::copy(row, row + stride_, rows.begin() + key_idx * stride_);
   }
   // The keyframes are not consecutive, so the root's integrated horizontal path is
   // meaningless; each figure is centred on its own root below, which cancels it. Height,
   // heading and joint rotations come straight from each row.
-  const Take take = ClipFramesToTake(reader_.skeleton(), clip, rows.data(), keyframes);
-  std::vector<size_t> all(keyframes);
-  for (uint32_t key_idx = 0; key_idx < keyframes; ++key_idx) all[key_idx] = key_idx;
+  const Take take = ClipFramesToTake(reader_.skeleton(), clip, rows.data(), frames.size());
+  std::vector<size_t> all(frames.size());
+  for (size_t key_idx = 0; key_idx < frames.size(); ++key_idx) all[key_idx] = key_idx;
   return ProjectTakeFrames(take, all);
+}
+
+Result<std::vector<float>> KeyframeFigures::SampleRows(const ClipInfo& clip, uint64_t start,
+                                                       uint64_t end, uint32_t step) {
+  MOTIF_ASSIGN_OR_RETURN(const float* cached,
+                         cache_.Rows(clip.first_frame + start, clip.first_frame + end));
+  std::vector<float> rows;
+  rows.reserve(((end - start - 1) / step + 1) * stride_);
+  for (uint64_t offset = 0; offset < end - start; offset += step) {
+    rows.insert(rows.end(), cached + offset * stride_, cached + (offset + 1) * stride_);
+  }
+  return rows;
 }
 
 std::vector<std::vector<FigurePoint>> KeyframeFigures::ProjectTakeFrames(

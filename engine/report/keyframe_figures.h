@@ -31,6 +31,15 @@ class KeyframeFigures {
                                                         uint64_t end);
   // The clip frames Project draws for [start, end): the first and last and evenly spaced ones.
   std::vector<uint64_t> KeyframeFrames(uint64_t start, uint64_t end) const;
+  // The figures of clip frames `frames` of `clip` (non-empty, ascending, each < clip.frame_count),
+  // drawn as Project draws its keyframes. Errors of the reader pass through.
+  Result<std::vector<std::vector<FigurePoint>>> ProjectFrames(const ClipInfo& clip,
+                                                              const std::vector<uint64_t>& frames);
+  // The archive rows of clip frames start, start + step, ... below end (start < end <=
+  // clip.frame_count), stride floats each: what instance_alignment.h aligns. Through the same
+  // cache as the figures, so reading an instance for both decodes its blocks once.
+  Result<std::vector<float>> SampleRows(const ClipInfo& clip, uint64_t start, uint64_t end,
+                                        uint32_t step);
   // The keyframes of a whole take in the archive's skeleton (a query file fitted to it), as SVG
   // strings side by side, drawn as an instance's are.
   std::string TakeSvg(const Take& take) const;

@@ -12,10 +12,12 @@
 
 #include "common/duration_text.h"
 #include "common/file_util.h"
+#include "engine/report/aligned_keyframes.h"
 #include "engine/report/instance_alignment.h"
 #include "engine/report/instance_playback.h"
 #include "engine/report/instance_player_script.h"
 #include "engine/report/keyframe_figures.h"
+#include "engine/report/limb_side.h"
 #include "engine/report/motifs_archive_check.h"
 #include "formats/motion/quaternion_math.h"
 
@@ -60,11 +62,12 @@ constexpr char kScript[] = R"js(
 (function(){
 document.addEventListener('click',function(e){var r=e.target.closest&&e.target.closest('.tl rect');if(r)location.hash='m'+r.getAttribute('class').slice(1);});
 var el=document.getElementById('pose-data');if(!el)return;
-var D=JSON.parse(el.textContent),C=D.chains,P=D.points,A='ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_',V={};
+var D=JSON.parse(el.textContent),K=D.strokes,P=D.points,A='ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_',V={};
 for(var i=0;i<64;i++)V[A.charAt(i)]=i;
 function c(s,i){return (V[s.charAt(i)]*64+V[s.charAt(i+1)]+D.min)/10;}
-function fig(s,o){var d='';for(var a=0;a<C.length;a++){var ch=C[a];for(var b=0;b<ch.length;b++){var j=o+4*ch[b];d+=(b?'L':'M')+c(s,j)+' '+c(s,j+2);}}
-return '<svg class="fig" width="'+D.w+'" height="'+D.h+'" viewBox="0 0 '+D.w+' '+D.h+'"><path d="'+d+'"/></svg>';}
+function fig(s,o){var h='';for(var a=0;a<K.length;a++){var d='',R=K[a].runs;for(var r=0;r<R.length;r++){var ch=R[r];
+for(var b=0;b<ch.length;b++){var j=o+4*ch[b];d+=(b?'L':'M')+c(s,j)+' '+c(s,j+2);}}h+='<path stroke="'+K[a].colour+'" d="'+d+'"/>';}
+return '<svg class="fig" width="'+D.w+'" height="'+D.h+'" viewBox="0 0 '+D.w+' '+D.h+'">'+h+'</svg>';}
 function render(box){if(box.getAttribute('data-done'))return;box.setAttribute('data-done','1');
 var m=D.motifs[box.getAttribute('data-m')]||[],f=box.querySelectorAll('.figs');
 for(var s=0;s<f.length&&s<m.length;s++){var h='';for(var o=0;o<m[s].length;o+=4*P)h+=fig(m[s],o);f[s].innerHTML=h;}}
@@ -262,7 +265,9 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
   }
   row("figures", ViewName(options.view) + " view, heading removed; " +
                      std::to_string(options.keyframes) +
-                     " keyframes per instance, evenly spaced from its first frame to its last; "
+                     " keyframes per instance at the same moments of each: evenly spaced over the "
+                     "first instance, mapped to the others through their time alignment to it "
+                     "(as the player aligns them); left limbs blue, right red; "
                      "up to " +
                      std::to_string(options.instances_per_motif) + " instances per motif");
   out +=
@@ -401,11 +406,13 @@ uint64_t CoveredFrames(const MotifsDocument& document, const ReportClipsByName& 
   return covered_frames;
 }
 
-// The instances drawn for each motif (ChooseInstances), and their keyframe strips: SVG for the
-// eager motifs, encoded points (EncodeFigurePoints) for the page's script to draw.
+// The instances drawn for each motif (ChooseInstances), their keyframes' clip frames (at aligned
+// moments: aligned_keyframes.h) and their strips: SVG for the eager motifs, encoded points
+// (EncodeFigurePoints) for the page's script to draw.
 struct FigureStrips {
-  std::vector<std::vector<size_t>> chosen;       // per motif, indices into its instances
-  std::vector<std::vector<std::string>> strips;  // per motif, per chosen instance
+  std::vector<std::vector<size_t>> chosen;                 // per motif, indices into instances
+  std::vector<std::vector<std::vector<uint64_t>>> frames;  // per motif, per chosen instance
+  std::vector<std::vector<std::string>> strips;            // per motif, per chosen instance
 };
 
 // One job per drawn instance, in archive order so that each block is decoded about once.
@@ -430,25 +437,56 @@ std::vector<FigureJob> FigureJobsInArchiveOrder(const MotifsDocument& document,
   return jobs;
 }
 
+// The samples' rows of each motif's reference (its first instance, always chosen first: slot
+// 0), which every other drawn instance of the motif is aligned to.
+Result<std::vector<std::vector<float>>> ReferenceRows(const std::vector<FigureJob>& jobs,
+                                                      size_t motif_count, uint32_t step,
+                                                      KeyframeFigures& renderer) {
+  std::vector<std::vector<float>> rows(motif_count);
+  for (const FigureJob& job : jobs) {
+    if (job.slot != 0) continue;
+    MOTIF_ASSIGN_OR_RETURN(rows[job.motif_idx],
+                           renderer.SampleRows(*job.clip, job.start, job.end, step));
+  }
+  return rows;
+}
+
 Result<FigureStrips> DrawFigureStrips(const MotifsDocument& document, const ReportOptions& options,
                                       const ReportClipsByName& clips_by_name,
-                                      KeyframeFigures& renderer) {
+                                      const FrameFileReader& reader, KeyframeFigures& renderer) {
   FigureStrips figures;
-  figures.chosen.resize(document.motifs.size());
-  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
+  const size_t motif_count = document.motifs.size();
+  figures.chosen.resize(motif_count);
+  figures.frames.resize(motif_count);
+  figures.strips.resize(motif_count);
+  for (size_t motif_idx = 0; motif_idx < motif_count; ++motif_idx) {
     figures.chosen[motif_idx] =
         ChooseInstances(document.motifs[motif_idx], options.instances_per_motif);
+    figures.frames[motif_idx].resize(figures.chosen[motif_idx].size());
+    figures.strips[motif_idx].resize(figures.chosen[motif_idx].size());
   }
   const std::vector<FigureJob> jobs =
       FigureJobsInArchiveOrder(document, figures.chosen, clips_by_name);
+  const uint32_t step = PlaybackStep(reader.fps());
+  const size_t stride = reader.layout().stride();
+  MOTIF_ASSIGN_OR_RETURN(const std::vector<std::vector<float>> reference_rows,
+                         ReferenceRows(jobs, motif_count, step, renderer));
   const FigureProjection& projection = renderer.projection();
-  figures.strips.resize(document.motifs.size());
-  for (size_t motif_idx = 0; motif_idx < document.motifs.size(); ++motif_idx) {
-    figures.strips[motif_idx].resize(figures.chosen[motif_idx].size());
-  }
   for (const FigureJob& job : jobs) {
+    const std::vector<float>& reference = reference_rows[job.motif_idx];
+    const auto reference_samples = static_cast<uint32_t>(reference.size() / stride);
+    std::vector<uint32_t> align;  // empty for the reference itself: the identity
+    if (job.slot != 0) {
+      MOTIF_ASSIGN_OR_RETURN(const std::vector<float> rows,
+                             renderer.SampleRows(*job.clip, job.start, job.end, step));
+      align = AlignToReference(reader.skeleton(), stride, reference, reference_samples, rows,
+                               static_cast<uint32_t>(rows.size() / stride));
+    }
+    std::vector<uint64_t>& frames = figures.frames[job.motif_idx][job.slot];
+    frames = AlignedKeyframeFrames(ReferenceKeySamples(reference_samples, options.keyframes), align,
+                                   job.start, step);
     MOTIF_ASSIGN_OR_RETURN(std::vector<std::vector<FigurePoint>> keyframes,
-                           renderer.Project(*job.clip, job.start, job.end));
+                           renderer.ProjectFrames(*job.clip, frames));
     std::string& strip = figures.strips[job.motif_idx][job.slot];
     const bool eager = job.motif_idx < options.eager_motifs;
     for (const std::vector<FigurePoint>& points : keyframes) {
@@ -607,7 +645,7 @@ class MotifSectionsWriter {
     for (size_t slot = 0; slot < chosen.size(); ++slot) {
       const MotifsJsonInstance& instance = motif.instances[chosen[slot]];
       std::string keyframes;
-      for (uint64_t frame : renderer_.KeyframeFrames(instance.start, instance.end)) {
+      for (uint64_t frame : figures_.frames[motif_idx][slot]) {
         keyframes += (keyframes.empty() ? "" : " \u00b7 ") + std::to_string(frame);
       }
       *html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(instance.clip) + " " +
@@ -634,7 +672,8 @@ class MotifSectionsWriter {
 };
 
 // The lazy motifs' strips with what the script needs to draw them (format: kScript's fig()):
-// the figure's size, points per figure, the coordinates' offset and the layout's chains.
+// the figure's size, points per figure, the coordinates' offset, the layout's chains and its
+// strokes (FigureStrokes: per side its colour and runs, as StickFigureSvg strokes them).
 void AppendPoseData(const std::string& lazy_json, const KeyframeFigures& renderer,
                     std::string* html) {
   if (lazy_json.empty()) return;
@@ -652,6 +691,21 @@ void AppendPoseData(const std::string& lazy_json, const KeyframeFigures& rendere
       *html += std::to_string(layout.chains[chain_idx][step]);
     }
     *html += "]";
+  }
+  *html += "],\"strokes\":[";
+  const std::vector<FigureStroke> strokes = FigureStrokes(layout);
+  for (size_t stroke_idx = 0; stroke_idx < strokes.size(); ++stroke_idx) {
+    *html += std::string(stroke_idx ? "," : "") + "{\"colour\":\"" +
+             LimbSideColour(strokes[stroke_idx].side) + "\",\"runs\":[";
+    const std::vector<std::vector<uint32_t>>& runs = strokes[stroke_idx].runs;
+    for (size_t run_idx = 0; run_idx < runs.size(); ++run_idx) {
+      *html += run_idx ? ",[" : "[";
+      for (size_t step = 0; step < runs[run_idx].size(); ++step) {
+        *html += (step ? "," : "") + std::to_string(runs[run_idx][step]);
+      }
+      *html += "]";
+    }
+    *html += "]}";
   }
   *html += "],\"motifs\":{\n" + lazy_json + "}}</script>\n";
 }
@@ -699,7 +753,7 @@ Result<std::string> ReportHtmlText(const MotifsDocument& document, const FrameFi
   const uint64_t covered_frames = CoveredFrames(document, clips_by_name);
   KeyframeFigures renderer(reader, options.view, options.keyframes);
   MOTIF_ASSIGN_OR_RETURN(FigureStrips figures,
-                         DrawFigureStrips(document, options, clips_by_name, renderer));
+                         DrawFigureStrips(document, options, clips_by_name, reader, renderer));
 
   const std::string archive = info.archive_path.empty() ? document.archive : info.archive_path;
   std::string html;

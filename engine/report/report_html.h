@@ -6,11 +6,13 @@
 //  * a timeline per clip that holds instances: a bar with every instance as a rectangle coloured
 //    by its motif (hover: "motif N, frames a–b"; click: jump to the motif);
 //  * every motif, most important first: its length, instance count and clips, and for up to
-//    `instances_per_motif` instances a strip of stick-figure keyframes (stick_figure_svg.h).
+//    `instances_per_motif` instances a strip of stick-figure keyframes (stick_figure_svg.h),
+//    figure k of each strip the same moment of the movement (aligned_keyframes.h).
 // Scaling: the first `eager_motifs` motifs' figures are written as SVG; the others as compact
 // projected points (EncodeFigurePoints) in one JSON block, drawn by the script when a motif
 // scrolls into view, so 1,000 motifs stay a few megabytes.
-// Reads only the keyframes' frames from the archive, in archive order, a chunk at a time.
+// Reads the drawn instances' frames from the archive (to align them and draw their keyframes), in
+// archive order, a chunk at a time.
 // Thread-safety: pure functions (the reader's const methods are thread-safe).
 #pragma once
 
@@ -51,7 +53,7 @@ struct ReportInfo {
 
 struct ReportOptions {
   FigureView view = FigureView::kSide;
-  uint32_t keyframes = 5;              // figures per instance, evenly spaced from first to last
+  uint32_t keyframes = 5;  // figures per instance, at aligned moments (aligned_keyframes.h)
   uint32_t instances_per_motif = 4;    // instances drawn per motif (other clips preferred)
   uint32_t eager_motifs = 50;          // motifs drawn as SVG in the file; the rest by the script
   uint32_t clip_names_per_motif = 12;  // clip names listed per motif before "+N more"

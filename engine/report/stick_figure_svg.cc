@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/report/forward_kinematics.h"
+#include "engine/report/limb_side.h"
 #include "formats/motion/quaternion_math.h"
 
 namespace motif {
@@ -42,6 +43,19 @@ namespace {
 
 double Length(const std::array<double, 3>& offset) {
   return std::sqrt(offset[0] * offset[0] + offset[1] * offset[1] + offset[2] * offset[2]);
+}
+
+// JointSide of each of `points` (forward_kinematics.h numbering: the joints, then one end site
+// per joint that has one, in joint order; an end site is on its joint's side).
+std::vector<uint8_t> PointSides(const Skeleton& skeleton, const std::vector<uint32_t>& points) {
+  std::vector<uint8_t> pose_sides;
+  for (const Joint& joint : skeleton.joints()) pose_sides.push_back(JointSide(joint.name));
+  for (const Joint& joint : skeleton.joints()) {
+    if (joint.has_end_site) pose_sides.push_back(JointSide(joint.name));
+  }
+  std::vector<uint8_t> sides;
+  for (uint32_t point : points) sides.push_back(pose_sides.at(point));
+  return sides;
 }
 
 }  // namespace
@@ -106,7 +120,28 @@ StickFigureLayout MakeStickFigureLayout(const Skeleton& skeleton, double min_bon
     for (uint32_t& point : chain) point = static_cast<uint32_t>(index_of[point]);
   }
   layout.chains = std::move(chains);
+  layout.sides = PointSides(skeleton, layout.points);
   return layout;
+}
+
+std::vector<FigureStroke> FigureStrokes(const StickFigureLayout& layout) {
+  std::vector<FigureStroke> by_side(kLimbSideCount);
+  for (int side = 0; side < kLimbSideCount; ++side) by_side[side].side = static_cast<uint8_t>(side);
+  for (const std::vector<uint32_t>& chain : layout.chains) {
+    int previous_side = -1;  // the side of the chain's previous bone: its run goes on
+    for (size_t step = 1; step < chain.size(); ++step) {
+      const int side = layout.sides.empty() ? 0 : std::min<int>(layout.sides[chain[step]], 2);
+      std::vector<std::vector<uint32_t>>& runs = by_side[side].runs;
+      if (side != previous_side) runs.push_back({chain[step - 1]});
+      runs.back().push_back(chain[step]);
+      previous_side = side;
+    }
+  }
+  std::vector<FigureStroke> strokes;
+  for (FigureStroke& stroke : by_side) {
+    if (!stroke.runs.empty()) strokes.push_back(std::move(stroke));
+  }
+  return strokes;
 }
 
 double FigureScaleFor(const Skeleton& skeleton, double height_px, double margin_px) {
@@ -160,17 +195,21 @@ std::string StickFigureSvg(const StickFigureLayout& layout,
   const std::string width = FormatFigureCoord(width_px);
   const std::string height = FormatFigureCoord(height_px);
   std::string svg = "<svg class=\"fig\" width=\"" + width + "\" height=\"" + height +
-                    "\" viewBox=\"0 0 " + width + " " + height + "\"><path d=\"";
-  for (const std::vector<uint32_t>& chain : layout.chains) {
-    for (size_t step = 0; step < chain.size(); ++step) {
-      const FigurePoint& point = figure_points[chain[step]];
-      svg += step == 0 ? 'M' : 'L';
-      svg += FormatFigureCoord(point[0]);
-      svg += ' ';
-      svg += FormatFigureCoord(point[1]);
+                    "\" viewBox=\"0 0 " + width + " " + height + "\">";
+  for (const FigureStroke& stroke : FigureStrokes(layout)) {
+    svg += std::string("<path stroke=\"") + LimbSideColour(stroke.side) + "\" d=\"";
+    for (const std::vector<uint32_t>& run : stroke.runs) {
+      for (size_t step = 0; step < run.size(); ++step) {
+        const FigurePoint& point = figure_points[run[step]];
+        svg += step == 0 ? 'M' : 'L';
+        svg += FormatFigureCoord(point[0]);
+        svg += ' ';
+        svg += FormatFigureCoord(point[1]);
+      }
     }
+    svg += "\"/>";
   }
-  svg += "\"/></svg>";
+  svg += "</svg>";
   return svg;
 }
 

@@ -12,6 +12,7 @@
 
 #include "common/file_util.h"
 #include "engine/report/forward_kinematics.h"
+#include "engine/report/instance_playback.h"
 #include "tests/engine/report/report_test_util.h"
 #include "tests/testing/temp_dir.h"
 
@@ -77,7 +78,7 @@ std::string DecodeFigure(const std::string& encoded, size_t offset,
       points[point_idx][axis] = (code - 1000) / 10.0;
     }
   }
-  return StickFigureSvg(layout, points, 80, 120);
+  return StickFigureSvg(layout, points, kFigureWidthPx, kFigureHeightPx);
 }
 
 class ReportHtmlTest : public ::testing::Test {
@@ -255,6 +256,62 @@ TEST_F(ReportHtmlTest, EveryMotifHasAPlayerOfAllItsInstances) {
   EXPECT_EQ(CountOf(*without, "class=\"play\""), 0u);
   EXPECT_EQ(CountOf(*without, "Playback of this motif is not in the page"),
             synthetic_.document.motifs.size());
+}
+
+// Figure k of every strip is the moment the player shows with the first instance's keyframe
+// sample k: the strips' frames are start + align[key] x step of the player's own alignment; the
+// player's figure carries the strips' colour table.
+TEST_F(ReportHtmlTest, StripKeyframesAreThePlayersAlignedMoments) {
+  auto html = ReportHtmlText(synthetic_.document, *reader_, {});
+  ASSERT_TRUE(html.ok()) << html.status().ToString();
+  EXPECT_NE(html->find(R"("colours":["#555","#1f6fd1","#d62728")"), std::string::npos);
+  const uint32_t step = PlaybackStep(reader_->fps());
+  size_t strips = 0;
+  size_t warped_strips = 0;  // strips whose frames differ from even spacing
+  for (const MotifsJsonMotif& motif : synthetic_.document.motifs) {
+    const std::string id = std::to_string(motif.id);
+    const size_t block = html->find("<script type=\"application/json\" id=\"play-" + id + "\"");
+    ASSERT_NE(block, std::string::npos);
+    const size_t begin = html->find('>', block) + 1;
+    const nlohmann::json data =
+        nlohmann::json::parse(html->substr(begin, html->find("</script>", begin) - begin));
+    const uint32_t reference_samples = data["instances"][0]["samples"];
+    // This motif's section: each strip's label says its instance's frames and the keyframes'.
+    const size_t section = html->find("<section class=\"motif\" id=\"m" + id + "\"");
+    const std::string motif_html =
+        html->substr(section, html->find("</section>", section) - section);
+    const std::regex label(
+        " ([0-9]+)\u2013([0-9]+) \\([^)]*\\)<br><span class=\"kf\">frames ([^<]*)<");
+    for (auto it = std::sregex_iterator(motif_html.begin(), motif_html.end(), label);
+         it != std::sregex_iterator(); ++it, ++strips) {
+      const uint64_t start = std::stoull((*it)[1]);
+      const uint64_t end = std::stoull((*it)[2]);
+      const nlohmann::json* instance = nullptr;
+      for (const nlohmann::json& candidate : data["instances"]) {
+        if (candidate["start"] == start && candidate["end"] == end) instance = &candidate;
+      }
+      ASSERT_NE(instance, nullptr) << "motif " << id << " [" << start << ", " << end << ")";
+      const std::vector<uint32_t> align = (*instance)["align"];
+      std::string expected;
+      std::string even;
+      for (uint32_t key = 0; key < 5; ++key) {
+        const auto sample =
+            static_cast<uint32_t>(std::llround(key * (reference_samples - 1.0) / 4));
+        expected +=
+            (key ? " \u00b7 " : "") + std::to_string(start + uint64_t{align[sample]} * step);
+        even += (key ? " \u00b7 " : "") +
+                std::to_string(start + std::llround(key * (end - start - 1.0) / 4));
+      }
+      EXPECT_EQ((*it)[3].str(), expected) << "motif " << id << " [" << start << ", " << end << ")";
+      warped_strips += (*it)[3].str() != even;
+    }
+  }
+  size_t drawn = 0;
+  for (const MotifsJsonMotif& motif : synthetic_.document.motifs) {
+    drawn += std::min<size_t>(motif.instances.size(), 4);
+  }
+  EXPECT_EQ(strips, drawn);
+  EXPECT_GT(warped_strips, 0u) << "some instance should not be a linear stretch of the first";
 }
 
 // The overview's counts are singular or plural as they should be; the parameters are named

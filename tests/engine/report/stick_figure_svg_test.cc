@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <regex>
 #include <set>
 
 #include "engine/report/forward_kinematics.h"
+#include "engine/report/limb_side.h"
 #include "engine/synth/cmu_body_model.h"
 #include "formats/motion/quaternion_math.h"
 
@@ -93,7 +95,10 @@ TEST(StickFigureSvg, HasOneSegmentPerBoneAndOneDecimal) {
             0u)
       << svg;
   EXPECT_EQ(Count(svg, 'L'), layout.bone_count());  // one line segment per bone
-  EXPECT_EQ(Count(svg, 'M'), layout.chains.size());
+  size_t runs = 0;
+  for (const FigureStroke& stroke : FigureStrokes(layout)) runs += stroke.runs.size();
+  EXPECT_EQ(Count(svg, 'M'), runs);  // a move per run of one side's bones
+  EXPECT_EQ(FigureStrokes(layout).size(), 3u) << "centre, left and right";
   EXPECT_EQ(svg.find("<line"), std::string::npos);
   const std::regex long_decimal("[0-9]\\.[0-9][0-9]");
   EXPECT_FALSE(std::regex_search(svg, long_decimal)) << svg;
@@ -103,7 +108,7 @@ TEST(StickFigureSvg, HasOneSegmentPerBoneAndOneDecimal) {
 TEST(StickFigureSvg, RestPoseFitsTheBox) {
   const Skeleton skeleton = CmuBodyModel::Get().skeleton();
   FigureProjection projection;
-  projection.pixels_per_unit = FigureScaleFor(skeleton, 120, projection.margin_px);
+  projection.pixels_per_unit = FigureScaleFor(skeleton, projection.height_px, projection.margin_px);
   const std::vector<Eigen::Vector3d> rest = RestPosePositions(skeleton);
   double floor = 1e9;
   for (const Eigen::Vector3d& point : rest) floor = std::min(floor, point.y());
@@ -112,7 +117,7 @@ TEST(StickFigureSvg, RestPoseFitsTheBox) {
     projection.view = view;
     for (const FigurePoint& point : ProjectPose(rest, projection)) {
       EXPECT_GE(point[1], projection.margin_px - 0.05);
-      EXPECT_LE(point[1], 120 - projection.margin_px + 0.05);
+      EXPECT_LE(point[1], projection.height_px - projection.margin_px + 0.05);
     }
   }
 }
@@ -138,11 +143,93 @@ TEST(ProjectPose, RemovesTheHeading) {
     EXPECT_NEAR(straight[point_idx][1], unturned[point_idx][1], 0.1 + 1e-9);
   }
   // Side view: +Z to the right; front view: +X to the right; up is up.
-  EXPECT_GT(ProjectPose({Eigen::Vector3d(0, 0, 1)}, FigureProjection{})[0][0], 40);
+  EXPECT_GT(ProjectPose({Eigen::Vector3d(0, 0, 1)}, FigureProjection{})[0][0], kFigureWidthPx / 2);
   FigureProjection front;
   front.view = FigureView::kFront;
-  EXPECT_GT(ProjectPose({Eigen::Vector3d(1, 0, 0)}, front)[0][0], 40);
-  EXPECT_LT(ProjectPose({Eigen::Vector3d(0, 1, 0)}, front)[0][1], 120 - front.margin_px);
+  EXPECT_GT(ProjectPose({Eigen::Vector3d(1, 0, 0)}, front)[0][0], kFigureWidthPx / 2);
+  EXPECT_LT(ProjectPose({Eigen::Vector3d(0, 1, 0)}, front)[0][1],
+            front.height_px - front.margin_px);
+}
+
+// The stroke colour of every segment of a figure's SVG, by its end points' text "x1 y1 x2 y2".
+std::map<std::string, std::string> SegmentColours(const std::string& svg) {
+  std::map<std::string, std::string> colours;
+  const std::regex path("<path stroke=\"([^\"]+)\" d=\"([^\"]+)\"/>");
+  const std::regex step("([ML])(-?[0-9.]+) (-?[0-9.]+)");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), path); it != std::sregex_iterator();
+       ++it) {
+    const std::string colour = (*it)[1];
+    const std::string d = (*it)[2];
+    std::string previous;
+    for (auto at = std::sregex_iterator(d.begin(), d.end(), step); at != std::sregex_iterator();
+         ++at) {
+      const std::string here = (*at)[2].str() + " " + (*at)[3].str();
+      if ((*at)[1] == "L") colours[previous + " " + here] = colour;
+      previous = here;
+    }
+  }
+  return colours;
+}
+
+// The colour the SVG strokes the bone that ends at joint `name` in: the front view of the rest
+// pose, so left and right limbs do not overlap.
+std::string BoneColour(const Skeleton& skeleton, const std::string& name) {
+  const StickFigureLayout layout = MakeStickFigureLayout(skeleton);
+  FigureProjection projection;
+  projection.view = FigureView::kFront;
+  projection.pixels_per_unit = FigureScaleFor(skeleton, projection.height_px, 6);
+  const std::vector<FigurePoint> points =
+      ProjectFigure(layout, RestPosePositions(skeleton), projection);
+  const std::map<std::string, std::string> colours =
+      SegmentColours(StickFigureSvg(layout, points, projection.width_px, projection.height_px));
+  const auto text = [&](uint32_t point) {
+    return FormatFigureCoord(points[point][0]) + " " + FormatFigureCoord(points[point][1]);
+  };
+  const int joint = skeleton.FindJoint(name);
+  for (const std::vector<uint32_t>& chain : layout.chains) {
+    for (size_t step = 1; step < chain.size(); ++step) {
+      if (layout.points[chain[step]] != static_cast<uint32_t>(joint)) continue;
+      const auto found = colours.find(text(chain[step - 1]) + " " + text(chain[step]));
+      return found == colours.end() ? "not stroked" : found->second;
+    }
+  }
+  return "not drawn";
+}
+
+// The strips colour limbs as the player does: left blue, right red, the spine grey (the one
+// table of limb_side.h), for CMU's names and for a studio rig's "_L" / "_R" and Left / Right.
+TEST(StickFigureSvg, StrokesLeftAndRightBonesInThePlayersColours) {
+  EXPECT_STREQ(LimbSideColour(1), "#1f6fd1");
+  EXPECT_STREQ(LimbSideColour(2), "#d62728");
+  EXPECT_STREQ(LimbSideColour(0), "#555");
+  const Skeleton cmu = CmuBodyModel::Get().skeleton();
+  ASSERT_EQ(cmu.family(), "cmu31");
+  for (const char* left : {"lfemur", "ltibia", "lhumerus", "lradius"}) {
+    EXPECT_EQ(BoneColour(cmu, left), "#1f6fd1") << left;
+  }
+  for (const char* right : {"rfemur", "rtibia", "rhumerus", "rradius"}) {
+    EXPECT_EQ(BoneColour(cmu, right), "#d62728") << right;
+  }
+  EXPECT_EQ(BoneColour(cmu, "upperback"), "#555");
+
+  // Hips; legs UpperLeg_L / _R down to LowerLeg; a spine, and arms named Left/Right.
+  std::vector<Joint> joints(9);
+  joints[0].name = "Hips";
+  joints[1] = {"UpperLeg_L", 0, {0.1, -0.1, 0}, false, {}, {}, 0};
+  joints[2] = {"LowerLeg_L", 1, {0, -0.45, 0}, true, {0, -0.45, 0}, {}, 0};
+  joints[3] = {"UpperLeg_R", 0, {-0.1, -0.1, 0}, false, {}, {}, 0};
+  joints[4] = {"LowerLeg_R", 3, {0, -0.45, 0}, true, {0, -0.45, 0}, {}, 0};
+  joints[5] = {"Spine", 0, {0, 0.5, 0}, false, {}, {}, 0};
+  joints[6] = {"Head", 5, {0, 0.3, 0}, true, {0, 0.2, 0}, {}, 0};
+  joints[7] = {"LeftArm", 5, {0.2, 0.2, 0}, true, {0.5, 0, 0}, {}, 0};
+  joints[8] = {"RightArm", 5, {-0.2, 0.2, 0}, true, {-0.5, 0, 0}, {}, 0};
+  const Skeleton studio("studio", joints);
+  EXPECT_EQ(BoneColour(studio, "UpperLeg_L"), "#1f6fd1");
+  EXPECT_EQ(BoneColour(studio, "LowerLeg_L"), "#1f6fd1");
+  EXPECT_EQ(BoneColour(studio, "LeftArm"), "#1f6fd1");
+  EXPECT_EQ(BoneColour(studio, "UpperLeg_R"), "#d62728");
+  EXPECT_EQ(BoneColour(studio, "RightArm"), "#d62728");
+  EXPECT_EQ(BoneColour(studio, "Head"), "#555");
 }
 
 TEST(EncodeFigurePoints, TwoCharactersPerCoordinateAndClamped) {
