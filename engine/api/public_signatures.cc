@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "engine/api/public_status.h"
+#include "engine/words/range_query.h"
 #include "engine/words/window_search.h"
 #include "engine/words/word_model.h"
 #include "engine/words/words_builder.h"
@@ -87,16 +88,10 @@ Status SearchClipRange(const std::string& archive_path, const std::string& clip,
                                                 ", " + std::to_string(end) +
                                                 ") are not a range within clip '" + clip + "'"};
   }
-  motif::Result<std::pair<uint64_t, uint64_t>> words =
-      motif::WordsWithin(reader, opened->words, index, start, end);
+  motif::Result<motif::RangeQuery> words =
+      motif::RangeQueryWords(reader, opened->words, index, start, end);
   if (!words.ok()) return motif::ToPublicStatus(words.status());
-  motif::WindowQuery query;
-  const std::vector<uint32_t> clip_motifs = opened->words.ClipMotifs(index);
-  query.motifs.assign(clip_motifs.begin() + static_cast<std::ptrdiff_t>(words->first),
-                      clip_motifs.begin() + static_cast<std::ptrdiff_t>(words->second));
-  query.exclude_clip = index;
-  query.exclude_first_word = words->first;
-  query.exclude_end_word = words->second;
+  const motif::WindowQuery query = motif::ToWindowQuery(*words, opened->words);
   motif::Result<motif::SearchResult> found =
       motif::SlidingWindowSearch(reader, opened->words, query, top, /*threads=*/0);
   if (!found.ok()) return motif::ToPublicStatus(found.status());

@@ -12,6 +12,8 @@
 #include "engine/distance/pose_features.h"
 #include "engine/report/words_report_html.h"
 #include "engine/signature/clip_words.h"
+#include "engine/signature/word_grid.h"
+#include "engine/words/range_query.h"
 #include "engine/words/window_search.h"
 #include "engine/words/word_embedder.h"
 #include "engine/words/word_model.h"
@@ -25,13 +27,59 @@ namespace po = boost::program_options;
 
 namespace {
 
+// "0.53 s" for `frames` at `fps`.
+std::string Seconds(uint64_t frames, double fps) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f s", frames / fps);
+  return text;
+}
+
+// Holds a take's first frame for `before` frames and its last for `after` (the root stands
+// still there): a query shorter than one word becomes one word long.
+void HoldEdgeFrames(uint64_t before, uint64_t after, Take* take) {
+  const size_t joints = take->joint_count();
+  const size_t frames = take->frame_count();
+  std::vector<Eigen::Vector3d> positions(before, take->root_positions.front());
+  positions.insert(positions.end(), take->root_positions.begin(), take->root_positions.end());
+  positions.insert(positions.end(), after, take->root_positions.back());
+  std::vector<Eigen::Quaterniond> rotations;
+  rotations.reserve((frames + before + after) * joints);
+  for (uint64_t frame = 0; frame < before; ++frame) {
+    rotations.insert(rotations.end(), take->rotations.begin(), take->rotations.begin() + joints);
+  }
+  rotations.insert(rotations.end(), take->rotations.begin(), take->rotations.end());
+  for (uint64_t frame = 0; frame < after; ++frame) {
+    rotations.insert(rotations.end(), take->rotations.end() - joints, take->rotations.end());
+  }
+  take->root_positions = std::move(positions);
+  take->rotations = std::move(rotations);
+}
+
+// A fitted query shorter than one word, padded to one by holding its edge frames (half before,
+// half after); returns the note saying so, or "" when it was long enough.
+std::string PadToOneWord(const WordOptions& word_options, Take* fitted) {
+  const uint64_t frames = fitted->frame_count();
+  uint64_t needed = std::max<uint64_t>(frames, 1);
+  while (WordGrid(needed, fitted->fps, word_options).word_count() == 0) ++needed;
+  if (needed == frames) return "";
+  const uint64_t before = (needed - frames) / 2;
+  HoldEdgeFrames(before, needed - frames - before, fitted);
+  const double fps = fitted->fps;
+  return "the query is " + Seconds(frames, fps) + " (" + std::to_string(frames) +
+         " frames), shorter than one motion word (" + Seconds(needed, fps) + ", " +
+         std::to_string(needed) + " frames): padded to " + Seconds(needed, fps) +
+         " by holding its first frame for " + std::to_string(before) + " frames and its last for " +
+         std::to_string(needed - frames - before);
+}
+
 // The motifs of the words of a motion file: imported, fitted to the archive's skeleton and rate,
-// cut into words, embedded with the archive's embedding and assigned to its motifs.
+// padded to one word if shorter (*note says so), cut into words, embedded with the archive's
+// embedding and assigned to its motifs.
 Result<std::vector<uint32_t>> QueryFileMotifs(const std::string& path,
                                               const FrameFileReader& reader,
                                               const LoadedWords& words,
                                               const std::vector<float>& weights, int threads,
-                                              Take* fitted) {
+                                              Take* fitted, std::string* note) {
   ImportOptions import_options;
   MOTIF_ASSIGN_OR_RETURN(std::vector<TakeSource> sources, DiscoverTakes({path}, import_options));
   if (sources.size() != 1) {
@@ -43,6 +91,8 @@ Result<std::vector<uint32_t>> QueryFileMotifs(const std::string& path,
     return status.WithContext(path + ": does not fit the archive's skeleton");
   }
   *fitted = ResampleTake(take, reader.fps());
+  if (fitted->frame_count() == 0) return Status::InvalidArgument(path + ": has no frame");
+  *note = PadToOneWord(words.signatures.words, fitted);
   const ClipFrames clip = TakeToClipFrames(*fitted);
   MOTIF_ASSIGN_OR_RETURN(ClipWords clip_words,
                          ClipWords::FromRows(clip.rows, reader.fps(), reader.layout(), weights,
@@ -60,11 +110,53 @@ Result<std::vector<uint32_t>> QueryFileMotifs(const std::string& path,
   return std::vector<uint32_t>(motifs.begin(), motifs.end());
 }
 
-nlohmann::json SearchJson(const SearchResult& result, const FrameFileReader& reader,
-                          const SearchPageInfo& info, const std::string& query_kind,
+// A search that ran: what the page and search.json say of the query, and the matches.
+struct SearchRun {
+  SearchPageInfo info;
+  std::string query_kind;  // "clip-range", "take" or "file"
+  Take query_take;         // a file query, fitted to the archive: its keyframes head the page
+  RangeQuery range;        // a clip-range query: its words
+  SearchResult result;
+};
+
+// The clip names of `clips`, as a JSON array.
+nlohmann::json ClipNames(const FrameFileReader& reader, const std::vector<uint32_t>& clips) {
+  nlohmann::json names = nlohmann::json::array();
+  for (uint32_t clip : clips) names.push_back(reader.clips()[clip].name);
+  return names;
+}
+
+nlohmann::json MatchJson(const SearchResult& result, const FrameFileReader& reader, size_t rank) {
+  const WindowMatch& match = result.matches[rank];
+  const double fps = reader.fps();
+  nlohmann::json entry = {{"rank", rank + 1},
+                          {"clip", reader.clips()[match.clip].name},
+                          {"start", match.start_frame},
+                          {"end", match.end_frame},
+                          {"start_seconds", match.start_frame / fps},
+                          {"end_seconds", match.end_frame / fps},
+                          {"first_word", match.first_word},
+                          {"words", match.words},
+                          {"distance", match.distance},
+                          {"rank_in_take", match.rank_in_take},
+                          {"whole_take", match.whole_take}};
+  if (!result.whole_take) {
+    nlohmann::json profile = nlohmann::json::array();
+    for (float value : result.profiles[rank]) {
+      profile.push_back(std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value));
+    }
+    entry["profile"] = profile;
+  }
+  return entry;
+}
+
+nlohmann::json SearchJson(const SearchRun& run, const FrameFileReader& reader,
                           const std::string& query_file) {
+  const SearchResult& result = run.result;
+  const SearchPageInfo& info = run.info;
+  const std::string& query_kind = run.query_kind;
   nlohmann::json json;
-  json["version"] = 1;
+  json["version"] = 2;
   json["archive"] = info.archive;
   // The version searched (read once, so an import appending meanwhile does not change it).
   json["archive_generation"] = reader.summary().generation;
@@ -73,41 +165,32 @@ nlohmann::json SearchJson(const SearchResult& result, const FrameFileReader& rea
     query["clip"] = reader.clips()[info.query_clip].name;
     query["start"] = info.query_start;
     query["end"] = info.query_end;
+    if (query_kind == "clip-range") {
+      query["word_start"] = run.range.word_frames.first;
+      query["word_end"] = run.range.word_frames.end;
+      query["padded"] = run.range.padded;
+    }
   } else {
     query["file"] = query_file;
   }
   json["query"] = query;
   json["motifs"] = info.motifs;
   json["windows"] = result.windows;
-  json["shorter_takes"] = result.shorter_takes;  // left out: fewer words than the query
+  json["overlap"] = "shared source frame";
+  json["shorter_takes"] = result.shorter_takes;  // compared whole: fewer words than the query
+  json["shorter"] = ClipNames(reader, result.shorter_clips);
   nlohmann::json left_out = nlohmann::json::array();
-  for (uint32_t clip : result.shorter_clips) {
-    left_out.push_back(
-        {{"clip", reader.clips()[clip].name}, {"reason", "fewer motion words than the query"}});
+  for (uint32_t clip : result.wordless_clips) {
+    if (info.query_in_archive && clip == info.query_clip) continue;
+    left_out.push_back({{"clip", reader.clips()[clip].name},
+                        {"reason", "no motion word (shorter than one word)"}});
   }
   json["left_out"] = left_out;
+  json["notes"] = run.info.notes;
   json["seconds"] = info.seconds;
   nlohmann::json matches = nlohmann::json::array();
   for (size_t rank = 0; rank < result.matches.size(); ++rank) {
-    const WindowMatch& match = result.matches[rank];
-    const double fps = reader.fps();
-    nlohmann::json entry = {{"rank", rank + 1},
-                            {"clip", reader.clips()[match.clip].name},
-                            {"start", match.start_frame},
-                            {"end", match.end_frame},
-                            {"start_seconds", match.start_frame / fps},
-                            {"end_seconds", match.end_frame / fps},
-                            {"first_word", match.first_word},
-                            {"words", match.words},
-                            {"distance", match.distance}};
-    if (!result.whole_take) {
-      nlohmann::json profile = nlohmann::json::array();
-      for (float value : result.profiles[rank]) {
-        profile.push_back(std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value));
-      }
-      entry["profile"] = profile;
-    }
-    matches.push_back(entry);
+    matches.push_back(MatchJson(result, reader, rank));
   }
   json["matches"] = matches;
   return json;
@@ -135,8 +218,10 @@ void AddSearchOptions(CommandSpec& spec) {
   spec.summary =
       "Finds the motions of ARCHIVE most like a query, by the Earth Mover's Distance between\n"
       "motion signatures (run `motifmine words` first). With a frame range of a clip, or a\n"
-      "BVH/AMC file, a window of as many words as the query slides along every take and each\n"
-      "take's best window is ranked; with a whole clip (no range), whole takes are ranked.\n"
+      "BVH/AMC file, a window of as many words as the query slides along every take; a take\n"
+      "gives several windows, none sharing a frame with another (or with the query), ranked\n"
+      "together. A query shorter than one word is padded to one, a take shorter than the query\n"
+      "compared whole. With a whole clip (no range), the other takes are ranked whole.\n"
       "Writes DIR/search.json and DIR/search.html.";
   spec.options.add_options()("clip", po::value<std::string>()->default_value(""),
                              "query: a clip of the archive")(
@@ -144,7 +229,7 @@ void AddSearchOptions(CommandSpec& spec) {
       "end", po::value<uint64_t>(), "end of the query range (exclusive)")(
       "query", po::value<std::string>()->default_value(""),
       "query: a BVH (or ASF/AMC) file, embedded with the archive's embedding")(
-      "top", po::value<uint32_t>()->default_value(10), "matches to keep");
+      "top", po::value<uint32_t>()->default_value(10), "matches (windows) to keep, in all");
   AddTableFlags(spec, {"weights"});
   AddWordsReaderOptions(spec, "PREFIX.mwe, .mwm, .mws", "search");
   AddProgressOptions(spec);
@@ -187,14 +272,6 @@ int ReadSearchOptions(const CommandSpec& spec, const po::variables_map& vm,
   return -1;
 }
 
-// A search that ran: what the page and search.json say of the query, and the matches.
-struct SearchRun {
-  SearchPageInfo info;
-  std::string query_kind;  // "clip-range", "take" or "file"
-  Take query_take;         // a file query, fitted to the archive: its keyframes head the page
-  SearchResult result;
-};
-
 Result<uint32_t> FindQueryClip(const FrameFileReader& frames, const SearchCommandOptions& options) {
   uint32_t clip = UINT32_MAX;
   for (uint32_t idx = 0; idx < frames.clips().size(); ++idx) {
@@ -207,27 +284,39 @@ Result<uint32_t> FindQueryClip(const FrameFileReader& frames, const SearchComman
   return clip;
 }
 
-// Frames [start, end) of `clip`: its words slide along every take, its own words left out.
+// The note on a range query padded to one word.
+std::string PaddedRangeNote(const RangeQuery& range, double fps) {
+  const std::string shorter = range.range.count() < range.one_word_frames
+                                  ? ", shorter than one motion word (" +
+                                        Seconds(range.one_word_frames, fps) + ", " +
+                                        std::to_string(range.one_word_frames) + " frames)"
+                                  : ", holding no motion word";
+  return "the query is " + Seconds(range.range.count(), fps) + " (frames " +
+         std::to_string(range.range.first) + "-" + std::to_string(range.range.end) + ")" + shorter +
+         ": padded to " + Seconds(range.word_frames.count(), fps) +
+         " by taking the word centred on it, frames " + std::to_string(range.word_frames.first) +
+         "-" + std::to_string(range.word_frames.end);
+}
+
+// Frames [start, end) of `clip`: its words slide along every take; windows sharing a frame with
+// the query in its own clip are left out.
 Result<SearchResult> SearchQueryRange(const SearchCommandOptions& options,
                                       const FrameFileReader& frames, const LoadedWords& words,
                                       uint32_t clip, SearchRun* run) {
-  const ClipInfo& info_clip = frames.clips()[clip];
   const uint64_t start = options.start;
   const uint64_t end = options.end;
-  if (start >= end || end > info_clip.frame_count) {
-    return Status::InvalidArgument("--start " + std::to_string(start) + " --end " +
-                                   std::to_string(end) + " is not a range within clip " +
-                                   options.clip_name + "'s " +
-                                   std::to_string(info_clip.frame_count) + " frames");
+  Result<RangeQuery> range = RangeQueryWords(frames, words, clip, start, end);
+  if (!range.ok()) {
+    return range.status().WithContext("--start " + std::to_string(start) + " --end " +
+                                      std::to_string(end));
   }
-  MOTIF_ASSIGN_OR_RETURN(const auto range, WordsWithin(frames, words, clip, start, end));
-  WindowQuery query;
-  const std::vector<uint32_t> clip_motifs = words.ClipMotifs(clip);
-  query.motifs.assign(clip_motifs.begin() + static_cast<std::ptrdiff_t>(range.first),
-                      clip_motifs.begin() + static_cast<std::ptrdiff_t>(range.second));
-  query.exclude_clip = clip;
-  query.exclude_first_word = range.first;
-  query.exclude_end_word = range.second;
+  run->range = *range;
+  const WindowQuery query = ToWindowQuery(*range, words);
+  if (range->padded) run->info.notes.push_back(PaddedRangeNote(*range, frames.fps()));
+  run->info.notes.push_back("windows of " + options.clip_name + " sharing a frame with frames " +
+                            std::to_string(query.exclude_start_frame) + "-" +
+                            std::to_string(query.exclude_end_frame) +
+                            " (the query and the words it reads) are left out");
   SearchPageInfo& info = run->info;
   info.query_start = start;
   info.query_end = end;
@@ -247,6 +336,7 @@ Result<SearchResult> SearchQueryTake(const SearchCommandOptions& options,
   info.query_end = frames.clips()[clip].frame_count;
   info.query_words = words.signatures.clip_words[clip];
   info.query_text = "the whole of clip " + options.clip_name;
+  run->info.notes.push_back("clip " + options.clip_name + " itself is left out");
   run->query_kind = "take";
   return WholeTakeSearch(frames, words, clip, options.top, options.threads);
 }
@@ -258,8 +348,10 @@ Result<SearchResult> SearchQueryFile(const SearchCommandOptions& options,
   MOTIF_ASSIGN_OR_RETURN(std::vector<float> weights,
                          LoadDistanceWeights(frames.skeleton(), options.weights_path));
   WindowQuery query;
+  std::string note;
   MOTIF_ASSIGN_OR_RETURN(query.motifs, QueryFileMotifs(options.query_file, frames, words, weights,
-                                                       options.threads, &run->query_take));
+                                                       options.threads, &run->query_take, &note));
+  if (!note.empty()) run->info.notes.push_back(note);
   SearchPageInfo& info = run->info;
   info.query_words = query.motifs.size();
   info.query_text = "file " + options.query_file;
@@ -294,46 +386,64 @@ Status SearchArchive(const SearchCommandOptions& options, const FrameFileReader&
 
 Status WriteSearchFiles(const SearchCommandOptions& options, const FrameFileReader& frames,
                         const SearchRun& run) {
-  const nlohmann::json json =
-      SearchJson(run.result, frames, run.info, run.query_kind, options.query_file);
+  const nlohmann::json json = SearchJson(run, frames, options.query_file);
   MOTIF_RETURN_IF_ERROR(AtomicWriteFile(options.output.json_path, json.dump(2) + "\n"));
   return WriteSearchHtml(options.output.html_path, run.result, frames, run.info);
 }
 
-// The takes too short for the query, named up to a screenful; the JSON's "left_out" lists them
-// all.
-void PrintSearchLeftOut(const FrameFileReader& frames, const SearchRun& run) {
-  const SearchResult& result = run.result;
+// The takes `clips` names, up to a screenful; search.json lists them all.
+std::string ClipList(const FrameFileReader& frames, const std::vector<uint32_t>& clips) {
   constexpr size_t kNamed = 10;
   std::string names;
-  for (size_t idx = 0; idx < result.shorter_clips.size() && idx < kNamed; ++idx) {
-    names += (idx ? ", " : ": ") + frames.clips()[result.shorter_clips[idx]].name;
+  for (size_t idx = 0; idx < clips.size() && idx < kNamed; ++idx) {
+    names += (idx ? ", " : ": ") + frames.clips()[clips[idx]].name;
   }
-  if (result.shorter_clips.size() > kNamed) {
-    names += " and " + WithCommas(result.shorter_clips.size() - kNamed) + " more";
+  if (clips.size() > kNamed) names += " and " + WithCommas(clips.size() - kNamed) + " more";
+  return names;
+}
+
+// The takes of fewer words than the query (compared whole) and those of none (left out).
+void PrintSearchShorter(const FrameFileReader& frames, const SearchRun& run) {
+  const SearchResult& result = run.result;
+  if (result.shorter_takes > 0) {
+    std::printf(
+        "  shorter      %s of fewer words than the query's %s, each compared whole (one "
+        "window of all its words)%s\n",
+        CountOf(result.shorter_takes, "take").c_str(), WithCommas(run.info.query_words).c_str(),
+        ClipList(frames, result.shorter_clips).c_str());
   }
-  std::printf("  left out     %s shorter than the query (fewer words than its %s)%s\n",
-              CountOf(result.shorter_takes, "take").c_str(),
-              WithCommas(run.info.query_words).c_str(), names.c_str());
+  std::vector<uint32_t> wordless;
+  for (uint32_t clip : result.wordless_clips) {
+    if (!run.info.query_in_archive || clip != run.info.query_clip) wordless.push_back(clip);
+  }
+  if (!wordless.empty()) {
+    std::printf("  left out     %s of no motion word (shorter than one word)%s\n",
+                CountOf(wordless.size(), "take").c_str(), ClipList(frames, wordless).c_str());
+  }
 }
 
 void PrintSearchSummary(const SearchCommandOptions& options, const FrameFileReader& frames,
                         const SearchRun& run) {
   const SearchResult& result = run.result;
-  std::printf("motifmine search: %s, query %s (%s words)\n", options.archive.c_str(),
-              run.info.query_text.c_str(), WithCommas(run.info.query_words).c_str());
+  std::printf("motifmine search: %s, query %s (%s)\n", options.archive.c_str(),
+              run.info.query_text.c_str(), CountOf(run.info.query_words, "word").c_str());
+  for (const std::string& note : run.info.notes) std::printf("  note         %s\n", note.c_str());
   const double fps = frames.fps();
   for (size_t rank = 0; rank < result.matches.size(); ++rank) {
     const WindowMatch& match = result.matches[rank];
-    std::printf("  %2zu. %-20s frames %7llu-%-7llu (%.2f-%.2f s)  EMD %.4f\n", rank + 1,
+    const std::string in_take = result.whole_take ? ""
+                                : match.whole_take
+                                    ? "  (the whole take)"
+                                    : "  (its take's #" + std::to_string(match.rank_in_take) + ")";
+    std::printf("  %2zu. %-20s frames %7llu-%-7llu (%.2f-%.2f s)  EMD %.4f%s\n", rank + 1,
                 frames.clips()[match.clip].name.c_str(),
                 static_cast<unsigned long long>(match.start_frame),
                 static_cast<unsigned long long>(match.end_frame), match.start_frame / fps,
-                match.end_frame / fps, match.distance);
+                match.end_frame / fps, match.distance, in_take.c_str());
   }
-  std::printf("  compared     %s windows in %.2fs\n", WithCommas(result.windows).c_str(),
-              run.info.seconds);
-  if (result.shorter_takes > 0) PrintSearchLeftOut(frames, run);
+  std::printf("  compared     %s windows in %.2fs%s\n", WithCommas(result.windows).c_str(),
+              run.info.seconds, result.whole_take ? "" : "; a take's matches share no frame");
+  PrintSearchShorter(frames, run);
   std::printf("  wrote        %s, %s\n", options.output.json_path.c_str(),
               options.output.html_path.c_str());
 }

@@ -48,6 +48,7 @@ Status AppendSearchQuery(const SearchResult& result, const FrameFileReader& read
                                        " words slid along every take, one word at a time (" +
                                        HtmlCommas(result.windows) + " windows); EMD over " +
                                        std::to_string(info.motifs) + " motifs");
+  for (const std::string& note : info.notes) *html += HtmlRow("note", HtmlEscape(note));
   *html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
   *html += "</table>\n";
   if (info.query_in_archive) {
@@ -91,10 +92,13 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
   MOTIF_RETURN_IF_ERROR(AppendSearchQuery(result, reader, info, &figures, &html));
   html +=
       "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "
-      "one per take (its best window). The strip under each match shows the EMD of every "
+      "ranked across takes. A take may give several windows, none sharing a frame: its best, "
+      "then its best not overlapping that one, and so on (#2, #3 ...); a take of fewer words "
+      "than the query is compared whole. The strip under each match shows the EMD of every "
       "window along its take, darker where closer; the box marks the match. Frames are "
       "0-based within the clip, the end excluded.</p>\n";
-  if (result.matches.empty()) html += "<p>No take holds enough words for the query.</p>\n";
+  if (result.matches.empty())
+    html += "<p>No window to show: every take is the query's own or holds no motion word.</p>\n";
   // One shade scale for every profile on the page.
   double lo = std::numeric_limits<double>::infinity();
   double hi = 0;
@@ -113,6 +117,9 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
             " <span class=\"note\">frames " + std::to_string(match.start_frame) + "\u2013" +
             std::to_string(match.end_frame) + " (" + HtmlSeconds(match.start_frame, fps) + " to " +
             HtmlSeconds(match.end_frame, fps) + "), EMD " + HtmlNumber("%.4f", match.distance) +
+            (result.whole_take  ? std::string()
+             : match.whole_take ? std::string(", the whole take")
+                                : ", its take's #" + std::to_string(match.rank_in_take)) +
             "</span></h3><div class=\"figs\">" + svg + "</div>";
     const std::vector<float>& profile = result.profiles[rank];
     if (!result.whole_take && !profile.empty()) {

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "common/status.h"
 #include "engine/words/take_classification.h"
@@ -29,6 +30,7 @@ struct SearchPageInfo {
   uint64_t query_end = 0;
   const Take* query_take = nullptr;  // a file query fitted to the archive (drawn), or null
   uint64_t query_words = 0;
+  std::vector<std::string> notes;  // what was done to the query (padded, its windows left out)
   uint32_t motifs = 0;
   double seconds = 0;
 };

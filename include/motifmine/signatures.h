@@ -55,8 +55,9 @@ struct SearchMatch {
   double distance = 0;  // Earth Mover's Distance between the window's and the query's signature
 };
 
-// The `top` takes with a window most like frames [start, end) of `clip`, best first (the query's
-// own windows left out), as `motifmine search --clip --start --end` finds them.
+// The `top` windows most like frames [start, end) of `clip`, best first, as `motifmine search
+// --clip --start --end` finds them: several a take, none sharing a frame with another of its take
+// or with the query itself; a range shorter than one word padded to the word centred on it.
 MOTIFMINE_API Status SearchClipRange(const std::string& archive_path, const std::string& clip,
                                      uint64_t start, uint64_t end, uint32_t top,
                                      std::vector<SearchMatch>* matches);

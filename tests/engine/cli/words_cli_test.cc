@@ -1,6 +1,7 @@
 // End-to-end tests of `motifmine words`, `search`, `classify` and `segment` with the built binary,
 // as a user would run them on a small synthetic archive: the files and documents they write, reuse,
 // a query exported as BVH finding where it came from, and clear errors on bad input.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -123,6 +124,134 @@ TEST_F(WordsCliTest, SearchFindsAnExportedRangeAndTheWholeTake) {
   for (const auto& match : json["matches"]) EXPECT_NE(match["clip"], "synth_000001");
 }
 
+// Whether two matches of search.json read a frame in common.
+bool MatchesOverlap(const nlohmann::json& a, const nlohmann::json& b) {
+  return a["clip"] == b["clip"] && a["start"].get<uint64_t>() < b["end"].get<uint64_t>() &&
+         b["start"].get<uint64_t>() < a["end"].get<uint64_t>();
+}
+
+TEST_F(WordsCliTest, SearchKeepsSeveralWindowsATakeNeverTheQuery) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  RunResult range = RunTool("search " + archive_ + " --clip synth_000001 --start 600 --end 1200 " +
+                            "--top 20 --out " + dir_->File("several"));
+  ASSERT_EQ(range.exit_code, 0) << range.output;
+  EXPECT_NE(range.output.find("windows of synth_000001 sharing a frame with frames 600-1200"),
+            std::string::npos)
+      << range.output;
+  const nlohmann::json json = ReadJson(dir_->File("several/search.json"));
+  EXPECT_EQ(json["version"], 2);
+  EXPECT_EQ(json["overlap"], "shared source frame");
+  EXPECT_EQ(json["query"]["word_start"], 600);
+  EXPECT_EQ(json["query"]["word_end"], 1196);
+  EXPECT_EQ(json["query"]["padded"], false);
+  const nlohmann::json& matches = json["matches"];
+  ASSERT_EQ(matches.size(), 20u);  // of 27 non-overlapping windows in all
+  std::map<std::string, uint32_t> per_take;
+  for (size_t rank = 0; rank < matches.size(); ++rank) {
+    const nlohmann::json& match = matches[rank];
+    EXPECT_EQ(match["rank_in_take"], ++per_take[match["clip"].get<std::string>()]);
+    EXPECT_FALSE(match["clip"] == "synth_000001" && match["start"].get<uint64_t>() < 1200 &&
+                 match["end"].get<uint64_t>() > 600)
+        << "the query found itself at " << match["start"];
+    for (size_t other = 0; other < rank; ++other) {
+      EXPECT_FALSE(MatchesOverlap(match, matches[other])) << rank << " and " << other;
+    }
+    if (rank > 0) EXPECT_LE(matches[rank - 1]["distance"], match["distance"]);
+  }
+  EXPECT_TRUE(std::any_of(per_take.begin(), per_take.end(), [](const auto& take) {
+    return take.second > 1;
+  })) << "several windows of one take";
+  EXPECT_NE(range.output.find("(its take's #2)"), std::string::npos) << range.output;
+}
+
+TEST_F(WordsCliTest, SearchPadsAQueryShorterThanOneWord) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  // 64 frames (0.53 s) of a take: the word centred on them, [600, 676).
+  RunResult range = RunTool("search " + archive_ + " --clip synth_000001 --start 600 --end 664 " +
+                            "--top 5 --out " + dir_->File("short"));
+  ASSERT_EQ(range.exit_code, 0) << range.output;
+  EXPECT_NE(range.output.find("note         the query is 0.53 s (frames 600-664), shorter than "
+                              "one motion word (0.63 s, 76 frames): padded to 0.63 s by taking "
+                              "the word centred on it, frames 600-676"),
+            std::string::npos)
+      << range.output;
+  nlohmann::json json = ReadJson(dir_->File("short/search.json"));
+  EXPECT_EQ(json["query"]["words"], 1);
+  EXPECT_EQ(json["query"]["padded"], true);
+  EXPECT_EQ(json["query"]["word_start"], 600);
+  EXPECT_EQ(json["query"]["word_end"], 676);
+  ASSERT_EQ(json["matches"].size(), 5u);
+  for (const auto& match : json["matches"]) {
+    EXPECT_EQ(match["words"], 1);
+    EXPECT_FALSE(match["clip"] == "synth_000001" && match["start"].get<uint64_t>() < 676 &&
+                 match["end"].get<uint64_t>() > 600);
+  }
+  // The same frames as a BVH file: held at either end to one word, and found where they came
+  // from (the file query does not know its origin, so that window may be found).
+  ASSERT_EQ(RunTool("export " + archive_ + " --clip synth_000001 --start 600 --end 664 --out " +
+                    dir_->File("short.bvh"))
+                .exit_code,
+            0);
+  RunResult file = RunTool("search " + archive_ + " --query " + dir_->File("short.bvh") +
+                           " --top 3 --out " + dir_->File("short_file"));
+  ASSERT_EQ(file.exit_code, 0) << file.output;
+  EXPECT_NE(file.output.find("note         the query is 0.53 s (64 frames), shorter than one "
+                             "motion word (0.63 s, 76 frames): padded to 0.63 s by holding its "
+                             "first frame for 6 frames and its last for 6"),
+            std::string::npos)
+      << file.output;
+  json = ReadJson(dir_->File("short_file/search.json"));
+  EXPECT_EQ(json["query"]["words"], 1);
+  ASSERT_EQ(json["notes"].size(), 1u);
+  EXPECT_NE(json["notes"][0].get<std::string>().find("padded"), std::string::npos);
+}
+
+TEST_F(WordsCliTest, SearchComparesTakesShorterThanTheQueryWhole) {
+  ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
+  // The whole of the longest take as a range: every other take has fewer words.
+  RunResult whole_takes = RunTool("search " + archive_ + " --clip synth_000001 --top 1000 --out " +
+                                  dir_->File("takes") + " --quiet");
+  ASSERT_EQ(whole_takes.exit_code, 0) << whole_takes.output;
+  const nlohmann::json takes = ReadJson(dir_->File("takes/search.json"));
+  std::string longest = "synth_000001";
+  uint64_t longest_words = takes["query"]["words"];
+  uint64_t longest_frames = takes["query"]["end"];
+  for (const auto& match : takes["matches"]) {  // a whole take's match: all its words' frames
+    if (match["words"].get<uint64_t>() > longest_words) {
+      longest = match["clip"];
+      longest_words = match["words"];
+      longest_frames = match["end"];
+    }
+  }
+  RunResult range =
+      RunTool("search " + archive_ + " --clip " + longest + " --start 0 --end " +
+              std::to_string(longest_frames) + " --top 1000 --out " + dir_->File("long"));
+  ASSERT_EQ(range.exit_code, 0) << range.output;
+  const nlohmann::json json = ReadJson(dir_->File("long/search.json"));
+  ASSERT_EQ(json["query"]["words"], longest_words);
+  const size_t shorter = json["shorter"].size();
+  EXPECT_EQ(json["shorter_takes"], shorter);
+  EXPECT_GT(shorter, 0u);
+  EXPECT_NE(range.output.find("  shorter      " + std::to_string(shorter) +
+                              " takes of fewer words than the query's " +
+                              std::to_string(longest_words) + ", each compared whole"),
+            std::string::npos)
+      << range.output;
+  // Every shorter take is a match, once, whole; none is left out.
+  EXPECT_TRUE(json["left_out"].empty());
+  size_t whole = 0;
+  for (const auto& match : json["matches"]) {
+    if (!match["whole_take"].get<bool>()) continue;
+    ++whole;
+    EXPECT_EQ(match["start"], 0);
+    EXPECT_EQ(match["first_word"], 0);
+    EXPECT_EQ(match["rank_in_take"], 1);
+    EXPECT_NE(std::find(json["shorter"].begin(), json["shorter"].end(), match["clip"]),
+              json["shorter"].end());
+  }
+  EXPECT_EQ(whole, shorter);
+}
+
 TEST_F(WordsCliTest, ClassifyWritesItsDocumentWithAndWithoutLabels) {
   ASSERT_EQ(RunTool("words " + archive_ + WordsArgs()).exit_code, 0);
   RunResult plain = RunTool("classify " + archive_ + " --groups 3 --out " + dir_->File("c1"));
@@ -168,7 +297,8 @@ TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
   };
   expect("words " + dir_->File("missing.mfs"), 11, "missing.mfs");
   expect("words " + archive_ + " --motifs 0", 2, "--motifs must be a whole number in [1, 65535]");
-  expect("words " + archive_ + " --motifs 60000 --epochs 1", 13, "fewer than the 60000 asked for (--motifs)");
+  expect("words " + archive_ + " --motifs 60000 --epochs 1", 13,
+         "fewer than the 60000 asked for (--motifs)");
   expect("words " + archive_ + " --held-out 1", 2, "--held-out must be a number in [0, 0.9]");
   expect("classify " + archive_ + " --prefix " + dir_->File("none"), 11, "run `motifmine words`");
   expect("classify " + archive_ + " --distance cosine", 13, "--distance must be");
@@ -183,8 +313,10 @@ TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
   expect("search " + archive_ + " --clip synth_000001 --start 5", 2,
          "--start and --end go together");
   expect("search " + archive_ + " --clip nope", 11, "no clip named 'nope'");
-  expect("search " + archive_ + " --clip synth_000001 --start 10 --end 50", 13,
-         "no whole motion word");
+  // A range shorter than one word is no longer refused: padded to one (its own test above).
+  expect(
+      "search " + archive_ + " --clip synth_000001 --start 10 --end 50 --out " + dir_->File("tiny"),
+      0, "padded to 0.63 s by taking the word centred on it");
   expect("search " + archive_ + " --clip synth_000001 --start 10 --end 99999999", 13,
          "not a range");
   expect("search " + archive_ + " --query " + dir_->File("none.bvh"), 11, "none.bvh");
