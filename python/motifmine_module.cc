@@ -387,8 +387,8 @@ PYBIND11_MODULE(motifmine, m) {
         "(clip names, float64 array clips x motifs): every clip's TF-IDF signature.");
   m.def("search", &Search, py::arg("archive"), py::arg("clip"), py::arg("start"), py::arg("end"),
         py::kw_only(), py::arg("top") = GivenInt{py::int_(10)}, py::arg("allow_older") = kFalse,
-        "The takes with a window most like frames [start, end) of clip, best first, as "
-        "`motifmine search` finds them.");
+        "The windows most like frames [start, end) of clip, best first: several per take, "
+        "none overlapping another of its take or the query, as `motifmine search` finds them.");
 
   BindSkeleton(m);
   py::class_<motifmine::Archive> archive(m, "Archive");
