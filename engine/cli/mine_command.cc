@@ -160,6 +160,7 @@ void PrintSummary(const MinePipelineResult& result) {
                 score.adjusted_rand_index);
   }
   std::printf("  wrote        %s", result.motifs_path.c_str());
+  if (!result.instances_path.empty()) std::printf(", %s", result.instances_path.c_str());
   if (!result.report_path.empty()) {
     std::printf(", %s (open it in a browser)", result.report_path.c_str());
   }

@@ -1,5 +1,6 @@
 #include "engine/cluster/cluster_stage.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -44,6 +45,13 @@ std::string StoredClusterKey(const std::string& state_path) {
     return "";
   }
   return state["cluster_key"].get<std::string>();
+}
+
+// Whether every motif has its representative: a motifs.json written before them is clustered
+// again rather than reused, so that a rerun's file has them too.
+bool HasRepresentatives(const MotifsDocument& document) {
+  return std::all_of(document.motifs.begin(), document.motifs.end(),
+                     [](const MotifsJsonMotif& motif) { return motif.representative.has_value(); });
 }
 
 // Whether two paths from the current directory name the same file, as written.
@@ -93,7 +101,7 @@ Result<ClusterStageResult> RunClusterStage(const ClusterStageInput& input,
     Result<MotifsDocument> stored = ReadMotifsJson(input.motifs_path);
     if (stored.ok() && stored->frames == archive.frame_count() &&
         stored->archive_version == ArchiveVersionOf(archive) &&
-        SamePath(stored->archive, input.archive_path)) {
+        SamePath(stored->archive, input.archive_path) && HasRepresentatives(*stored)) {
       result.document = std::move(stored.value());
       result.reused = true;
       return result;

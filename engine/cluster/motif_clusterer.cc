@@ -8,6 +8,7 @@
 #include "common/seconds_since.h"
 #include "engine/cluster/held_pose.h"
 #include "engine/cluster/instance_interval_index.h"
+#include "engine/cluster/motif_representatives.h"
 
 namespace motif {
 
@@ -316,6 +317,12 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
     result.report.clustered_instances += motif.instances.size();
   }
   result.report.covered_frames = CoveredByMotifs(result.motifs, set.instances);
+  if (options.archive != nullptr) {
+    started = std::chrono::steady_clock::now();
+    MOTIF_RETURN_IF_ERROR(FindRepresentatives(
+        *options.archive, set.instances, options.warped.samples, options.threads, &result.motifs));
+    result.report.representative_seconds = SecondsSince(started);
+  }
   result.instances = std::move(set.instances);
   result.links = std::move(set.links);
   return result;

@@ -2,7 +2,8 @@
 // grower's candidates to ranked motifs:
 //   candidates -> instances (instance_builder.h: longest path per root, 3/4-overlap merge, links)
 //   -> similarity graph (instance_similarity.h: shared similar frames read back from the trellis,
-//      plus the links) -> groups (normalized_cut.h) -> motifs, most important first.
+//      plus the links) -> groups (normalized_cut.h) -> motifs, most important first, each with
+//      its representative instance when the archive is given (motif_representatives.h).
 // A motif's importance is Motif::score(), (instances - 1) × mean length; ties go to the motif that
 // starts first. Two instances of one motif never share more than a quarter of the shorter: of
 // such near-copies the one closer to the motif's typical length stays. A motif lying inside a
@@ -63,6 +64,10 @@ struct ClusterOptions {
 struct Motif {
   std::vector<uint32_t> instances;  // ids into ClusterResult::instances, ascending (= by start)
   uint64_t total_frames = 0;        // instance count × mean length
+  // With the archive set: the medoid (an index into `instances`) and each instance's warped
+  // distance to it (motif_representatives.h); `distances` empty without the archive.
+  uint32_t representative = 0;
+  std::vector<double> distances = {};
   // The ranking: (instance count - 1) × mean length, the frames the motif explains beyond its
   // first instance. A movement repeated often and at length comes first; among the scales of
   // one repeated movement (one repetition a instance, or two, ...) the finest.
@@ -91,6 +96,7 @@ struct ClusterReport {
   uint64_t covered_frames = 0;  // distinct frames inside some motif instance
   double instance_seconds = 0;
   double cut_seconds = 0;
+  double representative_seconds = 0;  // motif_representatives.h
 };
 
 struct ClusterResult {

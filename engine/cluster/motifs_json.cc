@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <unordered_map>
@@ -51,13 +52,17 @@ Result<MotifsDocument> MakeMotifsDocument(const ClusterResult& result,
   document.covered_frames = result.report.covered_frames;
   for (const ClipInfo& clip : clips) {
     document.clips.push_back({clip.name, clip.source_path, clip.frame_count, clip.fps,
-                              clip.first_frame, clip.source_first_frame});
+                              clip.first_frame, clip.source_first_frame, clip.source_fps});
   }
   for (size_t rank = 0; rank < result.motifs.size(); ++rank) {
     MotifsJsonMotif motif;
     motif.id = static_cast<uint32_t>(rank);
-    for (uint32_t id : result.motifs[rank].instances) {
-      const MotifInstance& instance = result.instances[id];
+    const Motif& clustered = result.motifs[rank];
+    const bool measured =
+        !clustered.instances.empty() && clustered.distances.size() == clustered.instances.size();
+    if (measured) motif.representative = clustered.representative;
+    for (size_t inst = 0; inst < clustered.instances.size(); ++inst) {
+      const MotifInstance& instance = result.instances[clustered.instances[inst]];
       auto clip = std::upper_bound(
           clips.begin(), clips.end(), instance.start,
           [](uint64_t frame, const ClipInfo& info) { return frame < info.first_frame; });
@@ -70,15 +75,25 @@ Result<MotifsDocument> MakeMotifsDocument(const ClusterResult& result,
       --clip;
       motif.instances.push_back({clip->name, instance.start - clip->first_frame,
                                  instance.end - clip->first_frame, instance.start});
+      if (measured) motif.instances.back().distance = clustered.distances[inst];
     }
     document.motifs.push_back(std::move(motif));
   }
   return document;
 }
 
+uint64_t FileFrameOf(const MotifsJsonClip& clip, uint64_t clip_frame) {
+  if (clip.source_fps <= 0 || clip.fps <= 0 || clip.source_fps == clip.fps) {
+    return clip.source_first_frame + clip_frame;
+  }
+  // k × source_fps first, then / fps: exact halves (3 × 100 / 120 = 2.5) stay halves.
+  const double position = static_cast<double>(clip_frame) * clip.source_fps / clip.fps;
+  return clip.source_first_frame + static_cast<uint64_t>(std::llround(position));
+}
+
 namespace {
 
-using ClipRates = std::unordered_map<std::string, double>;  // fps by clip name
+using ClipsByName = std::unordered_map<std::string, const MotifsJsonClip*>;
 
 Json ArchiveVersionJson(const MotifsArchiveVersion& archive_version) {
   char identity[17];
@@ -102,6 +117,7 @@ void AppendClipsText(const std::vector<MotifsJsonClip>& clips, std::string* text
     entry["fps"] = clip.fps;
     entry["first_frame"] = clip.first_frame;
     entry["source_first_frame"] = clip.source_first_frame;
+    if (clip.source_fps > 0) entry["source_fps"] = clip.source_fps;
     *text += (idx == 0 ? "\n    " : ",\n    ") + Dump(entry);
   }
   *text += clips.empty() ? "],\n" : "\n  ],\n";
@@ -140,15 +156,15 @@ Json SummaryJson(const MotifsDocument& document) {
   return summary;
 }
 
-// A motif's head: id, instance count, mean length (frames and seconds) and score.
-Json MotifHeadJson(const MotifsJsonMotif& motif, const ClipRates& fps_of) {
+// A motif's head: id, instance count, mean length (frames and seconds), score, representative.
+Json MotifHeadJson(const MotifsJsonMotif& motif, const ClipsByName& clip_of) {
   uint64_t frames = 0;
   double seconds = 0;
   for (const MotifsJsonInstance& instance : motif.instances) {
     frames += instance.length();
-    auto fps = fps_of.find(instance.clip);
-    if (fps != fps_of.end() && fps->second > 0) {
-      seconds += static_cast<double>(instance.length()) / fps->second;
+    auto clip = clip_of.find(instance.clip);
+    if (clip != clip_of.end() && clip->second->fps > 0) {
+      seconds += static_cast<double>(instance.length()) / clip->second->fps;
     }
   }
   const double count = static_cast<double>(std::max<size_t>(1, motif.instances.size()));
@@ -158,28 +174,40 @@ Json MotifHeadJson(const MotifsJsonMotif& motif, const ClipRates& fps_of) {
   head["mean_length"] = static_cast<double>(frames) / count;
   head["mean_seconds"] = seconds / count;
   head["score"] = static_cast<double>(frames) * (count - 1) / count;  // RankMotifs' order
+  if (motif.representative) head["representative"] = *motif.representative;
   return head;
+}
+
+// An instance: its clip frames, global frame and length, its file frames and its distance.
+Json InstanceJson(const MotifsJsonInstance& instance, const ClipsByName& clip_of) {
+  Json entry;
+  entry["clip"] = instance.clip;
+  entry["start"] = instance.start;
+  entry["end"] = instance.end;
+  entry["frame"] = instance.frame;
+  entry["length"] = instance.length();
+  auto clip = clip_of.find(instance.clip);
+  if (clip != clip_of.end()) {
+    entry["file_first_frame"] = FileFrameOf(*clip->second, instance.start);
+    entry["file_last_frame"] = FileFrameOf(*clip->second, instance.end - 1);
+  }
+  if (instance.distance) entry["distance"] = *instance.distance;
+  return entry;
 }
 
 // "motifs": a motif's head on its line, then one instance a line.
 void AppendMotifsText(const MotifsDocument& document, std::string* text) {
-  ClipRates fps_of;
-  for (const MotifsJsonClip& clip : document.clips) fps_of[clip.name] = clip.fps;
+  ClipsByName clip_of;
+  for (const MotifsJsonClip& clip : document.clips) clip_of[clip.name] = &clip;
   *text += "  \"motifs\": [";
   for (size_t idx = 0; idx < document.motifs.size(); ++idx) {
     const MotifsJsonMotif& motif = document.motifs[idx];
-    std::string head_text = Dump(MotifHeadJson(motif, fps_of));
+    std::string head_text = Dump(MotifHeadJson(motif, clip_of));
     head_text.pop_back();  // reopen the object to append the instances array
     *text += (idx == 0 ? "\n    " : ",\n    ") + head_text + ", \"instances\": [";
     for (size_t inst = 0; inst < motif.instances.size(); ++inst) {
-      const MotifsJsonInstance& instance = motif.instances[inst];
-      Json entry;
-      entry["clip"] = instance.clip;
-      entry["start"] = instance.start;
-      entry["end"] = instance.end;
-      entry["frame"] = instance.frame;
-      entry["length"] = instance.length();
-      *text += (inst == 0 ? "\n      " : ",\n      ") + Dump(entry);
+      *text += (inst == 0 ? "\n      " : ",\n      ") +
+               Dump(InstanceJson(motif.instances[inst], clip_of));
     }
     *text += motif.instances.empty() ? "]}" : "\n    ]}";
   }
@@ -269,6 +297,9 @@ Status ParseMotifsClips(const Json& clips, const std::string& name,
     if (entry.contains("source_first_frame")) {
       MOTIF_RETURN_IF_ERROR(Get(entry, "source_first_frame", where, &clip.source_first_frame));
     }
+    if (entry.contains("source_fps")) {
+      MOTIF_RETURN_IF_ERROR(Get(entry, "source_fps", where, &clip.source_fps));
+    }
     (*first_frame_of)[clip.name] = clip.first_frame;
     out->push_back(std::move(clip));
   }
@@ -312,7 +343,31 @@ Result<MotifsJsonInstance> ParseMotifsInstance(const Json& item, const std::stri
     return Status::InvalidArgument(where + ": unknown clip \"" + instance.clip + "\"");
   }
   instance.frame = clip->second + instance.start;
+  if (item.contains("distance")) {
+    double distance = 0;
+    MOTIF_RETURN_IF_ERROR(Get(item, "distance", where, &distance));
+    if (!(distance >= 0)) return Status::InvalidArgument(where + ": \"distance\" is negative");
+    instance.distance = distance;
+  }
   return instance;
+}
+
+// The optional "representative": an index into the instances, each of which then has a distance.
+Status ParseRepresentative(const Json& entry, const std::string& where, MotifsJsonMotif* motif) {
+  if (!entry.contains("representative")) return Status::Ok();
+  uint64_t representative = 0;
+  MOTIF_RETURN_IF_ERROR(Get(entry, "representative", where, &representative));
+  if (representative >= motif->instances.size()) {
+    return Status::InvalidArgument(where + ": \"representative\" is not an index of its instances");
+  }
+  for (size_t inst = 0; inst < motif->instances.size(); ++inst) {
+    if (!motif->instances[inst].distance) {
+      return Status::InvalidArgument(where + ".instances[" + std::to_string(inst) +
+                                     "]: missing \"distance\" (the motif has a representative)");
+    }
+  }
+  motif->representative = static_cast<uint32_t>(representative);
+  return Status::Ok();
 }
 
 Result<MotifsJsonMotif> ParseMotifsMotif(const Json& entry, const std::string& where,
@@ -331,6 +386,7 @@ Result<MotifsJsonMotif> ParseMotifsMotif(const Json& entry, const std::string& w
                             first_frame_of));
     motif.instances.push_back(std::move(instance));
   }
+  MOTIF_RETURN_IF_ERROR(ParseRepresentative(entry, where, &motif));
   return motif;
 }
 

@@ -14,19 +14,23 @@
 // "similarity" ("warped" or "shared"), "pause_speed" and "pause_seconds" say how the instances
 // were weighed and trimmed (mine's options of those names); files written before them lack them.
 // Fields beyond the contract: per motif "instance_count", "mean_length" (frames),
-// "mean_seconds", "score" (instance count × mean length, in frames); per instance "frame" (its
-// global first frame) and "length"; at the top "summary" {"motifs", "instances",
-// "covered_frames"}; and "archive_version" {"generation", "committed_bytes", "identity" (16 hex
-// digits)}: the archive version (commit) mined, so that a reader opens that version
-// (FrameFileReader::OpenCommit) even after later takes were appended to the archive. Readers
-// must ignore fields they do not know; the version changes only if a contract field changes
-// meaning. Version 2: "archive" is relative to the folder holding motifs.json (absolute when the
-// run was given an absolute path), so the file works from any directory; in version 1 it was the
-// path as given to the run, relative to where it ran. docs/formats/motifs_json.md specifies it.
+// "mean_seconds", "score" (instance count × mean length, in frames) and "representative" (the
+// index of its medoid instance); per instance "frame" (its global first frame), "length",
+// "file_first_frame" and "file_last_frame" (FileFrameOf its first and last frame) and
+// "distance" (to the representative); per clip "source_fps"; at the top "summary" {"motifs",
+// "instances", "covered_frames"}; and "archive_version" {"generation", "committed_bytes",
+// "identity" (16 hex digits)}: the archive version (commit) mined, so that a reader opens that
+// version (FrameFileReader::OpenCommit) even after later takes were appended to the archive.
+// Readers must ignore fields they do not know; the version changes only if a contract field
+// changes meaning. Version 2: "archive" is relative to the folder holding motifs.json (absolute
+// when the run was given an absolute path), so the file works from any directory; in version 1
+// it was the path as given to the run, relative to where it ran. docs/formats/motifs_json.md
+// specifies it.
 // Thread-safety: pure functions.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,8 +49,16 @@ struct MotifsJsonClip {
   // The source file's frame of the clip's frame 0 (ClipInfo::source_first_frame); 0 when the
   // document does not say (written before it had the field).
   uint64_t source_first_frame = 0;
+  // The source file's rate (ClipInfo::source_fps); 0 when the document does not say: the same
+  // as `fps`.
+  double source_fps = 0;
   bool operator==(const MotifsJsonClip&) const = default;
 };
+
+// The source file's frame of clip frame `clip_frame`: source_first_frame +
+// round(clip_frame × source_fps / fps), halves up (source_first_frame + clip_frame when the rate
+// is not resampled or not known). What "file_first_frame" / "file_last_frame" hold.
+uint64_t FileFrameOf(const MotifsJsonClip& clip, uint64_t clip_frame);
 
 struct MotifsJsonParams {
   double eps = 0;
@@ -68,6 +80,9 @@ struct MotifsJsonInstance {
   uint64_t end = 0;    // exclusive
   uint64_t frame = 0;  // global first frame (extra field; the reader computes it from the clips
                        // when absent)
+  // The warped distance to its motif's representative (motif_representatives.h), in units of
+  // the pose distance; absent in files written before it.
+  std::optional<double> distance = std::nullopt;
   uint64_t length() const { return end - start; }
   bool operator==(const MotifsJsonInstance&) const = default;
 };
@@ -75,6 +90,8 @@ struct MotifsJsonInstance {
 struct MotifsJsonMotif {
   uint32_t id = 0;
   std::vector<MotifsJsonInstance> instances;
+  // The index into `instances` of the medoid; when set, every instance has its distance.
+  std::optional<uint32_t> representative = std::nullopt;
   bool operator==(const MotifsJsonMotif&) const = default;
 };
 
@@ -119,9 +136,10 @@ std::string MotifsJsonText(const MotifsDocument& document);
 // Written atomically (temporary file, fsync, rename). IOError / ResourceExhausted.
 Status WriteMotifsJson(const std::string& path, const MotifsDocument& document);
 
-// InvalidArgument naming the field if the text is not a motifs.json of version 1 (a missing
-// contract field, a wrong type, an instance with end <= start or naming an unknown clip);
-// NotSupported for another version.
+// InvalidArgument naming the field if the text is not a motifs.json of version 1 or 2 (a missing
+// contract field, a wrong type, an instance with end <= start or naming an unknown clip, a
+// representative out of range or without distances); NotSupported for another version. The
+// fields added later are optional.
 Result<MotifsDocument> ParseMotifsJson(const std::string& text, const std::string& name);
 Result<MotifsDocument> ReadMotifsJson(const std::string& path);
 // For a document parsed from the file at `motifs_path`: its archive path made usable from the

@@ -121,6 +121,34 @@ double MeanWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1
   return cost[at(n, m)] / steps[at(n, m)];
 }
 
+Result<std::vector<double>> WarpedDistances(const FrameFileReader& archive,
+                                            const std::vector<MotifInstance>& instances,
+                                            const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                                            uint32_t samples, int threads) {
+  if (pairs.empty()) return std::vector<double>();
+  // Only the instances of some pair are sampled, in id order.
+  constexpr uint32_t kUnused = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> sampled_idx(instances.size(), kUnused);
+  for (const auto& [a, b] : pairs) {
+    if (a >= instances.size() || b >= instances.size()) {
+      return Status::InvalidArgument("warped distance: a pair names no instance");
+    }
+    sampled_idx[a] = sampled_idx[b] = 0;
+  }
+  std::vector<MotifInstance> used;
+  for (size_t id = 0; id < instances.size(); ++id) {
+    if (sampled_idx[id] == kUnused) continue;
+    sampled_idx[id] = static_cast<uint32_t>(used.size());
+    used.push_back(instances[id]);
+  }
+  MOTIF_ASSIGN_OR_RETURN(const SampledInstances sampled,
+                         SampleInstances(archive, used, std::max(samples, 2u)));
+  std::vector<WeightedEdge> edges;
+  edges.reserve(pairs.size());
+  for (const auto& [a, b] : pairs) edges.push_back({sampled_idx[a], sampled_idx[b], 0.0});
+  return EdgeDistances(sampled, edges, threads);
+}
+
 Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
                                                  const std::vector<MotifInstance>& instances,
                                                  const SimilarityGraph& graph, float eps,

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/status.h"
@@ -59,6 +60,16 @@ struct WarpedSimilarityStats {
 // non-empty. O((a1 - a0)(b1 - b0)) time and memory.
 double MeanWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1, uint64_t b0,
                           uint64_t b1);
+
+// d of each pair (a, b) of `instances` (ids into it; global frame ranges of `archive`), measured
+// as ReweightByWarpedDistance measures an edge: `samples` (at least 2) evenly spaced frames of
+// each, the skeleton's default joint weights, a's frames the first argument of
+// MeanWarpedDistance. In parallel (threads 0: all cores); only the instances of some pair are
+// read. InvalidArgument for an instance outside the archive; reader errors pass through.
+Result<std::vector<double>> WarpedDistances(const FrameFileReader& archive,
+                                            const std::vector<MotifInstance>& instances,
+                                            const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                                            uint32_t samples, int threads);
 
 // `graph`'s nodes are `instances` (global frame ranges of `archive`); distances with the
 // skeleton's default joint weights. InvalidArgument for an instance outside the archive or

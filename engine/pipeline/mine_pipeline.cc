@@ -10,6 +10,7 @@
 #include "common/peak_memory.h"
 #include "common/seconds_since.h"
 #include "engine/cluster/cluster_stage.h"
+#include "engine/cluster/instances_csv.h"
 #include "engine/ingest/archive_import.h"
 #include "engine/pipeline/option_table.h"
 #include "engine/pipeline/run_record.h"
@@ -40,7 +41,7 @@ std::vector<std::string> OwnedFileNames(const RunFiles& files) {
   const std::string truth = TruthPathFor(files.archive);
   for (const std::string* path :
        {&files.archive, &truth, &files.trellis, &files.search_cache, &files.paths, &files.motifs,
-        &files.cluster_state, &files.report, &files.run_record}) {
+        &files.instances, &files.cluster_state, &files.report, &files.run_record}) {
     if (!path->empty() && fs::path(*path).parent_path() == fs::path(files.dir)) {
       names.push_back(fs::path(*path).filename().string());
     }
@@ -356,6 +357,11 @@ Status MinePipeline::ClusterStage() {
   MOTIF_ASSIGN_OR_RETURN(ClusterStageResult clustered, RunClusterStage(input, cluster));
   result_.document = std::move(clustered.document);
   result_.motifs_path = files.motifs;
+  if (!files.instances.empty()) {
+    // Rewritten also when motifs.json was reused: it is derived, and cheap.
+    MOTIF_RETURN_IF_ERROR(WriteInstancesCsv(files.instances, result_.document));
+    result_.instances_path = files.instances;
+  }
   result_.times.push_back({"cluster", SecondsSince(start), clustered.reused});
   return Status::Ok();
 }

@@ -47,7 +47,8 @@ struct MinePipelineResult {
   std::string archive_path;
   std::string truth_path;  // the planted motifs of a synthetic archive; empty otherwise
   std::string motifs_path;
-  std::string report_path;  // empty without a report
+  std::string instances_path;  // empty when not written
+  std::string report_path;     // empty without a report
   MotifsDocument document;
   TrellisReport trellis;
   PathsReport paths;

@@ -13,6 +13,7 @@ RunFiles MineFolderFiles(const std::string& dir) {
   files.trellis = in("trellis.mtr");
   files.paths = in("paths.mpa");
   files.motifs = in("motifs.json");
+  files.instances = in("instances.csv");
   files.cluster_state = in("mine_state.json");
   files.report = in("report.html");
   files.run_record = in("run.json");

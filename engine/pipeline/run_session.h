@@ -31,6 +31,7 @@ struct RunFiles {
   std::string search_cache;  // the next incremental update's (StagePlan::save_search_cache)
   std::string paths;
   std::string motifs;
+  std::string instances;      // instances.csv beside motifs.json; empty: not written
   std::string cluster_state;  // the clustering's reuse key
   std::string report;
   std::string run_record;

@@ -2,6 +2,7 @@
 // synthetic archive mined with planted-motif scores, every output written, a second run reusing
 // every stage, a changed parameter rerunning only what follows it, and bad parameters refused.
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
@@ -11,7 +12,9 @@
 
 #include "common/file_lock.h"
 #include "common/file_util.h"
+#include "engine/cluster/instances_csv.h"
 #include "engine/cluster/motifs_json.h"
+#include "tests/testing/csv_rows.h"
 #include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
 
@@ -34,6 +37,44 @@ bool StageReused(const std::string& output, const std::string& stage) {
   return std::regex_search(output, std::regex("[ ,]" + stage + " [0-9.]+s \\(reused\\)"));
 }
 
+// OUT/instances.csv holds motifs.json's instances, row for row in its order: the clip and file
+// frames, the seconds in the file, the distance to the representative and the rank by it.
+void ExpectCsvRowsAreTheInstances(const std::string& csv_path, const MotifsDocument& document) {
+  const auto rows = testing::ParseCsvRows(ReadFileToString(csv_path).value());
+  ASSERT_FALSE(rows.empty()) << csv_path;
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"motif", "rank", "clip", "source", "start", "end",
+                                               "file_first_frame", "file_last_frame",
+                                               "start_seconds", "end_seconds", "distance"}));
+  size_t row_idx = 1;
+  for (const MotifsJsonMotif& motif : document.motifs) {
+    ASSERT_TRUE(motif.representative.has_value()) << "motif " << motif.id;
+    EXPECT_EQ(motif.instances[*motif.representative].distance, std::optional<double>(0.0));
+    const std::vector<uint32_t> ranks = InstanceRanks(motif);
+    for (size_t inst = 0; inst < motif.instances.size(); ++inst, ++row_idx) {
+      ASSERT_LT(row_idx, rows.size());
+      const std::vector<std::string>& row = rows[row_idx];
+      ASSERT_EQ(row.size(), 11u) << row_idx;
+      const MotifsJsonInstance& instance = motif.instances[inst];
+      const MotifsJsonClip& clip =
+          *std::find_if(document.clips.begin(), document.clips.end(),
+                        [&](const MotifsJsonClip& listed) { return listed.name == instance.clip; });
+      EXPECT_EQ(row[0], std::to_string(motif.id));
+      EXPECT_EQ(row[1], std::to_string(ranks[inst]));
+      EXPECT_EQ(row[2], instance.clip);
+      EXPECT_EQ(row[3], clip.source);
+      EXPECT_EQ(row[4], std::to_string(instance.start));
+      EXPECT_EQ(row[5], std::to_string(instance.end));
+      EXPECT_EQ(row[6], std::to_string(FileFrameOf(clip, instance.start)));
+      EXPECT_EQ(row[7], std::to_string(FileFrameOf(clip, instance.end - 1)));
+      EXPECT_NEAR(std::stod(row[8]), static_cast<double>(instance.start) / clip.fps, 1e-6);
+      EXPECT_NEAR(std::stod(row[9]), static_cast<double>(instance.end) / clip.fps, 1e-6);
+      ASSERT_TRUE(instance.distance.has_value());
+      EXPECT_EQ(std::stod(row[10]), *instance.distance);  // the same double
+    }
+  }
+  EXPECT_EQ(row_idx, rows.size());
+}
+
 TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   testing::TempDir dir;
   const std::string out = dir.File("out");
@@ -41,7 +82,7 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   RunResult first = RunTool("mine --out " + out + " " + small + "--progress json");
   ASSERT_EQ(first.exit_code, 0) << first.output;
   for (const char* name : {"archive.mfs", "archive.truth.json", "trellis.mtr", "paths.mpa",
-                           "motifs.json", "report.html"}) {
+                           "motifs.json", "instances.csv", "report.html"}) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + name)) << name;
   }
   // One progress stream across the stages.
@@ -60,6 +101,8 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   EXPECT_EQ(document->frames, 14000u);
   EXPECT_EQ(document->params.kmax, 64u);
   EXPECT_FALSE(document->motifs.empty());
+  ExpectCsvRowsAreTheInstances(out + "/instances.csv", *document);
+  const std::string instances_csv = ReadFileToString(out + "/instances.csv").value();
 
   // `report` run again shows the overview mine's report showed: timings, peak memory, the
   // planted motifs (from OUT/run.json, which names this motifs.json).
@@ -80,6 +123,7 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   auto again = ReadMotifsJson(out + "/motifs.json");
   ASSERT_TRUE(again.ok());
   EXPECT_EQ(*again, *document);
+  EXPECT_EQ(ReadFileToString(out + "/instances.csv").value(), instances_csv);
 
   // Another branch factor: the trellis is reused, the paths and the motifs are not.
   RunResult branch = RunTool("mine --out " + out + " " + small + "--branch 3 --quiet");
@@ -89,6 +133,7 @@ TEST(MotifmineMine, SyntheticArchiveEndToEndThenReuse) {
   auto changed = ReadMotifsJson(out + "/motifs.json");
   ASSERT_TRUE(changed.ok());
   EXPECT_EQ(changed->params.branch, 3u);
+  ExpectCsvRowsAreTheInstances(out + "/instances.csv", *changed);
 
   // A motifs.json changed since: its run record is stale, said so, and not shown.
   std::string motifs = ReadFileToString(out + "/motifs.json").value();

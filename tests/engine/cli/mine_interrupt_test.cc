@@ -232,8 +232,9 @@ void KillRerunAndCompare(const std::string& cwd, const std::vector<std::string>&
   for (const auto& entry : std::filesystem::directory_iterator(cwd + "/out")) {
     const std::string name = entry.path().filename().string();
     EXPECT_TRUE(name == "archive.mfs" || name == "archive.truth.json" || name == "trellis.mtr" ||
-                name == "paths.mpa" || name == "motifs.json" || name == "mine_state.json" ||
-                name == "report.html" || name == "run.json" || name == ".motifmine.lock")
+                name == "paths.mpa" || name == "motifs.json" || name == "instances.csv" ||
+                name == "mine_state.json" || name == "report.html" || name == "run.json" ||
+                name == ".motifmine.lock")
         << "left behind: " << name;
   }
 }

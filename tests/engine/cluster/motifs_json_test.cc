@@ -47,7 +47,8 @@ TEST(MotifsJsonTest, DocumentMapsGlobalFramesToClips) {
   EXPECT_EQ(document->motifs[0].instances[1], (MotifsJsonInstance{"07_02", 50, 170, 1050}));
   EXPECT_EQ(document->motifs[1].id, 1u);
   ASSERT_EQ(document->clips.size(), 2u);
-  EXPECT_EQ(document->clips[1], (MotifsJsonClip{"07_02", "/data/07_02.amc", 500, 120, 1000}));
+  EXPECT_EQ(document->clips[1],
+            (MotifsJsonClip{"07_02", "/data/07_02.amc", 500, 120, 1000, 0, 120}));
 
   ClusterResult crossing = SmallResult();
   crossing.instances[3] = {950, 1070};  // spans the two clips
@@ -192,6 +193,138 @@ TEST(MotifsJsonTest, ReaderNamesWhatIsWrong) {
   auto lenient = parse(changed);
   ASSERT_TRUE(lenient.ok());
   EXPECT_EQ(lenient->motifs[0].instances[0].frame, 100u);  // from the clip table
+}
+
+// 05_01 starts at its file's frame 1 (a dropped T-pose); 07_02 at frame 2 of a 100 fps file
+// resampled to 120 fps.
+std::vector<ClipInfo> ShiftedAndResampledClips() {
+  std::vector<ClipInfo> clips = TwoClips();
+  clips[0].source_first_frame = 1;
+  clips[1].source_first_frame = 2;
+  clips[1].source_fps = 100;
+  return clips;
+}
+
+TEST(MotifsJsonTest, FileFrameOfAClipFrame) {
+  MotifsJsonClip clip{"c", "c.bvh", 500, 120, 0, 2, 100};
+  EXPECT_EQ(FileFrameOf(clip, 0), 2u);
+  EXPECT_EQ(FileFrameOf(clip, 3), 5u);   // 3 x 100 / 120 = 2.5: halves up
+  EXPECT_EQ(FileFrameOf(clip, 8), 9u);   // 6.67
+  EXPECT_EQ(FileFrameOf(clip, 9), 10u);  // 7.5
+  clip.source_fps = 240;                 // two file frames a clip frame
+  EXPECT_EQ(FileFrameOf(clip, 5), 12u);
+  clip.source_fps = 0;  // not known (an older file): not resampled
+  EXPECT_EQ(FileFrameOf(clip, 5), 7u);
+  clip.source_fps = 120;
+  EXPECT_EQ(FileFrameOf(clip, 5), 7u);
+}
+
+TEST(MotifsJsonTest, InstancesGiveTheirSourceFileFrames) {
+  auto document =
+      MakeMotifsDocument(SmallResult(), "a.mfs", 1500, ShiftedAndResampledClips(), Params());
+  ASSERT_TRUE(document.ok()) << document.status().ToString();
+  const nlohmann::json json = nlohmann::json::parse(MotifsJsonText(*document));
+  EXPECT_EQ(json["clips"][0]["source_fps"], 120.0);
+  EXPECT_EQ(json["clips"][1]["source_fps"], 100.0);
+  EXPECT_EQ(json["clips"][1]["source_first_frame"], 2);
+  // 05_01 [100, 220): file frames 101 to 220, the last inclusive.
+  const nlohmann::json& shifted = json["motifs"][0]["instances"][0];
+  EXPECT_EQ(shifted["start"], 100);
+  EXPECT_EQ(shifted["file_first_frame"], 101);
+  EXPECT_EQ(shifted["file_last_frame"], 220);
+  // 07_02 [50, 170): 2 + round(50 x 100 / 120 = 41.7) = 44 to 2 + round(169 x 100 / 120 = 140.8).
+  const nlohmann::json& resampled = json["motifs"][0]["instances"][1];
+  EXPECT_EQ(resampled["start"], 50);
+  EXPECT_EQ(resampled["end"], 170);
+  EXPECT_EQ(resampled["file_first_frame"], 44);
+  EXPECT_EQ(resampled["file_last_frame"], 143);
+  // Without distances measured (no archive) a motif has no representative.
+  EXPECT_FALSE(json["motifs"][0].contains("representative"));
+  EXPECT_FALSE(shifted.contains("distance"));
+}
+
+// SmallResult with motif 0 measured: its second instance the medoid.
+ClusterResult MeasuredResult() {
+  ClusterResult result = SmallResult();
+  result.motifs[0].representative = 1;
+  result.motifs[0].distances = {0.8125, 0.0};
+  return result;
+}
+
+TEST(MotifsJsonTest, RepresentativeAndDistancesRoundTrip) {
+  testing::TempDir dir;
+  auto document = MakeMotifsDocument(MeasuredResult(), dir.File("a.mfs"), 1500,
+                                     ShiftedAndResampledClips(), Params());
+  ASSERT_TRUE(document.ok()) << document.status().ToString();
+  ASSERT_EQ(document->motifs[0].representative, std::optional<uint32_t>(1));
+  EXPECT_EQ(document->motifs[0].instances[0].distance, std::optional<double>(0.8125));
+  EXPECT_EQ(document->motifs[0].instances[1].distance, std::optional<double>(0.0));
+  EXPECT_FALSE(document->motifs[1].representative.has_value());
+  const std::string path = dir.File("motifs.json");
+  ASSERT_TRUE(WriteMotifsJson(path, *document).ok());
+  const nlohmann::json json = nlohmann::json::parse(ReadFileToString(path).value());
+  EXPECT_EQ(json["version"], 2);  // added fields only: the version stays
+  EXPECT_EQ(json["motifs"][0]["representative"], 1);
+  EXPECT_EQ(json["motifs"][0]["instances"][0]["distance"], 0.8125);
+  EXPECT_EQ(json["motifs"][0]["instances"][1]["distance"], 0.0);
+  EXPECT_FALSE(json["motifs"][1].contains("representative"));
+  auto read = ReadMotifsJson(path);
+  ASSERT_TRUE(read.ok()) << read.status().ToString();
+  EXPECT_EQ(*read, *document);
+  EXPECT_EQ(read->clips[1].source_fps, 100.0);
+
+  // A file written before these fields: read, with none of them.
+  nlohmann::json older = json;
+  for (nlohmann::json& clip : older["clips"]) clip.erase("source_fps");
+  for (nlohmann::json& motif : older["motifs"]) {
+    motif.erase("representative");
+    for (nlohmann::json& instance : motif["instances"]) {
+      for (const char* field : {"distance", "file_first_frame", "file_last_frame"}) {
+        instance.erase(field);
+      }
+    }
+  }
+  ASSERT_TRUE(AtomicWriteFile(dir.File("older.json"), older.dump()).ok());
+  auto older_read = ReadMotifsJson(dir.File("older.json"));
+  ASSERT_TRUE(older_read.ok()) << older_read.status().ToString();
+  EXPECT_FALSE(older_read->motifs[0].representative.has_value());
+  EXPECT_FALSE(older_read->motifs[0].instances[0].distance.has_value());
+  EXPECT_EQ(older_read->clips[1].source_fps, 0.0);
+  EXPECT_EQ(older_read->motifs[0].instances[1].start, 50u);
+  EXPECT_EQ(older_read->motifs.size(), document->motifs.size());
+  // Written again, such a document still has no representative, and its file frames assume
+  // the clip was not resampled (the older file does not say).
+  const nlohmann::json rewritten = nlohmann::json::parse(MotifsJsonText(*older_read));
+  EXPECT_FALSE(rewritten["motifs"][0].contains("representative"));
+  EXPECT_EQ(rewritten["motifs"][0]["instances"][1]["file_first_frame"], 52);
+}
+
+TEST(MotifsJsonTest, ReaderChecksTheRepresentative) {
+  auto document = MakeMotifsDocument(MeasuredResult(), "a.mfs", 1500, TwoClips(), Params());
+  ASSERT_TRUE(document.ok());
+  const nlohmann::json good = nlohmann::json::parse(MotifsJsonText(*document));
+  auto parse = [](const nlohmann::json& json) { return ParseMotifsJson(json.dump(), "m.json"); };
+  ASSERT_TRUE(parse(good).ok());
+  nlohmann::json changed = good;
+  changed["motifs"][0]["representative"] = 2;  // two instances
+  Status status = parse(changed).status();
+  EXPECT_TRUE(status.IsInvalidArgument());
+  EXPECT_NE(status.message().find("motifs[0]: \"representative\" is not an index"),
+            std::string::npos)
+      << status.message();
+  changed = good;
+  changed["motifs"][0]["instances"][0].erase("distance");
+  status = parse(changed).status();
+  EXPECT_TRUE(status.IsInvalidArgument());
+  EXPECT_NE(status.message().find("motifs[0].instances[0]: missing \"distance\""),
+            std::string::npos)
+      << status.message();
+  changed = good;
+  changed["motifs"][0]["instances"][0]["distance"] = -0.5;
+  EXPECT_TRUE(parse(changed).status().IsInvalidArgument());
+  changed = good;
+  changed["motifs"][0]["instances"][0]["distance"] = "near";
+  EXPECT_TRUE(parse(changed).status().IsInvalidArgument());
 }
 
 }  // namespace
