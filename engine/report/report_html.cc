@@ -701,7 +701,8 @@ void AppendPoseData(const std::string& lazy_json, const KeyframeFigures& rendere
     for (size_t run_idx = 0; run_idx < runs.size(); ++run_idx) {
       *html += run_idx ? ",[" : "[";
       for (size_t step = 0; step < runs[run_idx].size(); ++step) {
-        *html += (step ? "," : "") + std::to_string(runs[run_idx][step]);
+        if (step > 0) *html += ",";
+        *html += std::to_string(runs[run_idx][step]);
       }
       *html += "]";
     }
