@@ -3,12 +3,13 @@
 // of the archive's frames, heading kept), quantised to int16 and base64-encoded, so that the page
 // can play, turn and scrub any instance without the archive.
 //
-// Encoding of one instance (docs/report.md, "The player"): samples k = 0 .. samples-1 are clip
-// frames start + k * step; each sample holds the layout's points (StickFigureLayout::points, in
-// that order), each x, y, z as little-endian int16; a world coordinate is value / scale + origin
-// (origin: the root's ground position at the first sample, x and z, and the lowest point of the
-// instance, y). The figure is the same for every instance: the layout's chains, each point's
-// side (0 centre, 1 left, 2 right, from the joint names) and the rest pose's height.
+// Encoding of one instance (the player: docs/guide.md, "The report and motif export", item 4):
+// samples k = 0 .. samples-1 are clip frames start + k * step; each sample holds the layout's
+// points (StickFigureLayout::points, in that order), each x, y, z as little-endian int16; a world
+// coordinate is value / scale + origin (origin: the root's ground position at the first sample, x
+// and z, and the lowest point of the instance, y). The figure is the same for every instance: the
+// layout's chains, each point's side (0 centre, 1 left, 2 right, from the joint names) and the rest
+// pose's height.
 // Thread-safety: one InstancePlayback per thread (it caches frames read from the archive).
 #pragma once
 
