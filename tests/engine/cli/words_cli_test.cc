@@ -156,7 +156,9 @@ TEST_F(WordsCliTest, SearchKeepsSeveralWindowsATakeNeverTheQuery) {
     for (size_t other = 0; other < rank; ++other) {
       EXPECT_FALSE(MatchesOverlap(match, matches[other])) << rank << " and " << other;
     }
-    if (rank > 0) EXPECT_LE(matches[rank - 1]["distance"], match["distance"]);
+    if (rank > 0) {
+      EXPECT_LE(matches[rank - 1]["distance"], match["distance"]);
+    }
   }
   EXPECT_TRUE(std::any_of(per_take.begin(), per_take.end(), [](const auto& take) {
     return take.second > 1;

@@ -231,7 +231,9 @@ TEST(WindowSearch, KeepsSeveralWindowsOfATakeNoneOverlapping) {
   std::map<uint32_t, std::vector<const WindowMatch*>> by_take;
   for (size_t rank = 0; rank < result->matches.size(); ++rank) {
     const WindowMatch& match = result->matches[rank];
-    if (rank > 0) EXPECT_LE(result->matches[rank - 1].distance, match.distance);
+    if (rank > 0) {
+      EXPECT_LE(result->matches[rank - 1].distance, match.distance);
+    }
     EXPECT_FALSE(match.clip == 0 && WindowsOverlap(match.start_frame, match.end_frame, 2000, 2400))
         << "the query found itself: [" << match.start_frame << ", " << match.end_frame << ")";
     by_take[match.clip].push_back(&match);
