@@ -105,6 +105,9 @@ void PrintImportSummary(const std::string& archive, const ArchiveImportResult& r
   std::printf("%s %s: %s imported (%s)", result.created ? "created" : "appended to",
               archive.c_str(), CountOf(result.takes_imported, "take").c_str(),
               CountOf(result.frames_added, "frame").c_str());
+  if (result.takes_mapped) {
+    std::printf(", %s mapped onto the CMU body", WithCommas(result.takes_mapped).c_str());
+  }
   if (result.takes_already_present) {
     std::printf(", %s already present", WithCommas(result.takes_already_present).c_str());
   }

@@ -12,6 +12,8 @@
 #include "engine/ingest/duplicate_takes.h"
 #include "formats/frame_file/frame_file_reader.h"
 #include "formats/frame_file/frame_file_writer.h"
+#include "formats/import/skeleton_kind.h"
+#include "formats/motion/body_retarget.h"
 #include "formats/motion/canonical_skeleton.h"
 #include "formats/motion/resample.h"
 
@@ -34,7 +36,25 @@ struct TakeInFlight {
   size_t index = 0;
   Status status;
   std::optional<ClipFrames> clip;
+  std::string mapped_from;  // the source's skeleton, when it was mapped onto the CMU body
 };
+
+// A skeleton as a person tells it apart: "a 43-joint skeleton (root 'hip')".
+std::string SkeletonSummary(const Skeleton& skeleton) {
+  return "a " + std::to_string(skeleton.joint_count()) + "-joint skeleton (root '" +
+         (skeleton.joint_count() ? skeleton.joint(0).name : std::string()) + "')";
+}
+
+// A take of another family, for an archive on the CMU body: mapped onto it.
+Status MapOntoArchiveBody(const Skeleton& archive, Take* take, std::string* mapped_from) {
+  if (archive.family() != kCmuFamily || take->skeleton.family() == kCmuFamily) {
+    return Status::Ok();
+  }
+  const std::string from = SkeletonSummary(take->skeleton);
+  MOTIF_ASSIGN_OR_RETURN(*take, RetargetToCmuBody(*take));
+  *mapped_from = from;
+  return Status::Ok();
+}
 
 // Converts one parsed take (or its parse error) to the archive's skeleton and rate.
 TakeInFlight PrepareTake(const TakeSource& source, size_t index, Result<Take> take,
@@ -45,6 +65,8 @@ TakeInFlight PrepareTake(const TakeSource& source, size_t index, Result<Take> ta
     item.status = take.status();
     return item;
   }
+  item.status = MapOntoArchiveBody(skeleton, &take.value(), &item.mapped_from);
+  if (!item.status.ok()) return item;
   item.status = ConformToSkeleton(skeleton, &take.value());
   if (!item.status.ok()) return item;
   if (take->frame_count() == 0) {
@@ -65,7 +87,9 @@ using TakesReadFirst = std::vector<Result<Take>>;
 Status StopForTake(const Status& status) {
   if (!status.option().empty()) return status;  // it names its own option already (asf)
   const bool other_family = status.message().find("skeleton family") != std::string::npos;
-  const std::string why = other_family ? "an archive holds one skeleton family; " : "";
+  const std::string why = other_family ? "an archive holds one skeleton family, and one made "
+                                         "from a folder of several is on the CMU body; "
+                                       : "";
   return Status::FromCode(status.code(),
                           status.message() + " (" + why + "skip_bad imports the other takes)")
       .WithOption("skip_bad");
@@ -74,6 +98,19 @@ Status StopForTake(const Status& status) {
 // A message for the user, if the caller takes them (empty ones are not passed on).
 void ImportNote(const ArchiveImportOptions& options, const std::string& message) {
   if (options.note) message.empty() ? void() : options.note(message);
+}
+
+// True when some take of `sources` has another skeleton than sources[first] (its skeleton read
+// alone, ReadSkeletonKind; takes whose skeleton cannot be read do not count: they fail later).
+bool MixesSkeletons(const std::vector<TakeSource>& sources, size_t first,
+                    const ImportOptions& options) {
+  const Result<std::string> kind = ReadSkeletonKind(sources[first], options);
+  if (!kind.ok()) return false;
+  for (size_t index = first + 1; index < sources.size(); ++index) {
+    const Result<std::string> other = ReadSkeletonKind(sources[index], options);
+    if (other.ok() && *other != *kind) return true;
+  }
+  return false;
 }
 
 // The archive's writer: appending to it when it exists, else creating it from the first take
@@ -98,7 +135,17 @@ Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& 
   if (!read_first->back().ok()) {
     return options.skip_bad ? read_first->back().status() : StopForTake(read_first->back().status());
   }
-  const Take& first = *read_first->back();
+  const bool mixed = read_first->back()->skeleton.family() != kCmuFamily &&
+                     MixesSkeletons(sources, read_first->size() - 1, options.import);
+  // A mixed folder's archive is on the CMU body: the first take's mapping gives its skeleton
+  // (the take itself is mapped again on its way in, and counted with the others).
+  std::optional<Take> mapped_first;
+  if (mixed) {
+    Result<Take> mapped = RetargetToCmuBody(*read_first->back());
+    if (!mapped.ok()) return options.skip_bad ? mapped.status() : StopForTake(mapped.status());
+    mapped_first = std::move(*mapped);
+  }
+  const Take& first = mapped_first ? *mapped_first : *read_first->back();
   const double fps = options.fps > 0 ? options.fps : first.fps;
   Result<std::unique_ptr<FrameFileWriter>> writer =
       FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options);
@@ -113,7 +160,10 @@ Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& 
   result->created = true;
   ImportNote(options, "creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
                           std::to_string(first.skeleton.joint_count()) + " joints), " +
-                          FormatFps(fps) + " fps");
+                          FormatFps(fps) + " fps" +
+                          (mixed ? "; the takes are of several skeleton families, each mapped "
+                                   "onto the CMU body"
+                                 : ""));
   return writer;
 }
 
@@ -161,7 +211,12 @@ class ClipAppender {
     }
     if (IsCopyOfAKnownClip(clip)) return;
     GiveUniqueName(&clip);
-    Append(clip);
+    if (!Append(clip) || item.mapped_from.empty()) return;
+    ++result_->takes_mapped;
+    if (mapped_kinds_.insert(item.mapped_from).second) {
+      ImportNote(options_, clip.info.source_path + ": " + item.mapped_from +
+                               ", mapped onto the CMU body (as are the other takes of it)");
+    }
   }
 
  private:
@@ -198,7 +253,8 @@ class ClipAppender {
     }
   }
 
-  void Append(const ClipFrames& clip) {
+  // True when the clip was stored.
+  bool Append(const ClipFrames& clip) {
     Status status = writer_->AppendClip(clip);
     if (status.IsInvalidArgument()) {
       // The take's own values (a root position of 1e308 gives an infinite velocity): a bad take
@@ -209,18 +265,19 @@ class ClipAppender {
       result_->failures.push_back(status.message());
       if (options_.skip_bad) {
         ImportNote(options_, "skipped: " + status.message());
-        return;
+        return false;
       }
     }
     if (!status.ok()) {
       Stop(status);
-      return;
+      return false;
     }
     known_hashes_.insert(clip.info.content_hash);
     known_names_.insert(clip.info.name);
     duplicates_.Add(clip);
     ++result_->takes_imported;
     result_->frames_added += clip.info.frame_count;
+    return true;
   }
 
   FrameFileWriter* writer_;
@@ -229,6 +286,7 @@ class ClipAppender {
   ArchiveImportResult* result_;
   std::unordered_set<uint64_t> known_hashes_;
   std::unordered_set<std::string> known_names_;
+  std::unordered_set<std::string> mapped_kinds_;  // the skeletons a note has named
   DuplicateTakes duplicates_;
   Status first_error_;
   std::atomic<bool> stop_{false};
@@ -251,7 +309,7 @@ void RunImportPipeline(const std::vector<TakeSource>& sources, const Skeleton& s
     return next_source++;
   };
   auto prepare = [&](size_t index) {
-    if (appender->stopped()) return TakeInFlight{index, Status::Ok(), std::nullopt};
+    if (appender->stopped()) return TakeInFlight{index, Status::Ok(), std::nullopt, {}};
     // Each index comes once: moving out of read_first races with nothing.
     Result<Take> take = index < read_first->size() ? std::move((*read_first)[index])
                                                    : ImportTake(sources[index], options.import);

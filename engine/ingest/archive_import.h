@@ -4,6 +4,11 @@
 // archive is identical whatever the thread count. Creates the archive (from the first take's
 // skeleton and rate, or `fps`) when it does not exist.
 //
+// Skeleton families: an archive holds one. When the takes it is created from are of several
+// (their skeletons read first, ReadSkeletonKind), it is on the CMU body, and every take of
+// another family is mapped onto that body (RetargetToCmuBody), at creation and in later
+// appends alike. An archive of another family takes only takes of its own skeleton.
+//
 // All or nothing by default: a take that fails (malformed, another skeleton) stops the import and
 // nothing is committed; with skip_bad the failures are reported and the rest committed.
 // A take whose content hash is already in the archive is skipped (never imported twice); a new
@@ -39,6 +44,7 @@ struct ArchiveImportResult {
   uint64_t takes_imported = 0;
   uint64_t takes_already_present = 0;
   uint64_t takes_failed = 0;
+  uint64_t takes_mapped = 0;  // of those imported, the takes mapped onto the CMU body
   uint64_t frames_added = 0;
   uint64_t archive_clips = 0;
   uint64_t archive_frames = 0;

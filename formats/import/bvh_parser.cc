@@ -104,6 +104,15 @@ class BvhParser {
   BvhParser(std::string_view text, const std::string& file_name)
       : tokenizer_(text), file_name_(file_name) {}
 
+  // The HIERARCHY alone: the file's skeleton, before any root is moved.
+  Result<Skeleton> ParseSkeleton() {
+    MOTIF_RETURN_IF_ERROR(ParseHierarchy());
+    Skeleton skeleton("custom", joints_);
+    Status valid = skeleton.Validate();
+    if (!valid.ok()) return Error(joint_lines_.empty() ? 1 : joint_lines_[0], valid.message());
+    return skeleton;
+  }
+
   Result<Take> Parse(double fps_override) {
     MOTIF_RETURN_IF_ERROR(ParseHierarchy());
     Take take;
@@ -532,6 +541,11 @@ class BvhParser {
 Result<Take> ParseBvh(std::string_view text, const std::string& file_name, double fps_override) {
   BvhParser parser(text, file_name);
   return parser.Parse(fps_override);
+}
+
+Result<Skeleton> ParseBvhSkeleton(std::string_view text, const std::string& file_name) {
+  BvhParser parser(text, file_name);
+  return parser.ParseSkeleton();
 }
 
 }  // namespace motif

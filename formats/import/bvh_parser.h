@@ -49,4 +49,8 @@ inline constexpr double kMaxBvhFrameTime = 1.0;
 // skeleton has family "custom". InvalidArgument on malformed input.
 Result<Take> ParseBvh(std::string_view text, const std::string& file_name, double fps_override = 0);
 
+// The skeleton of the HIERARCHY section alone, as ParseBvh reads it but before a static root is
+// moved (`text` may end anywhere after the hierarchy). The same errors for the hierarchy.
+Result<Skeleton> ParseBvhSkeleton(std::string_view text, const std::string& file_name);
+
 }  // namespace motif

@@ -102,22 +102,62 @@ TEST(ImportIntoArchive, RealBvhAndAsfAmcArchivesHaveTheIndexedClipsAndFrames) {
   }
 }
 
-TEST(ImportIntoArchive, MixedSkeletonsAreRefusedAndNothingIsStored) {
+// A folder of several families makes an archive on the CMU body, whichever take comes first;
+// a later take of another family is mapped onto it too. The notes say so, once per skeleton.
+TEST(ImportIntoArchive, MixedFamiliesAreMappedOntoTheCmuBody) {
+  MOTIF_REQUIRE_MOCAP_DATA();
+  MOTIF_REQUIRE_STUDIO_RIG_DATA();
+  const std::string mocap = testing::MocapDir();
+  const std::string rig = testing::StudioRigDir() + "/bvh/dataset-2_walk_normal_001.bvh";
+  testing::TempDir dir;
+  const std::string archive = dir.File("mixed.mfs");
+  std::vector<std::string> notes;
+  ArchiveImportOptions options;
+  options.note = [&](const std::string& note) { notes.push_back(note); };
+  auto result = ImportIntoArchive(
+      archive, {rig, mocap + "/bvh/02_02.bvh", mocap + "/bvh_daz/02_01.bvh", mocap + "/bvh_daz/12_01.bvh"},
+      options);
+  ASSERT_TRUE(result.ok()) << result.status().ToString();
+  EXPECT_EQ(result->takes_imported, 4u);
+  EXPECT_EQ(result->takes_mapped, 3u);
+  auto reader = FrameFileReader::Open(archive);
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  EXPECT_EQ((*reader)->skeleton().family(), "cmu31");
+  EXPECT_EQ((*reader)->skeleton().joint_count(), 31u);
+  EXPECT_TRUE((*reader)->Verify().ok());
+  const auto noted = [&](const std::string& text) {
+    return std::count_if(notes.begin(), notes.end(), [&](const std::string& note) {
+      return note.find(text) != std::string::npos;
+    });
+  };
+  EXPECT_EQ(noted("the takes are of several skeleton families, each mapped onto the CMU body"), 1);
+  EXPECT_EQ(noted("a 21-joint skeleton (root 'Hips'), mapped onto the CMU body"), 1);
+  EXPECT_EQ(noted("a 43-joint skeleton (root 'hip'), mapped onto the CMU body"), 1);
+
+  auto appended = ImportIntoArchive(archive, {mocap + "/bvh_daz/13_11.bvh"}, options);
+  ASSERT_TRUE(appended.ok()) << appended.status().ToString();
+  EXPECT_EQ(appended->takes_mapped, 1u);
+  EXPECT_EQ(appended->archive_clips, 5u);
+}
+
+// An archive of another family holds its own skeleton alone: a CMU take is refused, the
+// message says what an archive holds and which option lets the other takes in.
+TEST(ImportIntoArchive, AnArchiveOfAnotherFamilyRefusesOtherSkeletonsAndNothingIsStored) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string mocap = testing::MocapDir();
   testing::TempDir dir;
-  const std::string archive = dir.File("walks.mfs");
-  ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/bvh/02_01.bvh"}, DefaultOptions()).ok());
+  const std::string archive = dir.File("daz.mfs");
+  ASSERT_TRUE(ImportIntoArchive(archive, {mocap + "/bvh_daz/02_01.bvh"}, DefaultOptions()).ok());
   const std::string before = ReadFileToString(archive).value();
-  auto result = ImportIntoArchive(archive, {mocap + "/bvh/02_02.bvh", mocap + "/bvh_daz/02_01.bvh"},
+  auto result = ImportIntoArchive(archive, {mocap + "/bvh_daz/12_01.bvh", mocap + "/bvh/02_02.bvh"},
                                   DefaultOptions());
   ASSERT_FALSE(result.ok());
   EXPECT_TRUE(result.status().IsInvalidArgument()) << result.status().ToString();
-  EXPECT_NE(result.status().message().find("bvh_daz/02_01.bvh"), std::string::npos)
+  EXPECT_NE(result.status().message().find("bvh/02_02.bvh"), std::string::npos)
       << result.status().message();
-  // The refusal says what an archive holds and which option lets the other takes in.
-  EXPECT_NE(result.status().message().find("an archive holds one skeleton family; skip_bad "
-                                           "imports the other takes"),
+  EXPECT_NE(result.status().message().find("an archive holds one skeleton family, and one made "
+                                           "from a folder of several is on the CMU body; "
+                                           "skip_bad imports the other takes"),
             std::string::npos)
       << result.status().message();
   EXPECT_EQ(result.status().option(), "skip_bad");
