@@ -310,6 +310,7 @@ PYBIND11_MODULE(motifmine, m) {
   py::class_<motifmine::ImportResult>(m, "ImportResult")
       .def_readonly("takes_imported", &motifmine::ImportResult::takes_imported)
       .def_readonly("takes_already_present", &motifmine::ImportResult::takes_already_present)
+      .def_readonly("takes_mapped", &motifmine::ImportResult::takes_mapped)
       .def_readonly("frames_added", &motifmine::ImportResult::frames_added)
       .def_readonly("skipped", &motifmine::ImportResult::skipped);
 

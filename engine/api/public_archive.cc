@@ -92,6 +92,7 @@ Status ImportTakes(const std::string& archive_path, const std::vector<std::strin
   *result = ImportResult();
   result->takes_imported = imported->takes_imported;
   result->takes_already_present = imported->takes_already_present;
+  result->takes_mapped = imported->takes_mapped;
   result->frames_added = imported->frames_added;
   result->skipped = imported->failures;
   return {};

@@ -218,12 +218,14 @@ class BodyRetargeter {
     out.source_path = take_.source_path;
     out.fps = take_.fps;
     out.source_fps = take_.source_fps;
-    out.meters_per_unit = take_.meters_per_unit;
+    // At the rest body's size: heights, speeds and figures compare across families.
+    const double scale = SourceScale();
+    out.meters_per_unit = take_.meters_per_unit * scale;
     out.content_hash = take_.content_hash;
     out.source_first_frame = take_.source_first_frame;
     out.description = take_.description;
-    out.skeleton = ScaledRestSkeleton();
-    out.root_positions = take_.root_positions;
+    out.skeleton = rest_;
+    for (const Vec& root : take_.root_positions) out.root_positions.push_back(root / scale);
     out.rotations.reserve(take_.frame_count() * rest_.joint_count());
     std::vector<Quat> source_world;
     for (size_t frame = 0; frame < take_.frame_count(); ++frame) {
@@ -270,8 +272,8 @@ class BodyRetargeter {
             std::nullopt};
   }
 
-  // The rest skeleton at the source's size: its leg length (hip to ankle) over the rest one's.
-  Skeleton ScaledRestSkeleton() const {
+  // The source's size over the rest body's, by leg length (hip to ankle).
+  double SourceScale() const {
     const auto length = [&](int joint) {
       const auto& o = take_.skeleton.joint(joint).offset;
       return Vec(o[0], o[1], o[2]).norm();
@@ -282,13 +284,7 @@ class BodyRetargeter {
                         (Rest(Canonical("lfoot")) - Rest(Canonical("ltibia"))).norm() +
                         (Rest(Canonical("rtibia")) - Rest(Canonical("rfemur"))).norm() +
                         (Rest(Canonical("rfoot")) - Rest(Canonical("rtibia"))).norm();
-    const double scale = source > 0 ? source / rest : 1.0;
-    Skeleton scaled = rest_;
-    for (Joint& joint : scaled.mutable_joints()) {
-      for (double& value : joint.offset) value *= scale;
-      for (double& value : joint.end_site) value *= scale;
-    }
-    return scaled;
+    return source > 0 ? source / rest : 1.0;
   }
 
   // Every canonical joint's world rotation for one frame: the source's joint positions `at` and

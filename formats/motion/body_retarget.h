@@ -15,9 +15,11 @@
 // (cmu_rest_pose.h), so an elbow or knee is a hinge as in CMU's takes; where a limb is almost
 // straight the axis is carried over from the frame before, in the parent's frame. The hip
 // joints, clavicles and the joints the source lacks keep their rest rotation relative to their
-// parent. The limbs' directions are exact: a canonical bone points where the source's does. The
-// root positions stay the source's; the skeleton is CmuRestSkeleton() scaled to the source's
-// leg length, so an export stands on the floor where the source did.
+// parent. The limbs' directions are exact: a canonical bone points where the source's does.
+// The take comes out at the rest body's size: the skeleton is CmuRestSkeleton(), the root
+// positions are the source's divided by the source's leg length over the rest body's (and
+// meters_per_unit multiplied by it), so heights, speeds and the report's figures compare across
+// families, and an export stands on its floor and travels as far, in body lengths, as the source.
 // Rule and figures: docs/design/mixed_skeletons.md.
 // Thread-safety: pure functions.
 #pragma once

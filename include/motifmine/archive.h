@@ -104,6 +104,7 @@ struct ImportOptions {
 struct ImportResult {
   uint64_t takes_imported = 0;
   uint64_t takes_already_present = 0;
+  uint64_t takes_mapped = 0;  // of those imported: other skeletons, mapped onto the CMU body
   uint64_t frames_added = 0;
   std::vector<std::string> skipped;  // skip_bad: the takes passed over, with the reason
 };

@@ -337,3 +337,15 @@ def test_an_unknown_keyword_names_the_nearest(tmp_path):
     assert str(refused.value) == (
         "mine(): unknown keyword 'zzzzzzzz' (motifmine.option_table() lists them)")
     assert not os.path.exists(out)
+
+
+def test_a_folder_of_two_families_imports_onto_the_cmu_body(tmp_path):
+    daz_take = os.path.join(MOCAP, "bvh_daz", "02_01.bvh")
+    if not (os.path.isfile(CMU_TAKE) and os.path.isfile(daz_take)):
+        pytest.skip("no CMU and Daz takes under %s (the real-data check needs "
+                    "/work/shared/data/mocap)" % MOCAP)
+    archive_path = str(tmp_path / "mixed.mfs")
+    imported = motifmine.import_takes(archive_path, [daz_take, CMU_TAKE])
+    assert (imported.takes_imported, imported.takes_mapped) == (2, 1)
+    archive = motifmine.Archive(archive_path)
+    assert len(archive.joint_names) == 31 and archive.joint_names[1] == "lhipjoint"
