@@ -113,6 +113,23 @@ bool MixesSkeletons(const std::vector<TakeSource>& sources, size_t first,
   return false;
 }
 
+// A new archive's writer; Busy when another import created the archive meanwhile.
+Result<std::unique_ptr<FrameFileWriter>> CreateArchive(const std::string& archive_path,
+                                                       const Skeleton& skeleton, double fps,
+                                                       const FrameFileWriterOptions& options) {
+  Result<std::unique_ptr<FrameFileWriter>> writer =
+      FrameFileWriter::Create(archive_path, skeleton, fps, options);
+  std::error_code error;
+  if (!writer.ok() && std::filesystem::exists(archive_path, error)) {
+    // Another import created it since the caller looked: the same race the writer's commit
+    // reports as busy, lost earlier.
+    return Status::Busy(archive_path +
+                        ": created by another import while this one was starting; not "
+                        "replacing it (run again to append)");
+  }
+  return writer;
+}
+
 // The archive's writer: appending to it when it exists, else creating it from the first take
 // that imports, which decides the skeleton and, unless given, the rate (result->created). The
 // takes read for that are kept in `read_first`.
@@ -135,28 +152,21 @@ Result<std::unique_ptr<FrameFileWriter>> OpenOrCreateArchive(const std::string& 
   if (!read_first->back().ok()) {
     return options.skip_bad ? read_first->back().status() : StopForTake(read_first->back().status());
   }
-  const bool mixed = read_first->back()->skeleton.family() != kCmuFamily &&
+  const Take& read = *read_first->back();
+  const bool mixed = read.skeleton.family() != kCmuFamily &&
                      MixesSkeletons(sources, read_first->size() - 1, options.import);
   // A mixed folder's archive is on the CMU body: the first take's mapping gives its skeleton
   // (the take itself is mapped again on its way in, and counted with the others).
   std::optional<Take> mapped_first;
   if (mixed) {
-    Result<Take> mapped = RetargetToCmuBody(*read_first->back());
+    Result<Take> mapped = RetargetToCmuBody(read);
     if (!mapped.ok()) return options.skip_bad ? mapped.status() : StopForTake(mapped.status());
     mapped_first = std::move(*mapped);
   }
-  const Take& first = mapped_first ? *mapped_first : *read_first->back();
+  const Take& first = mapped_first ? *mapped_first : read;
   const double fps = options.fps > 0 ? options.fps : first.fps;
-  Result<std::unique_ptr<FrameFileWriter>> writer =
-      FrameFileWriter::Create(archive_path, first.skeleton, fps, writer_options);
-  if (!writer.ok() && std::filesystem::exists(archive_path, error)) {
-    // Another import created it since the check above: the same race the writer's commit
-    // reports as busy, lost earlier.
-    return Status::Busy(archive_path +
-                        ": created by another import while this one was starting; not "
-                        "replacing it (run again to append)");
-  }
-  if (!writer.ok()) return writer.status();
+  MOTIF_ASSIGN_OR_RETURN(std::unique_ptr<FrameFileWriter> writer,
+                         CreateArchive(archive_path, first.skeleton, fps, writer_options));
   result->created = true;
   ImportNote(options, "creating " + archive_path + ": skeleton " + first.skeleton.family() + " (" +
                           std::to_string(first.skeleton.joint_count()) + " joints), " +

@@ -15,37 +15,37 @@ struct RestJoint {
 
 // In canonical order (canonical_skeleton.h).
 constexpr RestJoint kRest[] = {
-    {{0, 0, 0}, false, {}},                       // root
-    {{0, 0, 0}, false, {}},                       // lhipjoint
-    {{1.66, -1.80, 0.62}, false, {}},             // lfemur
-    {{2.60, -7.14, 0}, false, {}},                // ltibia
-    {{2.49, -6.85, 0}, false, {}},                // lfoot
-    {{0.20, -0.54, 2.15}, true, {0, 0, 1.11}},    // ltoes
-    {{0, 0, 0}, false, {}},                       // rhipjoint
-    {{-1.61, -1.80, 0.62}, false, {}},            // rfemur
-    {{-2.60, -7.13, 0}, false, {}},               // rtibia
-    {{-2.47, -6.78, 0}, false, {}},               // rfoot
-    {{-0.23, -0.63, 2.13}, true, {0, 0, 1.12}},   // rtoes
-    {{0, 0, 0}, false, {}},                       // lowerback
-    {{0.02, 2.05, -0.14}, false, {}},             // upperback
-    {{0.01, 2.06, -0.06}, false, {}},             // thorax
-    {{0, 0, 0}, false, {}},                       // lowerneck
-    {{0.01, 1.57, 0.15}, false, {}},              // upperneck
+    {{0, 0, 0}, false, {}},                            // root
+    {{0, 0, 0}, false, {}},                            // lhipjoint
+    {{1.66, -1.80, 0.62}, false, {}},                  // lfemur
+    {{2.60, -7.14, 0}, false, {}},                     // ltibia
+    {{2.49, -6.85, 0}, false, {}},                     // lfoot
+    {{0.20, -0.54, 2.15}, true, {0, 0, 1.11}},         // ltoes
+    {{0, 0, 0}, false, {}},                            // rhipjoint
+    {{-1.61, -1.80, 0.62}, false, {}},                 // rfemur
+    {{-2.60, -7.13, 0}, false, {}},                    // rtibia
+    {{-2.47, -6.78, 0}, false, {}},                    // rfoot
+    {{-0.23, -0.63, 2.13}, true, {0, 0, 1.12}},        // rtoes
+    {{0, 0, 0}, false, {}},                            // lowerback
+    {{0.02, 2.05, -0.14}, false, {}},                  // upperback
+    {{0.01, 2.06, -0.06}, false, {}},                  // thorax
+    {{0, 0, 0}, false, {}},                            // lowerneck
+    {{0.01, 1.57, 0.15}, false, {}},                   // upperneck
     {{0.03, 1.56, -0.10}, true, {0.01, 1.63, -0.05}},  // head
-    {{0, 0, 0}, false, {}},                       // lclavicle
-    {{3.54, 0.90, -0.17}, false, {}},             // lhumerus
-    {{4.87, 0, 0}, false, {}},                    // lradius
-    {{3.36, 0, 0}, false, {}},                    // lwrist
-    {{0, 0, 0}, false, {}},                       // lhand
-    {{0.66, 0, 0}, true, {0.53, 0, 0}},           // lfingers
-    {{0, 0, 0}, true, {0.54, 0, 0.54}},           // lthumb
-    {{0, 0, 0}, false, {}},                       // rclavicle
-    {{-3.50, 0.76, -0.33}, false, {}},            // rhumerus
-    {{-5.03, 0, 0}, false, {}},                   // rradius
-    {{-3.36, 0, 0}, false, {}},                   // rwrist
-    {{0, 0, 0}, false, {}},                       // rhand
-    {{-0.73, 0, 0}, true, {-0.59, 0, 0}},         // rfingers
-    {{0, 0, 0}, true, {-0.60, 0, 0.60}},          // rthumb
+    {{0, 0, 0}, false, {}},                            // lclavicle
+    {{3.54, 0.90, -0.17}, false, {}},                  // lhumerus
+    {{4.87, 0, 0}, false, {}},                         // lradius
+    {{3.36, 0, 0}, false, {}},                         // lwrist
+    {{0, 0, 0}, false, {}},                            // lhand
+    {{0.66, 0, 0}, true, {0.53, 0, 0}},                // lfingers
+    {{0, 0, 0}, true, {0.54, 0, 0.54}},                // lthumb
+    {{0, 0, 0}, false, {}},                            // rclavicle
+    {{-3.50, 0.76, -0.33}, false, {}},                 // rhumerus
+    {{-5.03, 0, 0}, false, {}},                        // rradius
+    {{-3.36, 0, 0}, false, {}},                        // rwrist
+    {{0, 0, 0}, false, {}},                            // rhand
+    {{-0.73, 0, 0}, true, {-0.59, 0, 0}},              // rfingers
+    {{0, 0, 0}, true, {-0.60, 0, 0.60}},               // rthumb
 };
 
 Skeleton BuildRestSkeleton() {
@@ -83,9 +83,9 @@ const Skeleton& CmuRestSkeleton() {
 const CmuHingeAxes& CmuRestHingeAxes() {
   // Measured on CMU takes (docs/design/mixed_skeletons.md): the ASF's elbow axes lean 30
   // degrees and its knee axes 20 degrees from the rest pose's axes.
-  static const CmuHingeAxes* axes = new CmuHingeAxes{
-      Eigen::Vector3d(0, -0.8660, 0.5), Eigen::Vector3d(0, 0.8660, -0.5),
-      Eigen::Vector3d(0.9397, 0.3420, 0), Eigen::Vector3d(0.9397, -0.3420, 0)};
+  static const CmuHingeAxes* axes =
+      new CmuHingeAxes{Eigen::Vector3d(0, -0.8660, 0.5), Eigen::Vector3d(0, 0.8660, -0.5),
+                       Eigen::Vector3d(0.9397, 0.3420, 0), Eigen::Vector3d(0.9397, -0.3420, 0)};
   return *axes;
 }
 

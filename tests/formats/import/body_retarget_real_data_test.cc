@@ -40,8 +40,7 @@ Take Retarget(const Take& take) {
 
 // The pose distance D of motifmine (engine/distance/pose_features.h) between frame a of `x` and
 // frame b of `y`, both on the CMU body, with the weights of `x`.
-double PoseDistance(const Take& x, const ClipFrames& xf, size_t a, const ClipFrames& yf,
-                    size_t b) {
+double PoseDistance(const Take& x, const ClipFrames& xf, size_t a, const ClipFrames& yf, size_t b) {
   const FrameLayout layout{static_cast<uint32_t>(x.joint_count())};
   double sum = 0;
   for (size_t joint = 0; joint < x.joint_count(); ++joint) {
@@ -79,8 +78,9 @@ TEST(BodyRetargetRealData, ACmuTakeMappedKeepsItsPoses) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string dir = testing::MocapDir();
   // 02_01 is the rest body's own subject: its mapping is exact up to the hinge rule.
-  for (const auto& [name, share] : {std::pair{"bvh/02_01.bvh", 0.01}, std::pair{"bvh/05_01.bvh", 0.1},
-                                    std::pair{"bvh/06_13.bvh", 0.2}}) {
+  for (const auto& [name, share] :
+       {std::pair{"bvh/02_01.bvh", 0.01}, std::pair{"bvh/05_01.bvh", 0.1},
+        std::pair{"bvh/06_13.bvh", 0.2}}) {
     const Take native = Import(dir + "/" + name);
     ASSERT_EQ(native.skeleton.family(), "cmu31");
     const Take mapped = Retarget(native);
@@ -198,4 +198,3 @@ TEST(BodyRetargetRealData, TheStudioRigMapsStanding) {
 
 }  // namespace
 }  // namespace motif
-

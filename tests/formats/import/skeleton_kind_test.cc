@@ -56,7 +56,8 @@ TEST(ReadSkeletonKind, TellsTheRealFamiliesApart) {
   amc.path = mocap + "/asfamc/60/60_01.amc";
   amc.asf_path = mocap + "/asfamc/60/60.asf";
   EXPECT_EQ(ReadSkeletonKind(amc, ImportOptions()).value(), "cmu31");
-  const std::string daz = ReadSkeletonKind(Bvh(mocap + "/bvh_daz/02_01.bvh"), ImportOptions()).value();
+  const std::string daz =
+      ReadSkeletonKind(Bvh(mocap + "/bvh_daz/02_01.bvh"), ImportOptions()).value();
   EXPECT_EQ(daz.rfind("custom:hip<-1;abdomen<0;", 0), 0u) << daz;
   EXPECT_EQ(ReadSkeletonKind(Bvh(mocap + "/bvh_daz/13_11.bvh"), ImportOptions()).value(), daz);
 }

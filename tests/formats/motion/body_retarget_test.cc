@@ -42,32 +42,52 @@ Skeleton Build(const std::vector<JointSpec>& specs) {
 
 // A Daz-like T-pose (cgspeed's Daz BVH names).
 Skeleton DazLike() {
-  return Build({{"hip", "", {0, 0, 0}},          {"abdomen", "hip", {0, 2, 0}},
-                {"chest", "abdomen", {0, 2, 0}}, {"neck", "chest", {0, 2, 0}},
-                {"head", "neck", {0, 1, 0}},     {"lCollar", "chest", {0.5, 1.8, 0}},
-                {"lShldr", "lCollar", {1, 0, 0}}, {"lForeArm", "lShldr", {3, 0, 0}},
-                {"lHand", "lForeArm", {3, 0, 0}}, {"rCollar", "chest", {-0.5, 1.8, 0}},
-                {"rShldr", "rCollar", {-1, 0, 0}}, {"rForeArm", "rShldr", {-3, 0, 0}},
-                {"rHand", "rForeArm", {-3, 0, 0}}, {"lButtock", "hip", {1, -0.5, 0}},
-                {"lThigh", "lButtock", {0, -0.5, 0}}, {"lShin", "lThigh", {0, -4, 0}},
-                {"lFoot", "lShin", {0, -4, 0}},   {"rButtock", "hip", {-1, -0.5, 0}},
-                {"rThigh", "rButtock", {0, -0.5, 0}}, {"rShin", "rThigh", {0, -4, 0}},
+  return Build({{"hip", "", {0, 0, 0}},
+                {"abdomen", "hip", {0, 2, 0}},
+                {"chest", "abdomen", {0, 2, 0}},
+                {"neck", "chest", {0, 2, 0}},
+                {"head", "neck", {0, 1, 0}},
+                {"lCollar", "chest", {0.5, 1.8, 0}},
+                {"lShldr", "lCollar", {1, 0, 0}},
+                {"lForeArm", "lShldr", {3, 0, 0}},
+                {"lHand", "lForeArm", {3, 0, 0}},
+                {"rCollar", "chest", {-0.5, 1.8, 0}},
+                {"rShldr", "rCollar", {-1, 0, 0}},
+                {"rForeArm", "rShldr", {-3, 0, 0}},
+                {"rHand", "rForeArm", {-3, 0, 0}},
+                {"lButtock", "hip", {1, -0.5, 0}},
+                {"lThigh", "lButtock", {0, -0.5, 0}},
+                {"lShin", "lThigh", {0, -4, 0}},
+                {"lFoot", "lShin", {0, -4, 0}},
+                {"rButtock", "hip", {-1, -0.5, 0}},
+                {"rThigh", "rButtock", {0, -0.5, 0}},
+                {"rShin", "rThigh", {0, -4, 0}},
                 {"rFoot", "rShin", {0, -4, 0}}});
 }
 
 // A studio rig whose zero rotations fold the body up: every bone along +x or -x of its parent,
 // as when a rig's joint orients live in the motion (names as ../shared/data/bandai2's).
 Skeleton FoldedStudioRig() {
-  return Build({{"Hips", "", {0, 0, 0}},           {"Spine", "Hips", {2, 0, 0}},
-                {"Chest", "Spine", {2, 0, 0}},      {"Neck", "Chest", {2, 0, 0}},
-                {"Head", "Neck", {1, 0, 0}},        {"Shoulder_L", "Chest", {1.8, 0, 0.5}},
-                {"UpperArm_L", "Shoulder_L", {1, 0, 0}}, {"LowerArm_L", "UpperArm_L", {3, 0, 0}},
-                {"Hand_L", "LowerArm_L", {3, 0, 0}}, {"Shoulder_R", "Chest", {1.8, 0, -0.5}},
-                {"UpperArm_R", "Shoulder_R", {-1, 0, 0}}, {"LowerArm_R", "UpperArm_R", {-3, 0, 0}},
-                {"Hand_R", "LowerArm_R", {-3, 0, 0}}, {"UpperLeg_L", "Hips", {-0.2, -1, 0}},
-                {"LowerLeg_L", "UpperLeg_L", {4, 0, 0}}, {"Foot_L", "LowerLeg_L", {4, 0, 0}},
-                {"Toes_L", "Foot_L", {1, 0, 0}},    {"UpperLeg_R", "Hips", {-0.2, 1, 0}},
-                {"LowerLeg_R", "UpperLeg_R", {-4, 0, 0}}, {"Foot_R", "LowerLeg_R", {-4, 0, 0}},
+  return Build({{"Hips", "", {0, 0, 0}},
+                {"Spine", "Hips", {2, 0, 0}},
+                {"Chest", "Spine", {2, 0, 0}},
+                {"Neck", "Chest", {2, 0, 0}},
+                {"Head", "Neck", {1, 0, 0}},
+                {"Shoulder_L", "Chest", {1.8, 0, 0.5}},
+                {"UpperArm_L", "Shoulder_L", {1, 0, 0}},
+                {"LowerArm_L", "UpperArm_L", {3, 0, 0}},
+                {"Hand_L", "LowerArm_L", {3, 0, 0}},
+                {"Shoulder_R", "Chest", {1.8, 0, -0.5}},
+                {"UpperArm_R", "Shoulder_R", {-1, 0, 0}},
+                {"LowerArm_R", "UpperArm_R", {-3, 0, 0}},
+                {"Hand_R", "LowerArm_R", {-3, 0, 0}},
+                {"UpperLeg_L", "Hips", {-0.2, -1, 0}},
+                {"LowerLeg_L", "UpperLeg_L", {4, 0, 0}},
+                {"Foot_L", "LowerLeg_L", {4, 0, 0}},
+                {"Toes_L", "Foot_L", {1, 0, 0}},
+                {"UpperLeg_R", "Hips", {-0.2, 1, 0}},
+                {"LowerLeg_R", "UpperLeg_R", {-4, 0, 0}},
+                {"Foot_R", "LowerLeg_R", {-4, 0, 0}},
                 {"Toes_R", "Foot_R", {-1, 0, 0}}});
 }
 
@@ -114,8 +134,10 @@ TEST(BodyLandmarks, FindsTheStudioAndCmuNames) {
 }
 
 TEST(BodyLandmarks, SaysWhichPartIsMissing) {
-  Skeleton armless = Build({{"Hips", "", {0, 0, 0}}, {"Spine", "Hips", {0, 1, 0}},
-                            {"LeftArm", "Spine", {1, 0, 0}}, {"LeftForeArm", "LeftArm", {1, 0, 0}},
+  Skeleton armless = Build({{"Hips", "", {0, 0, 0}},
+                            {"Spine", "Hips", {0, 1, 0}},
+                            {"LeftArm", "Spine", {1, 0, 0}},
+                            {"LeftForeArm", "LeftArm", {1, 0, 0}},
                             {"LeftHand", "LeftForeArm", {1, 0, 0}}});
   Result<BodyLandmarks> body = FindBodyLandmarks(armless);
   ASSERT_FALSE(body.ok());
@@ -185,25 +207,24 @@ void ExpectBonesFollow(const Take& source, bool folded) {
     int source_from;
     int source_to;
   };
-  const std::vector<Bone> bones = {
-      {"lhumerus", "lradius", body.left.upper_arm, body.left.elbow},
-      {"lradius", "lwrist", body.left.elbow, body.left.wrist},
-      {"rhumerus", "rradius", body.right.upper_arm, body.right.elbow},
-      {"rradius", "rwrist", body.right.elbow, body.right.wrist},
-      {"lfemur", "ltibia", body.left.hip, body.left.knee},
-      {"ltibia", "lfoot", body.left.knee, body.left.ankle},
-      {"rfemur", "rtibia", body.right.hip, body.right.knee},
-      {"rtibia", "rfoot", body.right.knee, body.right.ankle},
-      {"lowerback", "thorax", body.spine[0], body.chest}};
+  const std::vector<Bone> bones = {{"lhumerus", "lradius", body.left.upper_arm, body.left.elbow},
+                                   {"lradius", "lwrist", body.left.elbow, body.left.wrist},
+                                   {"rhumerus", "rradius", body.right.upper_arm, body.right.elbow},
+                                   {"rradius", "rwrist", body.right.elbow, body.right.wrist},
+                                   {"lfemur", "ltibia", body.left.hip, body.left.knee},
+                                   {"ltibia", "lfoot", body.left.knee, body.left.ankle},
+                                   {"rfemur", "rtibia", body.right.hip, body.right.knee},
+                                   {"rtibia", "rfoot", body.right.knee, body.right.ankle},
+                                   {"lowerback", "thorax", body.spine[0], body.chest}};
   const auto& axes = CmuRestHingeAxes();
   for (size_t frame = 0; frame < source.frame_count(); ++frame) {
     std::vector<Quat> source_world;
     std::vector<Quat> world;
     const std::vector<Vec> from = Positions(source, frame, &source_world);
     const std::vector<Vec> to = Positions(*mapped, frame, &world);
-    EXPECT_LT((to[0] - from[0] * (mapped->root_positions[1].x() / source.root_positions[1].x()))
-                  .norm(),
-              1e-12);
+    EXPECT_LT(
+        (to[0] - from[0] * (mapped->root_positions[1].x() / source.root_positions[1].x())).norm(),
+        1e-12);
     for (const Bone& bone : bones) {
       const Vec expected = (from[bone.source_to] - from[bone.source_from]).normalized();
       const Vec got = (to[Index(cmu, bone.to)] - to[Index(cmu, bone.from)]).normalized();
@@ -226,7 +247,8 @@ void ExpectBonesFollow(const Take& source, bool folded) {
 
 TEST(BodyRetarget, BonesPointWhereTheDazBonesPoint) {
   const Skeleton daz = DazLike();
-  ExpectBonesFollow(RandomTake(daz, std::vector<Quat>(daz.joint_count(), Quat::Identity()), 1), false);
+  ExpectBonesFollow(RandomTake(daz, std::vector<Quat>(daz.joint_count(), Quat::Identity()), 1),
+                    false);
 }
 
 TEST(BodyRetarget, BonesPointWhereAFoldedRigsBonesPoint) {
@@ -261,20 +283,22 @@ TEST(BodyRetarget, KeepsTheTakeAtTheRestBodysSize) {
     return Vec(o[0], o[1], o[2]).norm();
   };
   const Skeleton& rest = CmuRestSkeleton();
-  const double rest_legs = length(rest, "ltibia") + length(rest, "lfoot") +
-                           length(rest, "rtibia") + length(rest, "rfoot");
+  const double rest_legs = length(rest, "ltibia") + length(rest, "lfoot") + length(rest, "rtibia") +
+                           length(rest, "rfoot");
   EXPECT_NEAR(length(mapped->skeleton, "ltibia"), length(rest, "ltibia"), 1e-12);
   for (size_t frame = 0; frame < take.frame_count(); ++frame) {
-    EXPECT_LT((mapped->root_positions[frame] - take.root_positions[frame] * rest_legs / 16.0).norm(),
-              1e-12);
+    EXPECT_LT(
+        (mapped->root_positions[frame] - take.root_positions[frame] * rest_legs / 16.0).norm(),
+        1e-12);
   }
 
   take.skeleton = Build({{"Hips", "", {0, 0, 0}}});
   take.rotations.assign(take.frame_count(), Quat::Identity());
   mapped = RetargetToCmuBody(take);
   ASSERT_FALSE(mapped.ok());
-  EXPECT_EQ(mapped.status().message().rfind("random.bvh: its skeleton (1 joints) cannot be mapped", 0),
-            0u)
+  EXPECT_EQ(
+      mapped.status().message().rfind("random.bvh: its skeleton (1 joints) cannot be mapped", 0),
+      0u)
       << mapped.status().message();
 }
 
