@@ -14,6 +14,7 @@
 
 #include <boost/program_options.hpp>
 
+#include "common/count_text.h"   // WithCommas, CountOf, for the commands' summaries
 #include "common/peak_memory.h"  // PeakResidentBytes, for the commands' summaries
 #include "common/rank_group.h"
 #include "common/status.h"
@@ -67,11 +68,6 @@ void AddProgressOptions(CommandSpec& spec);
 void AddVerboseOption(CommandSpec& spec);
 ProgressMode ProgressModeFrom(const boost::program_options::variables_map& vm);
 
-// Thousands separators: 40346 -> "40,346".
-std::string WithCommas(uint64_t value);
-// "1 clip", "1,234 clips": a count with commas and its noun, plural when it is not 1 (nouns that
-// take an "s").
-std::string CountOf(uint64_t count, const std::string& noun);
 // "24.0 KB", "1.6 MB".
 std::string FormatBytes(uint64_t bytes);
 // part / whole as "57.2%" (0.0% when whole is 0).

@@ -92,20 +92,6 @@ std::string HtmlNumber(const char* format, double value) {
   return text;
 }
 
-std::string HtmlCommas(uint64_t value) {
-  std::string digits = std::to_string(value);
-  std::string text;
-  for (size_t idx = 0; idx < digits.size(); ++idx) {
-    if (idx > 0 && (digits.size() - idx) % 3 == 0) text += ',';
-    text += digits[idx];
-  }
-  return text;
-}
-
-std::string HtmlCount(uint64_t count, const std::string& noun) {
-  return HtmlCommas(count) + " " + noun + (count == 1 ? "" : "s");
-}
-
 std::string HtmlSeconds(uint64_t frames, double fps) {
   return HtmlNumber("%.2f s", fps > 0 ? static_cast<double>(frames) / fps : 0.0);
 }

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include "common/count_text.h"  // WithCommas, CountOf, which the pages use
+
 namespace motif {
 
 // `text` with & < > " ' replaced by character references, safe in HTML text and attributes.
@@ -23,13 +25,9 @@ std::string HtmlRow(const std::string& key, const std::string& value_html);
 
 // printf of one double ("%.2f").
 std::string HtmlNumber(const char* format, double value);
-// 40346 -> "40,346".
-std::string HtmlCommas(uint64_t value);
 // "2.50 s" for a frame count at `fps`.
 std::string HtmlSeconds(uint64_t frames, double fps);
 
-// "1 clip", "2 clips", "1,024 motifs": the count with commas and the noun, plural with an s.
-std::string HtmlCount(uint64_t count, const std::string& noun);
 // "512 KiB", "1.5 MiB", "2.00 GiB".
 std::string HtmlBytes(uint64_t bytes);
 // A fixed colour per id (motif, group, label): hues a golden angle apart, so neighbouring ids

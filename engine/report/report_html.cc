@@ -193,9 +193,9 @@ std::string ViewName(FigureView view) { return view == FigureView::kSide ? "side
 // "frames": how many, how long, the clips and the skeleton.
 std::string OverviewFramesHtml(const FrameFileReader& reader) {
   const double fps = reader.fps();
-  return HtmlCommas(reader.frame_count()) + " (" +
+  return WithCommas(reader.frame_count()) + " (" +
          FormatDuration(fps > 0 ? reader.frame_count() / fps : 0.0) + " at " +
-         HtmlNumber("%g fps", fps) + "), " + HtmlCount(reader.clips().size(), "clip") +
+         HtmlNumber("%g fps", fps) + "), " + CountOf(reader.clips().size(), "clip") +
          ", skeleton " + HtmlEscape(reader.skeleton().family()) + " (" +
          std::to_string(reader.skeleton().joint_count()) + " joints)";
 }
@@ -206,7 +206,7 @@ std::string OverviewParametersHtml(const MotifsJsonParams& params, double fps,
   return "match radius &epsilon; " + HtmlNumber("%.4g", params.eps) +
          " &middot; neighbours kept per frame K<sub>max</sub> " + std::to_string(params.kmax) +
          " &middot; frames a path may skip B " + std::to_string(params.branch) +
-         " &middot; shortest motif &lambda; " + HtmlCount(params.min_length, "frame") + " (" +
+         " &middot; shortest motif &lambda; " + CountOf(params.min_length, "frame") + " (" +
          HtmlSeconds(params.min_length, fps) + ") &middot; motif groups " +
          (params.groups ? std::to_string(params.groups) : std::string("automatic")) +
          " &middot; random seed " + std::to_string(params.seed) +
@@ -231,10 +231,10 @@ std::string OverviewTimingsHtml(const std::vector<ReportStageTiming>& timings) {
 // "planted motifs": the score against a synthetic archive's truth.
 std::string OverviewPlantedHtml(const PlantedMotifScore& score, const std::string& truth_path) {
   return (truth_path.empty() ? std::string() : "<code>" + HtmlEscape(truth_path) + "</code>: ") +
-         HtmlCount(score.planted_motifs, "motif") + ", " + HtmlCount(score.planted, "instance") +
-         "; recall " + HtmlNumber("%.3f", score.recall) + " (" + HtmlCommas(score.planted_hit) +
+         CountOf(score.planted_motifs, "motif") + ", " + CountOf(score.planted, "instance") +
+         "; recall " + HtmlNumber("%.3f", score.recall) + " (" + WithCommas(score.planted_hit) +
          " hit), precision " + HtmlNumber("%.3f", score.precision) + " (" +
-         HtmlCommas(score.found_hitting) + " of " + HtmlCommas(score.found) +
+         WithCommas(score.found_hitting) + " of " + WithCommas(score.found) +
          " found instances), adjusted Rand index " + HtmlNumber("%.3f", score.adjusted_rand_index);
 }
 
@@ -253,9 +253,9 @@ void AppendOverview(const MotifsDocument& document, const FrameFileReader& reade
   if (!info.timings.empty()) row("timings", OverviewTimingsHtml(info.timings));
   if (info.peak_memory_bytes > 0) row("peak memory", HtmlBytes(info.peak_memory_bytes));
   row("motifs",
-      HtmlCount(document.motifs.size(), "motif") + ", " + HtmlCount(instance_count, "instance"));
+      CountOf(document.motifs.size(), "motif") + ", " + CountOf(instance_count, "instance"));
   row("coverage",
-      HtmlCommas(covered_frames) + " frames in some instance (" +
+      WithCommas(covered_frames) + " frames in some instance (" +
           HtmlNumber("%.1f%%", reader.frame_count() ? 100.0 * static_cast<double>(covered_frames) /
                                                           reader.frame_count()
                                                     : 0.0) +
@@ -322,7 +322,7 @@ void AppendTimelineBar(const ClipInfo& clip, std::vector<TimelineMark>* clip_mar
   const std::string described =
       clip.description.empty() ? std::string() : " \u2014 " + HtmlEscape(clip.description);
   out += "<div class=\"tlrow\"><span class=\"n\" title=\"" + name + described + " (" +
-         HtmlCount(clip.frame_count, "frame") + ")\">" + name +
+         CountOf(clip.frame_count, "frame") + ")\">" + name +
          (described.empty() ? "" : "<small>" + described + "</small>") +
          "</span><span class=\"w\"><svg " +
          "class=\"tl\" style=\"width:" + HtmlNumber("%.1f", width_percent) + "%\" viewBox=\"0 0 " +
@@ -365,7 +365,7 @@ void AppendTimeline(const MotifsDocument& document, const std::vector<ClipInfo>&
     AppendTimelineBar(clip, &found->second, longest, fps, &out);
   }
   if (!empty_clips.empty()) {
-    out += "<details><summary>" + HtmlCount(empty_clips.size(), "clip") +
+    out += "<details><summary>" + CountOf(empty_clips.size(), "clip") +
            " without instances</summary><p class=\"note\">";
     for (size_t idx = 0; idx < empty_clips.size(); ++idx) {
       if (idx > 0) out += ", ";
@@ -564,7 +564,7 @@ class MotifSectionsWriter {
     const size_t drawn = figures_.chosen[motif_idx].size();
     if (count > drawn) {
       const size_t more = count - drawn;
-      *html += "<p class=\"note\">" + HtmlCommas(more) +
+      *html += "<p class=\"note\">" + WithCommas(more) +
                (more == 1 ? " more instance not drawn" : " more instances not drawn") +
                " (all of them are in the timeline above and in motifs.json).</p>";
     }
@@ -586,12 +586,12 @@ class MotifSectionsWriter {
     }
     const size_t count = motif.instances.size();
     const uint64_t mean = count ? (total_frames + count / 2) / count : 0;
-    *html += HtmlCommas(count) + (count == 1 ? " instance" : " instances") + " &middot; " +
-             HtmlCommas(mean) + " frames (" + HtmlSeconds(mean, fps_) + ") on average";
+    *html += WithCommas(count) + (count == 1 ? " instance" : " instances") + " &middot; " +
+             WithCommas(mean) + " frames (" + HtmlSeconds(mean, fps_) + ") on average";
     if (count > 1 && shortest != longest) {
-      *html += ", " + HtmlCommas(shortest) + "\u2013" + HtmlCommas(longest);
+      *html += ", " + WithCommas(shortest) + "\u2013" + WithCommas(longest);
     }
-    *html += " &middot; " + HtmlCommas(clip_names.size()) +
+    *html += " &middot; " + WithCommas(clip_names.size()) +
              (clip_names.size() == 1 ? " clip: " : " clips: ");
     AppendClipNames(clip_names, html);
   }
@@ -605,7 +605,7 @@ class MotifSectionsWriter {
       if (!description.empty()) *html += " (" + HtmlEscape(description) + ")";
     }
     if (clip_names.size() > options_.clip_names_per_motif) {
-      *html += " +" + HtmlCommas(clip_names.size() - options_.clip_names_per_motif) + " more";
+      *html += " +" + WithCommas(clip_names.size() - options_.clip_names_per_motif) + " more";
     }
   }
 
@@ -626,7 +626,7 @@ class MotifSectionsWriter {
       *html +=
           "<button type=\"button\" class=\"play\" data-play=\"" + std::to_string(motif.id) +
           "\">&#9654; play " +
-          (count == 1 ? std::string("the instance") : "all " + HtmlCommas(count) + " instances") +
+          (count == 1 ? std::string("the instance") : "all " + WithCommas(count) + " instances") +
           "</button>";
     }
   }

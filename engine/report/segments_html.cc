@@ -46,15 +46,15 @@ std::string Overview(const Segmentation& result, const FrameFileReader& reader,
   for (const SegmentedTake& take : result.takes) segments += take.segments.size();
   std::string html = "<section id=\"overview\"><h2>Overview</h2><table class=\"kv\">";
   html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
-                                 HtmlCount(reader.clips().size(), "clip") + ")");
+                                 CountOf(reader.clips().size(), "clip") + ")");
   std::string how;
   if (result.supervised) {
     how = "each motion word takes the majority label of the " + std::to_string(result.knn) +
           (result.one_per_take ? " nearest takes (each at its nearest window of "
                                : " nearest windows of ") +
           std::to_string(result.window) + (result.one_per_take ? " words)" : " words") + " among " +
-          HtmlCommas(result.reference_windows) + " windows of " +
-          HtmlCount(result.reference_takes, "labelled take") + " (labels from <code>" +
+          WithCommas(result.reference_windows) + " windows of " +
+          CountOf(result.reference_takes, "labelled take") + " (labels from <code>" +
           HtmlEscape(info.labels_path) + "</code>; a take never votes " + "for itself), by " +
           WindowDistanceText(result, info);
   } else {
@@ -63,11 +63,11 @@ std::string Overview(const Segmentation& result, const FrameFileReader& reader,
           "), segments grouped by signature (complete linkage at the same distance)";
   }
   html += HtmlRow("method", how);
-  html += HtmlRow("result", HtmlCount(result.takes.size(), "take") + " in " +
-                                HtmlCount(segments, "segment") + ", " +
-                                HtmlCount(result.label_names.size(), "label"));
+  html += HtmlRow("result", CountOf(result.takes.size(), "take") + " in " +
+                                CountOf(segments, "segment") + ", " +
+                                CountOf(result.label_names.size(), "label"));
   if (!result.skipped_clips.empty()) {
-    html += HtmlRow("skipped", HtmlCount(result.skipped_clips.size(), "take") +
+    html += HtmlRow("skipped", CountOf(result.skipped_clips.size(), "take") +
                                    " shorter than one motion word");
   }
   html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
@@ -110,8 +110,8 @@ Result<std::string> SegmentsHtmlText(const Segmentation& result, const FrameFile
   for (const SegmentedTake& take : result.takes) {
     const ClipInfo& clip = reader.clips()[take.clip];
     html += "<div class=\"take\"><h3>" + HtmlEscape(clip.name) + " <span class=\"note\">" +
-            HtmlCount(clip.frame_count, "frame") + ", " + HtmlSeconds(clip.frame_count, fps) +
-            ", " + HtmlCount(take.segments.size(), "segment") + "</span></h3>\n";
+            CountOf(clip.frame_count, "frame") + ", " + HtmlSeconds(clip.frame_count, fps) +
+            ", " + CountOf(take.segments.size(), "segment") + "</span></h3>\n";
     html += Timeline(result, take, fps, clip.frame_count);
     for (const LabelledSegment& segment : take.segments) {
       html += "<div class=\"seg\"><h3><i style=\"background:" + ColourOf(segment.label) +
@@ -129,7 +129,7 @@ Result<std::string> SegmentsHtmlText(const Segmentation& result, const FrameFile
   }
   if (drawn == kMaxSegmentFigures) {
     html += "<p class=\"note\">Keyframes are drawn for the first " +
-            HtmlCommas(kMaxSegmentFigures) + " segments only.</p>\n";
+            WithCommas(kMaxSegmentFigures) + " segments only.</p>\n";
   }
   html += "</section>\n" + HtmlPageEnd();
   return html;

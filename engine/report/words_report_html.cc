@@ -38,15 +38,15 @@ Status AppendSearchQuery(const SearchResult& result, const FrameFileReader& read
                          const SearchPageInfo& info, KeyframeFigures* figures, std::string* html) {
   *html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
   *html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
-                                  HtmlCommas(reader.clips().size()) + " clips)");
-  *html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + HtmlCommas(info.query_words) +
+                                  WithCommas(reader.clips().size()) + " clips)");
+  *html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + WithCommas(info.query_words) +
                                 (info.query_words == 1 ? " word" : " words"));
   *html += HtmlRow("search", result.whole_take
                                  ? "whole takes: the EMD between take signatures over " +
                                        std::to_string(info.motifs) + " motifs"
-                                 : "a window of " + HtmlCommas(info.query_words) +
+                                 : "a window of " + WithCommas(info.query_words) +
                                        " words slid along every take, one word at a time (" +
-                                       HtmlCommas(result.windows) + " windows); EMD over " +
+                                       WithCommas(result.windows) + " windows); EMD over " +
                                        std::to_string(info.motifs) + " motifs");
   for (const std::string& note : info.notes) *html += HtmlRow("note", HtmlEscape(note));
   *html += HtmlRow("time", HtmlNumber("%.2f s", info.seconds));
@@ -60,7 +60,7 @@ Status AppendSearchQuery(const SearchResult& result, const FrameFileReader& read
   } else if (info.query_take != nullptr && info.query_take->frame_count() > 0) {
     const std::string svg = figures->TakeSvg(*info.query_take);
     *html += "<div class=\"strip\"><div class=\"lbl\">" + HtmlEscape(info.query_text) + ", " +
-             HtmlCount(info.query_take->frame_count(), "frame") + " at the archive's rate" +
+             CountOf(info.query_take->frame_count(), "frame") + " at the archive's rate" +
              "</div><div class=\"figs\">" + svg + "</div></div>\n";
   }
   return Status::Ok();
@@ -160,8 +160,8 @@ void AppendClassifyOverview(const TakeClassification& r, const std::string& arch
                                : "dynamic time warping over the takes' frames";
   *html += HtmlRow("distance", HtmlEscape(r.distance) + ": " + distance_text + " (" +
                                    HtmlNumber("%.2f s", r.seconds_distances) + ")");
-  *html += HtmlRow("takes", HtmlCommas(r.names.size()) +
-                                (labelled ? ", " + HtmlCommas(r.knn.labelled) + " labelled with " +
+  *html += HtmlRow("takes", WithCommas(r.names.size()) +
+                                (labelled ? ", " + WithCommas(r.knn.labelled) + " labelled with " +
                                                 std::to_string(r.label_names.size()) + " labels"
                                           : std::string()));
   std::string unsupervised = "classical MDS into " + std::to_string(r.mds.coordinates.cols()) +
@@ -178,8 +178,8 @@ void AppendClassifyOverview(const TakeClassification& r, const std::string& arch
                                        "-nearest-neighbour, leave one out: "
                                        "accuracy <b>" +
                                        HtmlNumber("%.3f", r.knn.accuracy) + "</b> (" +
-                                       HtmlCommas(r.knn.correct) + " of " +
-                                       HtmlCommas(r.knn.labelled) + ")");
+                                       WithCommas(r.knn.correct) + " of " +
+                                       WithCommas(r.knn.labelled) + ")");
     *html += HtmlRow("retrieval", "whole-take precision@" + std::to_string(r.top) + " <b>" +
                                       HtmlNumber("%.3f", r.precision_at_top) + "</b>");
   }

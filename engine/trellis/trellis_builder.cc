@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/byte_coding.h"
+#include "common/count_text.h"
 #include "common/seconds_since.h"
 #include "engine/distance/epsilon_estimator.h"
 #include "engine/distance/exact_search.h"
@@ -168,9 +169,9 @@ TrellisSearchMode ChooseSearchMode(const TrellisOptions& options, uint64_t frame
   if (mode != TrellisSearchMode::kAuto) return mode;
   mode = frame_count < options.auto_exact_max_frames ? TrellisSearchMode::kExact
                                                      : TrellisSearchMode::kLsh;
-  note(std::string("search: ") + TrellisSearchModeName(mode) +
-       " (auto: " + std::to_string(frame_count) + " frames, exact below " +
-       std::to_string(options.auto_exact_max_frames) + ")");
+  note(std::string("search: ") + TrellisSearchModeName(mode) + " (auto: " +
+       CountOf(frame_count, "frame") + ", exact below " +
+       WithCommas(options.auto_exact_max_frames) + ")");
   return mode;
 }
 
