@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Motif quality on a folder of mixed real takes: the labelled takes of tests/data/repetitions
-# imported into ONE archive (those of the first take's skeleton family; a take of another
-# family is named and left out), mined together with the default options (plus
+# imported into ONE archive (on the first take's CMU body: the Daz take 14_07 is mapped onto
+# it, docs/design/mixed_skeletons.md; a take whose skeleton cannot be is named and left out),
+# mined together with the default options (plus
 # MOTIF_MINE_ARGS), and every motif scored against the takes' joined annotations with
 # `motifmine score` (a hit: same clip, IoU >= 0.5; a movement named alike in several takes,
 # e.g. gait-cycle, is one movement). Complements scripts/eval_repetitions.sh, which mines each
