@@ -132,13 +132,25 @@ class TakeCollector {
     return Status::Ok();
   }
 
+  // The folder's takes, in linked folders too; a folder reached again (a link back up the tree,
+  // or two links to one folder) is not entered twice.
   Status AddFolder(const std::string& folder) {
     std::vector<fs::path> files;
     std::error_code error;
+    std::set<fs::path> entered = {fs::canonical(folder, error)};
     for (fs::recursive_directory_iterator
-             it(folder, fs::directory_options::skip_permission_denied, error),
+             it(folder,
+                fs::directory_options::skip_permission_denied |
+                    fs::directory_options::follow_directory_symlink,
+                error),
          end;
          !error && it != end; it.increment(error)) {
+      std::error_code ignored;
+      if (it->is_directory(ignored) &&
+          !entered.insert(fs::canonical(it->path(), ignored)).second) {
+        it.disable_recursion_pending();
+        continue;
+      }
       if (it->is_regular_file(error) &&
           (HasExtension(it->path(), ".bvh") || HasExtension(it->path(), ".amc"))) {
         files.push_back(it->path());

@@ -57,6 +57,23 @@ TEST(DiscoverTakes, KeepsArgumentOrderAndSkipsDuplicates) {
   EXPECT_EQ(Paths(*sources), (std::vector<std::string>{dir.File("z.bvh"), dir.File("y/a.bvh")}));
 }
 
+// Linked folders are searched (a user's folder of links to capture sessions); a link back up
+// the tree or a second link to one folder is not followed again.
+TEST(DiscoverTakes, FollowsLinkedFoldersOnce) {
+  TempDir dir;
+  Touch(dir.File("sessions/monday/a.bvh"));
+  Touch(dir.File("mine/b.bvh"));
+  std::filesystem::create_directory_symlink(dir.File("sessions/monday"), dir.File("mine/monday"));
+  std::filesystem::create_directory_symlink(dir.File("sessions/monday"), dir.File("mine/again"));
+  std::filesystem::create_directory_symlink(dir.File("mine"), dir.File("mine/monday_loop"));
+  Result<std::vector<TakeSource>> sources = DiscoverTakes({dir.File("mine")}, {});
+  ASSERT_TRUE(sources.ok()) << sources.status().ToString();
+  const std::vector<std::string> paths = Paths(*sources);
+  ASSERT_EQ(paths.size(), 2u) << ::testing::PrintToString(paths);
+  EXPECT_EQ(paths[1], dir.File("mine/b.bvh"));
+  EXPECT_EQ(std::filesystem::path(paths[0]).filename(), "a.bvh");
+}
+
 TEST(DiscoverTakes, RejectsMissingPathsAndOtherFiles) {
   TempDir dir;
   Result<std::vector<TakeSource>> missing = DiscoverTakes({dir.File("nope.bvh")}, {});
