@@ -67,8 +67,8 @@ struct TakeSource {
 };
 
 // Expands files and folders (recursively, through linked folders, each folder entered once;
-// sorted by path) into takes. A folder contributes its
-// .bvh and .amc files (case-insensitive extensions); .asf files are used only as skeletons.
+// sorted by path) into takes. A folder contributes its .bvh and .amc files (case-insensitive
+// extensions); .asf files are used only as skeletons.
 // Arguments keep their order; a file reached twice is listed once.
 // NotFound for a missing path; InvalidArgument for a file that is not .bvh/.amc. An AMC file
 // with no ASF to pair is listed with its unpaired_reason (the message says how to name one with
