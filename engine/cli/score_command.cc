@@ -1,9 +1,12 @@
 // motifmine score MOTIFS.json TRUTH [--json]: how well mined motifs match ground truth, for users
-// with their own annotations (engine/evaluation/truth_score.h: the hit rule and the figures).
+// with their own annotations (engine/evaluation/truth_score.h: the hit rule and the figures);
+// motifmine score SEGMENTS.json LABELS.tsv: a segmentation against per-frame labels
+// (engine/evaluation/frame_label_score.h: the majority and one-to-one rules).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "engine/cli/cli_common.h"
+#include "engine/evaluation/frame_label_score.h"
 #include "engine/evaluation/truth_score.h"
 
 namespace motif::cli {
@@ -102,12 +105,79 @@ void PrintScore(const TruthScore& score, const std::string& motifs_path,
   }
 }
 
+nlohmann::json RuleJson(const FrameRuleScore& rule) {
+  return {{"accuracy", rule.accuracy},
+          {"macro_f1", rule.macro_f1},
+          {"label_of_group", rule.label_of_group}};
+}
+
+nlohmann::json FrameScoreJson(const FrameLabelScore& score) {
+  nlohmann::json json = {{"frames", score.frames},
+                         {"frames_ungrouped", score.frames_ungrouped},
+                         {"frames_elsewhere", score.frames_elsewhere},
+                         {"labels", score.labels},
+                         {"groups", score.groups},
+                         {"majority", RuleJson(score.majority)},
+                         {"one_to_one", RuleJson(score.one_to_one)},
+                         {"clips", nlohmann::json::array()}};
+  for (const ClipFrameScore& clip : score.clips) {
+    json["clips"].push_back({{"clip", clip.clip},
+                             {"frames", clip.frames},
+                             {"majority_accuracy", clip.majority_accuracy},
+                             {"one_to_one_accuracy", clip.one_to_one_accuracy}});
+  }
+  return json;
+}
+
+void PrintFrameScore(const FrameLabelScore& score, const std::string& segments_path,
+                     const std::string& truth_path) {
+  std::printf("motifmine score: %s against the per-frame labels of %s\n", segments_path.c_str(),
+              truth_path.c_str());
+  std::printf("  truth        %s labelled frames, %s labels", WithCommas(score.frames).c_str(),
+              WithCommas(score.labels.size()).c_str());
+  if (score.frames_elsewhere > 0) {
+    std::printf(" (%s more in takes not segmented, left out)",
+                WithCommas(score.frames_elsewhere).c_str());
+  }
+  std::printf("\n  found        %s groups; %s labelled frames without a group\n",
+              WithCommas(score.groups.size()).c_str(), WithCommas(score.frames_ungrouped).c_str());
+  std::printf("  majority     frame accuracy %.3f, macro F1 %.3f\n", score.majority.accuracy,
+              score.majority.macro_f1);
+  std::printf("  one-to-one   frame accuracy %.3f, macro F1 %.3f\n", score.one_to_one.accuracy,
+              score.one_to_one.macro_f1);
+  std::printf("  groups       scored as (majority / one-to-one):\n");
+  for (size_t group = 0; group < score.groups.size(); ++group) {
+    const std::string& paired = score.one_to_one.label_of_group[group];
+    std::printf("    %-14s %s / %s\n", score.groups[group].c_str(),
+                score.majority.label_of_group[group].c_str(), paired.empty() ? "-" : paired.c_str());
+  }
+  std::printf("  takes        frame accuracy (majority / one-to-one):\n");
+  for (const ClipFrameScore& clip : score.clips) {
+    std::printf("    %-14s %8s frames  %.3f / %.3f\n", clip.clip.c_str(),
+                WithCommas(clip.frames).c_str(), clip.majority_accuracy, clip.one_to_one_accuracy);
+  }
+}
+
+int ScoreSegments(const std::vector<GroupedSegment>& segments, const std::string& segments_path,
+                  const std::string& truth_path, bool json) {
+  Result<std::vector<TruthOccurrence>> labels = ReadTruthOccurrences(truth_path);
+  if (!labels.ok()) return ReportError("score", labels.status());
+  Result<FrameLabelScore> score = ScoreFrameLabels(segments, *labels);
+  if (!score.ok()) return ReportError("score", score.status().WithContext(truth_path));
+  if (json) {
+    std::printf("%s\n", FrameScoreJson(*score).dump(2).c_str());
+  } else {
+    PrintFrameScore(*score, segments_path, truth_path);
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int RunScore(const std::vector<std::string>& args) {
   CommandSpec spec;
   spec.name = "score";
-  spec.usage = "motifmine score MOTIFS.json TRUTH [--json] [--motifs N]";
+  spec.usage = "motifmine score (MOTIFS.json | SEGMENTS.json) TRUTH [--json] [--motifs N]";
   spec.summary =
       "Scores mined motifs against ground truth. TRUTH is an annotation TSV (clip, movement,\n"
       "start, end: docs/formats/repetitions_tsv.md) or a synthetic archive's truth.json. A found\n"
@@ -115,7 +185,10 @@ int RunScore(const std::vector<std::string>& args) {
       "and precision over all motifs, the top motif against the movement it matches best (and\n"
       "phase free: a movement done back to back scored at the best common shift of the motif's\n"
       "instances, up to half its length), the best motif of every movement and the first\n"
-      "motifs against theirs.";
+      "motifs against theirs.\n"
+      "Given a segments.json (motifmine segment), TRUTH is per-frame labels as runs in the same\n"
+      "TSV (movement = the label), and it prints the frame accuracy and macro F1 of the groups\n"
+      "under the majority and the one-to-one (Hungarian) rule.";
   spec.options.add_options()("json", "print the figures as one JSON object instead")(
       "motifs", po::value<uint32_t>()->default_value(10), "motifs listed in the text output");
   spec.positional = {{"motifs-json", 1}, {"truth", 1}};
@@ -128,6 +201,9 @@ int RunScore(const std::vector<std::string>& args) {
   }
   const std::string motifs_path = vm["motifs-json"].as<std::string>();
   const std::string truth_path = vm["truth"].as<std::string>();
+  if (Result<std::vector<GroupedSegment>> segments = ReadSegmentsJson(motifs_path); segments.ok()) {
+    return ScoreSegments(*segments, motifs_path, truth_path, vm.count("json") > 0);
+  }
   Result<MotifsDocument> document = ReadMotifsJson(motifs_path);
   if (!document.ok()) return ReportError("score", document.status());
   Result<std::vector<TruthOccurrence>> truth = ReadTruthOccurrences(truth_path);
