@@ -602,5 +602,35 @@ TEST(MotifmineTool, ImportOfMalformedFileNamesFileAndLeavesArchiveUnchanged) {
   EXPECT_EQ(ReadFileToString(archive).value(), before);
 }
 
+// `score` given a segments.json scores its groups against per-frame labels: three groups for two
+// actions are all right by the majority rule, and one-to-one leaves one group's 5 frames
+// unscored; a frame with two labels is exit 13 naming it.
+TEST(MotifmineTool, ScoreGivenSegmentsScoresGroupsAgainstPerFrameLabels) {
+  testing::TempDir dir;
+  const std::string segments = dir.File("segments.json");
+  std::ofstream(segments) << R"({"version": 1, "mode": "unsupervised", "segments": [
+      {"clip": "a", "start": 0, "end": 10, "label": "group 1", "words": 2},
+      {"clip": "a", "start": 10, "end": 15, "label": "group 2", "words": 1},
+      {"clip": "a", "start": 15, "end": 20, "label": "group 3", "words": 1}]})";
+  const std::string labels = dir.File("labels.tsv");
+  std::ofstream(labels) << "clip\tmovement\tstart\tend\na\tjump\t0\t10\na\twalk\t10\t20\n";
+  const RunResult json = RunTool("score " + segments + " " + labels + " --json");
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  const nlohmann::json score = nlohmann::json::parse(json.output);
+  EXPECT_EQ(score["frames"], 20);
+  EXPECT_DOUBLE_EQ(score["majority"]["accuracy"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(score["one_to_one"]["accuracy"].get<double>(), 0.75);
+  EXPECT_EQ(score["groups"].size(), 3u);
+  const RunResult text = RunTool("score " + segments + " " + labels);
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("one-to-one   frame accuracy 0.750"), std::string::npos)
+      << text.output;
+  std::ofstream(labels) << "clip\tmovement\tstart\tend\na\tjump\t0\t10\na\twalk\t9\t20\n";
+  const RunResult refused = RunTool("score " + segments + " " + labels);
+  EXPECT_EQ(refused.exit_code, 13);
+  EXPECT_NE(refused.output.find("frame 9 of clip a carries two labels"), std::string::npos)
+      << refused.output;
+}
+
 }  // namespace
 }  // namespace motif
