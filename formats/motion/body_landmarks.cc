@@ -1,60 +1,12 @@
 #include "formats/motion/body_landmarks.h"
 
 #include <algorithm>
-#include <cctype>
 #include <string>
+
+#include "formats/motion/joint_side.h"
 
 namespace motif {
 namespace {
-
-enum class Side { kNone, kLeft, kRight };
-
-struct SidedName {
-  Side side = Side::kNone;
-  std::string part;
-};
-
-// Lower case, letters and digits only, after any "namespace:" prefix.
-std::string NormalisedName(const std::string& name) {
-  const size_t colon = name.rfind(':');
-  const std::string tail = colon == std::string::npos ? name : name.substr(colon + 1);
-  std::string out;
-  for (unsigned char c : tail) {
-    if (std::isalnum(c)) out.push_back(static_cast<char>(std::tolower(c)));
-  }
-  return out;
-}
-
-bool StartsWith(const std::string& text, const std::string& prefix) {
-  return text.size() > prefix.size() && text.compare(0, prefix.size(), prefix) == 0;
-}
-
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() > suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// The name's side and the rest. The one-letter forms count only with a known part, since a
-// leading "l" or "r" is also the first letter of many words ("rotation", "leg").
-SidedName SplitSide(const std::string& raw, const std::vector<std::string>& parts) {
-  const std::string name = NormalisedName(raw);
-  const auto known = [&](const std::string& part) {
-    return std::find(parts.begin(), parts.end(), part) != parts.end();
-  };
-  for (const auto& [word, side] : {std::pair{std::string("left"), Side::kLeft},
-                                   std::pair{std::string("right"), Side::kRight}}) {
-    if (StartsWith(name, word)) return {side, name.substr(word.size())};
-    if (EndsWith(name, word)) return {side, name.substr(0, name.size() - word.size())};
-  }
-  for (const auto& [letter, side] :
-       {std::pair{std::string("l"), Side::kLeft}, std::pair{std::string("r"), Side::kRight}}) {
-    if (StartsWith(name, letter) && known(name.substr(1))) return {side, name.substr(1)};
-    if (EndsWith(name, letter) && known(name.substr(0, name.size() - 1))) {
-      return {side, name.substr(0, name.size() - 1)};
-    }
-  }
-  return {Side::kNone, name};
-}
 
 int Depth(const Skeleton& skeleton, int joint) {
   int depth = 0;
@@ -63,10 +15,10 @@ int Depth(const Skeleton& skeleton, int joint) {
 }
 
 // The joint of `side` whose part is one of `parts`, the one nearest the root if several; -1.
-int FindSided(const Skeleton& skeleton, Side side, const std::vector<std::string>& parts) {
+int FindSided(const Skeleton& skeleton, BodySide side, const std::vector<std::string>& parts) {
   int best = -1;
   for (size_t joint = 0; joint < skeleton.joint_count(); ++joint) {
-    const SidedName sided = SplitSide(skeleton.joint(joint).name, parts);
+    const SidedJointName sided = SplitJointSide(skeleton.joint(joint).name, parts);
     if (sided.side != side) continue;
     if (std::find(parts.begin(), parts.end(), sided.part) == parts.end()) continue;
     const int index = static_cast<int>(joint);
@@ -75,27 +27,24 @@ int FindSided(const Skeleton& skeleton, Side side, const std::vector<std::string
   return best;
 }
 
-int DescendantCount(const Skeleton& skeleton, int joint) {
-  int count = 0;
-  for (size_t other = 0; other < skeleton.joint_count(); ++other) {
-    for (int at = skeleton.joint(other).parent; at >= 0; at = skeleton.joint(at).parent) {
-      if (at == joint) {
-        ++count;
-        break;
-      }
-    }
+// Each joint's number of descendants, in one pass from the last joint up (parents come first).
+std::vector<int> DescendantCounts(const Skeleton& skeleton) {
+  std::vector<int> counts(skeleton.joint_count(), 0);
+  for (size_t joint = skeleton.joint_count(); joint-- > 0;) {
+    const int parent = skeleton.joint(joint).parent;
+    if (parent >= 0) counts[parent] += counts[joint] + 1;
   }
-  return count;
+  return counts;
 }
 
-// The child of `joint` that carries the chain on (the most descendants, the first if tied); -1.
-int ChainChild(const Skeleton& skeleton, int joint) {
+// The child of `joint` that carries the chain on (the most `descendants`, the first if tied); -1.
+int ChainChild(const Skeleton& skeleton, const std::vector<int>& descendants, int joint) {
   if (joint < 0) return -1;
   int best = -1;
   int best_count = -1;
   for (size_t child = 0; child < skeleton.joint_count(); ++child) {
     if (skeleton.joint(child).parent != joint) continue;
-    const int count = DescendantCount(skeleton, static_cast<int>(child));
+    const int count = descendants[child];
     if (count > best_count) {
       best = static_cast<int>(child);
       best_count = count;
@@ -141,8 +90,9 @@ Status Missing(const std::string& what, const std::string& like) {
   return Status::InvalidArgument("no " + what + ": no joint named like " + like);
 }
 
-Result<LimbJoints> FindLimbs(const Skeleton& skeleton, Side side) {
-  const bool left = side == Side::kLeft;
+Result<LimbJoints> FindLimbs(const Skeleton& skeleton, const std::vector<int>& descendants,
+                             BodySide side) {
+  const bool left = side == BodySide::kLeft;
   LimbJoints limbs;
   limbs.upper_arm = FindSided(skeleton, side, UpperArmParts());
   if (limbs.upper_arm < 0) {
@@ -154,11 +104,11 @@ Result<LimbJoints> FindLimbs(const Skeleton& skeleton, Side side) {
     return Missing(left ? "left thigh" : "right thigh",
                    left ? "LeftUpLeg, lThigh or UpperLeg_L" : "RightUpLeg, rThigh or UpperLeg_R");
   }
-  limbs.elbow = ChainChild(skeleton, limbs.upper_arm);
-  limbs.wrist = ChainChild(skeleton, limbs.elbow);
-  limbs.knee = ChainChild(skeleton, limbs.hip);
-  limbs.ankle = ChainChild(skeleton, limbs.knee);
-  limbs.toes = ChainChild(skeleton, limbs.ankle);
+  limbs.elbow = ChainChild(skeleton, descendants, limbs.upper_arm);
+  limbs.wrist = ChainChild(skeleton, descendants, limbs.elbow);
+  limbs.knee = ChainChild(skeleton, descendants, limbs.hip);
+  limbs.ankle = ChainChild(skeleton, descendants, limbs.knee);
+  limbs.toes = ChainChild(skeleton, descendants, limbs.ankle);
   if (limbs.wrist < 0 || limbs.ankle < 0) {
     return Status::InvalidArgument(std::string("the ") + (left ? "left" : "right") +
                                    (limbs.wrist < 0 ? " arm" : " leg") +
@@ -177,10 +127,12 @@ int CommonAncestor(const Skeleton& skeleton, int a, int b) {
 }
 
 // The head: a joint named "head" below the chest, else the chest's chain child off the arms.
-int FindHead(const Skeleton& skeleton, const BodyLandmarks& body) {
+int FindHead(const Skeleton& skeleton, const std::vector<int>& descendants,
+             const BodyLandmarks& body) {
   for (size_t joint = 0; joint < skeleton.joint_count(); ++joint) {
     const int index = static_cast<int>(joint);
-    if (NormalisedName(skeleton.joint(joint).name) == "head" && index != body.chest &&
+    const SidedJointName name = SplitJointSide(skeleton.joint(joint).name, {});
+    if (name.side == BodySide::kCentre && name.part == "head" && index != body.chest &&
         IsAncestor(skeleton, body.chest, index)) {
       return index;
     }
@@ -194,7 +146,7 @@ int FindHead(const Skeleton& skeleton, const BodyLandmarks& body) {
         IsAncestor(skeleton, index, body.right.upper_arm)) {
       continue;
     }
-    const int count = DescendantCount(skeleton, index);
+    const int count = descendants[child];
     if (count > best_count) {
       best = index;
       best_count = count;
@@ -206,9 +158,10 @@ int FindHead(const Skeleton& skeleton, const BodyLandmarks& body) {
 }  // namespace
 
 Result<BodyLandmarks> FindBodyLandmarks(const Skeleton& skeleton) {
+  const std::vector<int> descendants = DescendantCounts(skeleton);
   BodyLandmarks body;
-  MOTIF_ASSIGN_OR_RETURN(body.left, FindLimbs(skeleton, Side::kLeft));
-  MOTIF_ASSIGN_OR_RETURN(body.right, FindLimbs(skeleton, Side::kRight));
+  MOTIF_ASSIGN_OR_RETURN(body.left, FindLimbs(skeleton, descendants, BodySide::kLeft));
+  MOTIF_ASSIGN_OR_RETURN(body.right, FindLimbs(skeleton, descendants, BodySide::kRight));
   body.chest = CommonAncestor(skeleton, body.left.upper_arm, body.right.upper_arm);
   if (body.chest == body.pelvis || IsAncestor(skeleton, body.chest, body.left.hip)) {
     return Status::InvalidArgument("the arms do not meet on a chest above the pelvis");
@@ -218,7 +171,7 @@ Result<BodyLandmarks> FindBodyLandmarks(const Skeleton& skeleton) {
     const int parent = skeleton.joint(limbs->upper_arm).parent;
     if (parent != body.chest) limbs->clavicle = parent;
   }
-  body.head = FindHead(skeleton, body);
+  body.head = FindHead(skeleton, descendants, body);
   if (body.head < 0) return Status::InvalidArgument("no head: the chest has no joint off the arms");
   body.neck = JointsBetween(skeleton, body.chest, body.head);
   return body;

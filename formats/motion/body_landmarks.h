@@ -3,11 +3,12 @@
 // use them to map a skeleton of another family onto the canonical CMU body (body_retarget.h).
 //
 // How the joints are found (docs/design/mixed_skeletons.md gives the rule with examples):
-//   - names are compared lower-cased, with a namespace prefix ("mixamorig:") and every
-//     character that is not a letter or digit removed, so "UpperArm_L", "upperarm.l" and
-//     "upperarmL" are one name;
-//   - a side is a leading or trailing "left"/"right", or a single leading or trailing "l"/"r"
-//     before or after a known part ("lThigh", "UpperLeg_L", "LeftUpLeg");
+//   - a joint's side and part are SplitJointSide of its name with the parts below as the known
+//     ones (joint_side.h, the rule the report colours by): the part lower-cased, without a
+//     namespace prefix ("mixamorig:"), the side or any character that is not a letter or digit,
+//     so "UpperArm_L", "upperarm.l" and "upperarmL" are one left upper arm; a side is a leading
+//     or trailing "left"/"right", or a single leading or trailing "l"/"r" ("lThigh",
+//     "UpperLeg_L", "LeftUpLeg");
 //   - the parts: upper arm {arm, upperarm, shldr, humerus}, thigh {upleg, upperleg, thigh,
 //     femur}; the elbow, wrist, knee and ankle are then the first joint of the chain below
 //     (the child with the most descendants), the toes the ankle's child if it has one;

@@ -20,28 +20,70 @@ namespace {
 
 using Vec = Eigen::Vector3d;
 using Quat = Eigen::Quaterniond;
-using Mat = Eigen::Matrix3d;
 
 // Below this sine of the angle between its bones a limb counts as straight: its hinge axis is
 // carried over from the frame before (15 degrees).
 constexpr double kStraightLimbSine = 0.2588;
 
-// The canonical joints a limb drives, and its hinge axis carried from frame to frame.
+// The canonical names of a limb's joints, after the side's prefix "l" / "r".
+struct LimbNames {
+  const char* parent;
+  const char* upper;
+  const char* lower;
+  const char* end;
+  const char* beyond;  // where the end bone ends, when the source has one
+};
+constexpr LimbNames kArmNames = {"clavicle", "humerus", "radius", "wrist", nullptr};
+constexpr LimbNames kLegNames = {"hipjoint", "femur", "tibia", "foot", "toes"};
+
+// The canonical joints a limb drives, the source joints it follows, and its hinge axis carried
+// from frame to frame.
 struct LimbChain {
   int parent;  // canonical joint whose world rotation carries the axis of a straight limb
-  int upper;   // canonical joints of the upper bone, the lower bone and the end bone (or -1)
+  int upper;   // canonical joints where the upper, lower and end bones start
   int lower;
   int end;
-  int upper_end;  // canonical joint at the end of each bone (rest positions)
-  int lower_end;
-  int end_end;
+  int beyond;        // canonical joint where the end bone ends; -1: none (arms, legs without toes)
   int source_start;  // source joints at the limb's start, middle, end and beyond (or -1)
   int source_middle;
   int source_end;
   int source_beyond;
+  Vec rest_upper = Vec::Zero();  // the rest bones, from each start to the next
+  Vec rest_lower = Vec::Zero();
+  Vec rest_end = Vec::Zero();
   Vec rest_axis;
   std::optional<Vec> axis_in_parent;  // the last frame's axis in the parent's frame
 };
+
+// The rest bones and frames the torso of a folded rig is placed by.
+struct TorsoRest {
+  int lowerback;
+  int upperback;
+  int thorax;
+  Vec hips;         // right hip to left hip
+  Vec shoulders;    // right shoulder to left shoulder
+  Vec pelvis;       // root to thorax
+  Vec lower_spine;  // lowerback to upperback
+  Vec whole_spine;  // lowerback to thorax, for a source with one spine joint
+  Vec upper_spine;  // upperback to thorax
+  Vec neck;         // thorax to head
+};
+
+TorsoRest RestTorso(const std::vector<Vec>& rest) {
+  const auto at = [&](const char* name) { return rest[CanonicalJointIndex(name)]; };
+  TorsoRest torso;
+  torso.lowerback = CanonicalJointIndex("lowerback");
+  torso.upperback = CanonicalJointIndex("upperback");
+  torso.thorax = CanonicalJointIndex("thorax");
+  torso.hips = at("lfemur") - at("rfemur");
+  torso.shoulders = at("lhumerus") - at("rhumerus");
+  torso.pelvis = at("thorax") - rest[0];
+  torso.lower_spine = at("upperback") - at("lowerback");
+  torso.whole_spine = at("thorax") - at("lowerback");
+  torso.upper_spine = at("thorax") - at("upperback");
+  torso.neck = at("head") - at("thorax");
+  return torso;
+}
 
 class BodyRetargeter {
  public:
@@ -56,6 +98,7 @@ class BodyRetargeter {
     if (StandsUprightAtRest(body, source_rest)) {
       rest_aligned_.emplace(body, source_rest, rest_positions_);
     }
+    torso_ = RestTorso(rest_positions_);
     const CmuHingeAxes& axes = CmuRestHingeAxes();
     limbs_ = {Arm(body.left, "l", axes.left_elbow), Arm(body.right, "r", axes.right_elbow),
               Leg(body.left, "l", axes.left_knee), Leg(body.right, "r", axes.right_knee)};
@@ -95,36 +138,33 @@ class BodyRetargeter {
   Vec Rest(int canonical) const { return rest_positions_[canonical]; }
 
   LimbChain Arm(const LimbJoints& side, const std::string& prefix, const Vec& axis) const {
-    return {CanonicalJointIndex((prefix + "clavicle").c_str()),
-            CanonicalJointIndex((prefix + "humerus").c_str()),
-            CanonicalJointIndex((prefix + "radius").c_str()),
-            -1,
-            CanonicalJointIndex((prefix + "radius").c_str()),
-            CanonicalJointIndex((prefix + "wrist").c_str()),
-            -1,
-            side.upper_arm,
-            side.elbow,
-            side.wrist,
-            -1,
-            axis,
-            std::nullopt};
+    return Chain(kArmNames, prefix, {side.upper_arm, side.elbow, side.wrist, -1}, axis);
   }
 
   LimbChain Leg(const LimbJoints& side, const std::string& prefix, const Vec& axis) const {
-    const bool toes = side.toes >= 0;
-    return {CanonicalJointIndex((prefix + "hipjoint").c_str()),
-            CanonicalJointIndex((prefix + "femur").c_str()),
-            CanonicalJointIndex((prefix + "tibia").c_str()),
-            toes ? CanonicalJointIndex((prefix + "foot").c_str()) : -1,
-            CanonicalJointIndex((prefix + "tibia").c_str()),
-            CanonicalJointIndex((prefix + "foot").c_str()),
-            toes ? CanonicalJointIndex((prefix + "toes").c_str()) : -1,
-            side.hip,
-            side.knee,
-            side.ankle,
-            side.toes,
-            axis,
-            std::nullopt};
+    return Chain(kLegNames, prefix, {side.hip, side.knee, side.ankle, side.toes}, axis);
+  }
+
+  // `source`: the source joints at the limb's start, middle, end and beyond (-1: no end bone).
+  LimbChain Chain(const LimbNames& names, const std::string& prefix,
+                  const std::array<int, 4>& source, const Vec& axis) const {
+    const auto canonical = [&](const char* name) {
+      return CanonicalJointIndex((prefix + name).c_str());
+    };
+    LimbChain limb{.parent = canonical(names.parent),
+                   .upper = canonical(names.upper),
+                   .lower = canonical(names.lower),
+                   .end = canonical(names.end),
+                   .beyond = source[3] >= 0 ? canonical(names.beyond) : -1,
+                   .source_start = source[0],
+                   .source_middle = source[1],
+                   .source_end = source[2],
+                   .source_beyond = source[3],
+                   .rest_axis = axis};
+    limb.rest_upper = Rest(limb.lower) - Rest(limb.upper);
+    limb.rest_lower = Rest(limb.end) - Rest(limb.lower);
+    if (limb.beyond >= 0) limb.rest_end = Rest(limb.beyond) - Rest(limb.end);
+    return limb;
   }
 
   // The source's size over the rest body's, by leg length (hip to ankle).
@@ -168,29 +208,22 @@ class BodyRetargeter {
       (*world)[joint] = rotation;
       (*set)[joint] = true;
     };
+    const TorsoRest& rest = torso_;
     const Vec hips = at[body_.left.hip] - at[body_.right.hip];
     const Vec shoulders = at[body_.left.upper_arm] - at[body_.right.upper_arm];
-    const Vec rest_hips = Rest(CanonicalJointIndex("lfemur")) - Rest(CanonicalJointIndex("rfemur"));
-    const Vec rest_shoulders =
-        Rest(CanonicalJointIndex("lhumerus")) - Rest(CanonicalJointIndex("rhumerus"));
-    put(0, Orientation(Rest(CanonicalJointIndex("thorax")) - Rest(0), rest_hips,
-                       at[body_.chest] - at[body_.pelvis], hips));
-    const int lowerback = CanonicalJointIndex("lowerback");
-    const int upperback = CanonicalJointIndex("upperback");
-    const int thorax = CanonicalJointIndex("thorax");
+    put(0, Orientation(rest.pelvis, rest.hips, at[body_.chest] - at[body_.pelvis], hips));
     const std::vector<int>& spine = body_.spine;
     if (spine.size() >= 2) {
-      put(lowerback, Orientation(Rest(upperback) - Rest(lowerback), rest_hips,
-                                 at[spine[1]] - at[spine[0]], hips));
-      put(upperback, Orientation(Rest(thorax) - Rest(upperback), rest_shoulders,
-                                 at[body_.chest] - at[spine[1]], shoulders));
+      put(rest.lowerback,
+          Orientation(rest.lower_spine, rest.hips, at[spine[1]] - at[spine[0]], hips));
+      put(rest.upperback,
+          Orientation(rest.upper_spine, rest.shoulders, at[body_.chest] - at[spine[1]], shoulders));
     } else if (spine.size() == 1) {
-      put(lowerback, Orientation(Rest(thorax) - Rest(lowerback), rest_hips,
-                                 at[body_.chest] - at[spine[0]], hips));
+      put(rest.lowerback,
+          Orientation(rest.whole_spine, rest.hips, at[body_.chest] - at[spine[0]], hips));
     }
-    const int head = CanonicalJointIndex("head");
-    put(thorax, Orientation(Rest(head) - Rest(thorax), rest_shoulders,
-                            at[body_.head] - at[body_.chest], shoulders));
+    put(rest.thorax,
+        Orientation(rest.neck, rest.shoulders, at[body_.head] - at[body_.chest], shoulders));
   }
 
   // The arms and legs, once the root and thorax are set: the clavicles and hip joints follow
@@ -201,13 +234,15 @@ class BodyRetargeter {
       const Vec upper = at[limb.source_middle] - at[limb.source_start];
       const Vec lower = at[limb.source_end] - at[limb.source_middle];
       const Vec axis = HingeAxis(upper, lower, (*world)[limb.parent], &limb);
-      const auto pose = [&](int joint, int joint_end, const Vec& bone) {
-        (*world)[joint] = Orientation(Rest(joint_end) - Rest(joint), limb.rest_axis, bone, axis);
+      const auto pose = [&](int joint, const Vec& rest_bone, const Vec& bone) {
+        (*world)[joint] = Orientation(rest_bone, limb.rest_axis, bone, axis);
         (*set)[joint] = true;
       };
-      pose(limb.upper, limb.upper_end, upper);
-      pose(limb.lower, limb.lower_end, lower);
-      if (limb.end >= 0) pose(limb.end, limb.end_end, at[limb.source_beyond] - at[limb.source_end]);
+      pose(limb.upper, limb.rest_upper, upper);
+      pose(limb.lower, limb.rest_lower, lower);
+      if (limb.beyond >= 0) {
+        pose(limb.end, limb.rest_end, at[limb.source_beyond] - at[limb.source_end]);
+      }
       (*set)[limb.parent] = true;
     }
   }
@@ -231,6 +266,7 @@ class BodyRetargeter {
   const BodyLandmarks& body_;
   const Skeleton& rest_;
   std::vector<Vec> rest_positions_;
+  TorsoRest torso_;
   std::array<LimbChain, 4> limbs_;
   std::optional<RestAlignedMapping> rest_aligned_;  // set when the rig stands upright at rest
 };

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "formats/import/take_importer.h"
+#include "formats/motion/body_kinematics.h"
 #include "formats/motion/body_retarget.h"
-#include "formats/motion/canonical_skeleton.h"
 #include "formats/motion/cmu_rest_pose.h"
 #include "formats/motion/pose_frames.h"
 #include "tests/testing/mocap_data.h"
@@ -104,23 +104,10 @@ TEST(BodyRetargetRealData, DazAndCgspeedConversionsOfOneCaptureMeet) {
   EXPECT_LT(same, 0.4 * MedianDistance(cmu, cmu, 60));
 }
 
-// Joint world positions of frame `frame` of `take`.
-std::vector<Eigen::Vector3d> Positions(const Take& take, size_t frame) {
-  const Skeleton& skeleton = take.skeleton;
-  std::vector<Eigen::Vector3d> at(skeleton.joint_count());
-  std::vector<Eigen::Quaterniond> world(skeleton.joint_count());
-  for (size_t joint = 0; joint < skeleton.joint_count(); ++joint) {
-    const int parent = skeleton.joint(joint).parent;
-    if (parent < 0) {
-      at[joint] = take.root_positions[frame];
-      world[joint] = take.rotation(frame, joint);
-      continue;
-    }
-    const auto& o = skeleton.joint(joint).offset;
-    at[joint] = at[parent] + world[parent] * Eigen::Vector3d(o[0], o[1], o[2]);
-    world[joint] = world[parent] * take.rotation(frame, joint);
-  }
-  return at;
+// Joint world positions and rotations of frame `frame` of `take`.
+std::vector<Eigen::Vector3d> Positions(const Take& take, size_t frame,
+                                       std::vector<Eigen::Quaterniond>* world) {
+  return JointPositions(take.skeleton, take.root_positions[frame], &take.rotation(frame, 0), world);
 }
 
 // The elbows and knees of CMU takes turn about one axis each, CmuRestHingeAxes(), in the upper
@@ -128,10 +115,6 @@ std::vector<Eigen::Vector3d> Positions(const Take& take, size_t frame) {
 TEST(BodyRetargetRealData, CmuElbowsAndKneesTurnAboutTheRestHingeAxes) {
   MOTIF_REQUIRE_MOCAP_DATA();
   const std::string dir = testing::MocapDir();
-  const auto& names = CmuCanonicalJointNames();
-  const auto index = [&](const char* name) {
-    return static_cast<size_t>(std::find(names.begin(), names.end(), name) - names.begin());
-  };
   const CmuHingeAxes& axes = CmuRestHingeAxes();
   struct Hinge {
     const char* upper;
@@ -146,20 +129,19 @@ TEST(BodyRetargetRealData, CmuElbowsAndKneesTurnAboutTheRestHingeAxes) {
   for (const char* name : {"bvh/02_01.bvh", "bvh/06_13.bvh", "bvh/09_01.bvh"}) {
     const Take take = Import(dir + "/" + name);
     for (const Hinge& hinge : hinges) {
+      const int upper_joint = CanonicalJointIndex(hinge.upper);
+      const int middle_joint = CanonicalJointIndex(hinge.middle);
+      const int end_joint = CanonicalJointIndex(hinge.end);
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       int bent = 0;
       for (size_t frame = 0; frame < take.frame_count(); ++frame) {
-        const std::vector<Eigen::Vector3d> at = Positions(take, frame);
-        const Eigen::Vector3d upper = at[index(hinge.middle)] - at[index(hinge.upper)];
-        const Eigen::Vector3d lower = at[index(hinge.end)] - at[index(hinge.middle)];
+        std::vector<Eigen::Quaterniond> world;
+        const std::vector<Eigen::Vector3d> at = Positions(take, frame, &world);
+        const Eigen::Vector3d upper = at[middle_joint] - at[upper_joint];
+        const Eigen::Vector3d lower = at[end_joint] - at[middle_joint];
         const Eigen::Vector3d cross = upper.cross(lower);
         if (cross.norm() < 0.5 * upper.norm() * lower.norm()) continue;  // under 30 degrees
-        Eigen::Quaterniond world = Eigen::Quaterniond::Identity();
-        for (int at_joint = static_cast<int>(index(hinge.upper)); at_joint >= 0;
-             at_joint = take.skeleton.joint(at_joint).parent) {
-          world = take.rotation(frame, at_joint) * world;
-        }
-        sum += world.conjugate() * cross.normalized();
+        sum += world[upper_joint].conjugate() * cross.normalized();
         ++bent;
       }
       ASSERT_GT(bent, 50) << name << " " << hinge.middle;
@@ -178,19 +160,17 @@ TEST(BodyRetargetRealData, TheStudioRigMapsStanding) {
   }
   std::sort(paths.begin(), paths.end());
   ASSERT_FALSE(paths.empty());
-  const auto& names = CmuCanonicalJointNames();
-  const auto index = [&](const char* name) {
-    return static_cast<size_t>(std::find(names.begin(), names.end(), name) - names.begin());
-  };
   for (size_t at = 0; at < paths.size(); at += 9) {  // a sample across contents and styles
     const Take mapped = Retarget(Import(paths[at]));
     ASSERT_EQ(mapped.skeleton.family(), "cmu31");
     size_t standing = 0;
     for (size_t frame = 0; frame < mapped.frame_count(); ++frame) {
-      const std::vector<Eigen::Vector3d> where = Positions(mapped, frame);
+      std::vector<Eigen::Quaterniond> world;
+      const std::vector<Eigen::Vector3d> where = Positions(mapped, frame, &world);
       const double pelvis = where[0].y();
-      standing += where[index("head")].y() > pelvis && where[index("lfoot")].y() < pelvis &&
-                  where[index("rfoot")].y() < pelvis;
+      standing += where[CanonicalJointIndex("head")].y() > pelvis &&
+                  where[CanonicalJointIndex("lfoot")].y() < pelvis &&
+                  where[CanonicalJointIndex("rfoot")].y() < pelvis;
     }
     EXPECT_GT(standing, 0.9 * mapped.frame_count()) << paths[at];
   }

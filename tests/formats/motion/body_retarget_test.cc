@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "formats/motion/body_kinematics.h"
 #include "formats/motion/body_landmarks.h"
 #include "formats/motion/body_retarget.h"
 #include "formats/motion/canonical_skeleton.h"
@@ -151,21 +152,7 @@ TEST(BodyLandmarks, SaysWhichPartIsMissing) {
 
 // Joint world positions and rotations of frame `frame` of `take`.
 std::vector<Vec> Positions(const Take& take, size_t frame, std::vector<Quat>* world) {
-  const Skeleton& skeleton = take.skeleton;
-  std::vector<Vec> at(skeleton.joint_count());
-  world->assign(skeleton.joint_count(), Quat::Identity());
-  for (size_t joint = 0; joint < skeleton.joint_count(); ++joint) {
-    const int parent = skeleton.joint(joint).parent;
-    if (parent < 0) {
-      at[joint] = take.root_positions[frame];
-      (*world)[joint] = take.rotation(frame, joint);
-      continue;
-    }
-    const auto& o = skeleton.joint(joint).offset;
-    at[joint] = at[parent] + (*world)[parent] * Vec(o[0], o[1], o[2]);
-    (*world)[joint] = (*world)[parent] * take.rotation(frame, joint);
-  }
-  return at;
+  return JointPositions(take.skeleton, take.root_positions[frame], &take.rotation(frame, 0), world);
 }
 
 Quat RandomRotation(std::mt19937* random, double max_angle) {
