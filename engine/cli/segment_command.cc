@@ -90,10 +90,12 @@ void PrintSegmentSummary(const Segmentation& result, const FrameFileReader& read
                 result.knn, result.window, WithCommas(result.reference_windows).c_str(),
                 WithCommas(result.reference_takes).c_str());
   } else {
-    std::printf(
-        "  method       change score over %u words either side, threshold %.4f (mean + "
-        "1 sd of the scores)\n",
-        result.window, result.threshold);
+    std::printf("  method       %s, change score over %u words either side, threshold %.4f\n",
+                result.signature == "words" ? "affinity profiles of the words"
+                                            : "TF-IDF signatures over the motifs",
+                result.window, result.threshold);
+    std::printf("  grouping     %s linkage within %.4f\n", result.linkage.c_str(),
+                result.group_threshold);
   }
   std::printf("  segments     %s over %zu labels\n", WithCommas(segments).c_str(),
               result.label_names.size());
@@ -127,17 +129,19 @@ void AddSegmentOptions(CommandSpec& spec) {
   spec.name = "segment";
   spec.usage =
       "motifmine segment ARCHIVE [--labels LABELS.tsv] [--clip NAME ...] --out DIR "
-      "[--distance emd|dtw] [--signature words|motifs] [--window W] [--knn K]";
+      "[--distance emd|dtw] [--signature words|motifs] [--window W] [--knn K] [--groups K]";
   spec.summary =
       "Cuts takes into segments of one activity by their motion signatures. With --labels (a\n"
       "TSV of clip and label, as classify reads), each motion word takes the majority label of\n"
       "the K nearest windows of W words of the labelled takes (EMD between the windows'\n"
       "signatures: by default their bags of words, compared word with word by DTW; a take\n"
       "never votes for itself), and equal neighbouring labels merge into segments. Without,\n"
-      "boundaries go where the motif signatures before and after differ most, and segments\n"
-      "are grouped by signature. Segments the takes named by --clip (default: every take).\n"
-      "Motif signatures need the words files and build them first (as `motifmine words`)\n"
-      "when they are missing; word signatures and dtw only cut the words.\n"
+      "boundaries go where the words before and after differ most, and segments of one\n"
+      "activity, in any take, share a group (by default the words' affinity profiles, which\n"
+      "depend on no seed; --groups K sets the number of groups). Segments the takes named by\n"
+      "--clip (default: every take). Motif signatures need the words files and build them\n"
+      "first (as `motifmine words`) when they are missing; word signatures and dtw only cut\n"
+      "the words.\n"
       "Writes DIR/segments.json and DIR/segments.html.";
   SegmentOptions defaults;
   spec.options.add_options()("labels", po::value<std::string>()->default_value(""),
@@ -147,16 +151,19 @@ void AddSegmentOptions(CommandSpec& spec) {
       "distance", po::value<std::string>()->default_value("emd"),
       "emd (signatures) or dtw (the windows' frames, a baseline; needs --labels)")(
       "signature", po::value<std::string>()->default_value(""),
-      "with --labels and emd, what a window's signature is: words (the default: every word its "
-      "own bin, DTW between words as ground distance) or motifs (the paper's TF-IDF histogram "
-      "over the motifs); without --labels it is motifs")(
+      "with emd, what a window's signature is: words (the default; with --labels every word "
+      "its own bin, DTW between words as ground distance; without, the words' affinity "
+      "profiles) or motifs (the paper's TF-IDF histogram over the motifs)")(
       "window", po::value<uint32_t>()->default_value(defaults.window), "words per window")(
       "knn", po::value<uint32_t>()->default_value(defaults.knn), "neighbours of the vote")(
       "neighbours", po::value<std::string>()->default_value("windows"),
       "what the K neighbours are: windows (the K nearest windows) or takes (the K nearest "
       "labelled takes, each at its nearest window)")(
       "dtw-step", po::value<uint32_t>()->default_value(defaults.dtw_step),
-      "dtw: compare every n-th frame");
+      "dtw: compare every n-th frame")(
+      "groups", po::value<uint32_t>()->default_value(defaults.groups),
+      "without --labels: the number of groups (0, the default: chosen from the change scores; "
+      "docs/design/signatures.md)");
   AddTableFlags(spec, {"weights", "seed"});
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "segments");
   AddProgressOptions(spec);
@@ -176,10 +183,8 @@ Status CheckSegmentMethod(const SegmentCommandOptions& options) {
   if (!signature.empty() && signature != "words" && signature != "motifs") {
     return Status::InvalidArgument("--signature must be words or motifs, not '" + signature + "'");
   }
-  if (signature == "words" && (options.labels_path.empty() || distance == "dtw")) {
-    return Status::InvalidArgument(
-        "--signature words needs --labels and --distance emd (without --labels, segments are "
-        "found and grouped by motif signatures)");
+  if (!signature.empty() && distance == "dtw") {
+    return Status::InvalidArgument("--signature needs --distance emd (dtw compares frames)");
   }
   return Status::Ok();
 }
@@ -198,6 +203,10 @@ Result<SegmentCommandOptions> ReadSegmentOptions(const po::variables_map& vm) {
   segment.window = vm["window"].as<uint32_t>();
   segment.knn = vm["knn"].as<uint32_t>();
   segment.dtw_step = vm["dtw-step"].as<uint32_t>();
+  segment.groups = vm["groups"].as<uint32_t>();
+  if (!vm["groups"].defaulted() && !options.labels_path.empty()) {
+    return Status::InvalidArgument("--groups is for segmenting without --labels");
+  }
   const std::string neighbours = vm["neighbours"].as<std::string>();
   if (neighbours != "windows" && neighbours != "takes") {
     return Status::InvalidArgument("--neighbours must be windows or takes, not '" + neighbours +
@@ -240,8 +249,7 @@ Status OpenSegmentInputs(const SegmentCommandOptions& options, SegmentInputs* in
 Result<LoadedWords> LoadSegmentWords(const SegmentCommandOptions& options,
                                      const FrameFileReader& reader, ProgressReporter& progress) {
   const WordsPaths paths = DefaultWordsPaths(options.output.prefix_archive);
-  const bool needs_motifs =
-      options.labels_path.empty() || (options.distance == "emd" && options.signature == "motifs");
+  const bool needs_motifs = options.distance == "emd" && options.signature == "motifs";
   return needs_motifs ? LoadOrBuildWords(options.archive, reader, paths, options.seed,
                                          options.segment.threads, progress)
                       : LoadWordsOrGrid(options.archive, reader, paths, progress);
@@ -281,7 +289,12 @@ Result<Segmentation> SegmentTakes(const SegmentCommandOptions& options, const Se
                                   const LoadedWords& words, ProgressReporter& progress) {
   SegmentOptions segment = options.segment;
   segment.progress = [&progress](const std::string& stage, uint64_t done, uint64_t total) {
-    progress.StageUpdate(stage, done, total, stage == "windows" ? "takes" : "windows");
+    // windows: takes scored; profiles: words; groups: segments; vote: windows.
+    const char* unit = stage == "windows"    ? "takes"
+                       : stage == "profiles" ? "words"
+                       : stage == "groups"   ? "segments"
+                                             : "windows";
+    progress.StageUpdate(stage, done, total, unit);
   };
   Result<Segmentation> result = Status::InvalidArgument("not segmented");
   if (options.labels_path.empty()) {

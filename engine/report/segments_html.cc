@@ -40,6 +40,14 @@ std::string WindowDistanceText(const Segmentation& result, const SegmentsPageInf
          " motifs";
 }
 
+// What the unsupervised segmentation compares, for the method row.
+std::string UnsupervisedSignatureText(const Segmentation& result, const SegmentsPageInfo& info) {
+  if (result.signature == "words") {
+    return "mean affinity profiles (each word's kernel affinity to every word, by DTW)";
+  }
+  return "TF-IDF signatures over " + std::to_string(info.motifs) + " motifs";
+}
+
 std::string Overview(const Segmentation& result, const FrameFileReader& reader,
                      const SegmentsPageInfo& info) {
   uint64_t segments = 0;
@@ -58,9 +66,11 @@ std::string Overview(const Segmentation& result, const FrameFileReader& reader,
           HtmlEscape(info.labels_path) + "</code>; a take never votes " + "for itself), by " +
           WindowDistanceText(result, info);
   } else {
-    how = "unsupervised: boundaries where the signatures of the " + std::to_string(result.window) +
-          " words before and after differ most (EMD above " + HtmlNumber("%.4f", result.threshold) +
-          "), segments grouped by signature (complete linkage at the same distance)";
+    how = "unsupervised: boundaries where the " + UnsupervisedSignatureText(result, info) +
+          " of the " + std::to_string(result.window) + " words before and after differ most (" +
+          result.distance + " distance above " + HtmlNumber("%.4f", result.threshold) +
+          "), segments grouped by the same signature (" + result.linkage + " linkage within " +
+          HtmlNumber("%.4f", result.group_threshold) + ")";
   }
   html += HtmlRow("method", how);
   html += HtmlRow("result", CountOf(result.takes.size(), "take") + " in " +
@@ -92,6 +102,30 @@ std::string Timeline(const Segmentation& result, const SegmentedTake& take, doub
             HtmlSeconds(segment.start, fps) + " to " + HtmlSeconds(segment.end, fps) + ")\"></div>";
   }
   return html + "</div>\n";
+}
+
+// Every group (label) with its member stretches, so the same activity can be found in each take.
+std::string GroupsSection(const Segmentation& result, const FrameFileReader& reader) {
+  const double fps = reader.fps();
+  const std::vector<std::vector<GroupMember>> members = GroupMembers(result);
+  std::string html =
+      "<section id=\"groups\"><h2>Groups</h2><p class=\"note\">Each label with the segments "
+      "that carry it, in every take: clip, frames (0-based, the end excluded).</p>\n";
+  for (uint32_t label = 0; label < members.size(); ++label) {
+    uint64_t frames = 0;
+    std::string list;
+    for (const GroupMember& member : members[label]) {
+      frames += member.end - member.start;
+      list += "<li><code>" + HtmlEscape(reader.clips()[member.clip].name) + "</code> frames " +
+              std::to_string(member.start) + "\u2013" + std::to_string(member.end) + " (" +
+              HtmlSeconds(member.end - member.start, fps) + ")</li>";
+    }
+    html += "<div class=\"seg\"><h3><i style=\"background:" + ColourOf(label) + "\"></i>" +
+            HtmlEscape(result.label_names[label]) + " <span class=\"note\">" +
+            CountOf(members[label].size(), "segment") + ", " + HtmlSeconds(frames, fps) +
+            "</span></h3><ul>" + list + "</ul></div>\n";
+  }
+  return html + "</section>\n";
 }
 
 }  // namespace
@@ -131,8 +165,8 @@ Result<std::string> SegmentsHtmlText(const Segmentation& result, const FrameFile
     html += "<p class=\"note\">Keyframes are drawn for the first " +
             WithCommas(kMaxSegmentFigures) + " segments only.</p>\n";
   }
-  html += "</section>\n" + HtmlPageEnd();
-  return html;
+  html += "</section>\n" + GroupsSection(result, reader);
+  return html + HtmlPageEnd();
 }
 
 Status WriteSegmentsHtml(const std::string& path, const Segmentation& result,

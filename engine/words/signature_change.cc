@@ -6,7 +6,8 @@
 
 namespace motif {
 
-double ChangeThreshold(const std::vector<std::vector<double>>& scores_per_take) {
+double ChangeThreshold(const std::vector<std::vector<double>>& scores_per_take,
+                       double deviations) {
   double sum = 0;
   double squares = 0;
   uint64_t count = 0;
@@ -21,7 +22,7 @@ double ChangeThreshold(const std::vector<std::vector<double>>& scores_per_take) 
   if (count == 0) return std::numeric_limits<double>::infinity();
   const double mean = sum / static_cast<double>(count);
   const double variance = std::max(0.0, squares / static_cast<double>(count) - mean * mean);
-  return mean + std::sqrt(variance);
+  return mean + deviations * std::sqrt(variance);
 }
 
 std::vector<uint64_t> PickBoundaries(const std::vector<double>& scores, double threshold,
@@ -43,15 +44,17 @@ std::vector<uint64_t> PickBoundaries(const std::vector<double>& scores, double t
   return boundaries;
 }
 
-std::vector<uint32_t> CompleteLinkageGroups(const Eigen::MatrixXd& distances, double threshold) {
+std::vector<uint32_t> LinkageGroups(const Eigen::MatrixXd& distances, double threshold,
+                                    uint32_t groups, Linkage kind) {
   const auto n = static_cast<size_t>(distances.rows());
-  // linkage(a, b) between live groups, kept by the complete-linkage update max(a, b).
+  // linkage(a, b) between live groups, kept by the update of `kind`.
   Eigen::MatrixXd linkage = distances;
+  std::vector<double> sizes(n, 1.0);
   std::vector<size_t> owner(n);  // each item's group, named by a live row of `linkage`
   std::vector<bool> live(n, true);
   for (size_t item = 0; item < n; ++item) owner[item] = item;
   const auto at = [](size_t row) { return static_cast<Eigen::Index>(row); };
-  while (true) {
+  for (size_t live_groups = n; groups == 0 || live_groups > groups; --live_groups) {
     double best = std::numeric_limits<double>::infinity();
     size_t best_a = n;
     size_t best_b = n;
@@ -64,13 +67,19 @@ std::vector<uint32_t> CompleteLinkageGroups(const Eigen::MatrixXd& distances, do
         }
       }
     }
-    if (best_a == n || !(best <= threshold)) break;
+    if (best_a == n || (groups == 0 && !(best <= threshold))) break;
     for (size_t c = 0; c < n; ++c) {
-      const double merged = std::max(linkage(at(best_a), at(c)), linkage(at(best_b), at(c)));
+      const double a = linkage(at(best_a), at(c));
+      const double b = linkage(at(best_b), at(c));
+      const double merged = kind == Linkage::kComplete
+                                ? std::max(a, b)
+                                : (sizes[best_a] * a + sizes[best_b] * b) /
+                                      (sizes[best_a] + sizes[best_b]);
       linkage(at(best_a), at(c)) = merged;
       linkage(at(c), at(best_a)) = merged;
     }
     live[best_b] = false;
+    sizes[best_a] += sizes[best_b];
     for (size_t item = 0; item < n; ++item) {
       if (owner[item] == best_b) owner[item] = best_a;
     }
@@ -78,9 +87,9 @@ std::vector<uint32_t> CompleteLinkageGroups(const Eigen::MatrixXd& distances, do
   // Groups numbered by their first item.
   std::vector<uint32_t> number(n, UINT32_MAX);
   std::vector<uint32_t> assignment(n, 0);
-  uint32_t groups = 0;
+  uint32_t numbered = 0;
   for (size_t item = 0; item < n; ++item) {
-    if (number[owner[item]] == UINT32_MAX) number[owner[item]] = groups++;
+    if (number[owner[item]] == UINT32_MAX) number[owner[item]] = numbered++;
     assignment[item] = number[owner[item]];
   }
   return assignment;

@@ -1,5 +1,7 @@
 #include "engine/words/take_segmentation.h"
 
+#include <memory>
+#include <set>
 #include <span>
 
 #include "engine/signature/earth_movers_distance.h"
@@ -7,6 +9,7 @@
 #include "engine/signature/take_dtw.h"
 #include "engine/signature/take_retrieval.h"
 #include "engine/signature/word_stream.h"
+#include "engine/words/affinity_profiles.h"
 #include "engine/words/signature_change.h"
 #include "engine/words/word_bags.h"
 
@@ -182,6 +185,135 @@ Result<std::vector<uint32_t>> VoteWithWordBags(
   return labels;
 }
 
+// How segments are cut and grouped on a kind of signature (docs/design/signatures.md): the
+// change threshold is the mean plus `deviations` standard deviations of the change scores, and
+// segments join groups by `linkage`.
+struct UnsupervisedRule {
+  double deviations = 1.0;
+  Linkage linkage = Linkage::kComplete;
+};
+
+// What the unsupervised segmentation compares: change scores of a take and the distances between
+// segments, on motif signatures or on affinity profiles.
+class UnsupervisedSignatures {
+ public:
+  virtual ~UnsupervisedSignatures() = default;
+  virtual UnsupervisedRule rule() const = 0;
+  // The distance within which segments join a group.
+  virtual double GroupThreshold(const std::vector<WordRange>& pieces,
+                                double change_threshold) const = 0;
+  virtual Result<std::vector<double>> ChangeScores(uint32_t clip, uint32_t window) = 0;
+  virtual Result<Eigen::MatrixXd> PieceDistances(
+      const std::vector<WordRange>& pieces,
+      const std::function<void(uint64_t, uint64_t)>& progress) = 0;
+};
+
+// The paper's: TF-IDF signatures over the motifs, EMD between them (they depend on the seed the
+// embedding was trained with).
+class MotifSignatures : public UnsupervisedSignatures {
+ public:
+  explicit MotifSignatures(const LoadedWords& words) : words_(words) {}
+
+  UnsupervisedRule rule() const override { return {1.0, Linkage::kComplete}; }
+  // A group never holds two segments farther apart than a boundary would separate.
+  double GroupThreshold(const std::vector<WordRange>&, double change_threshold) const override {
+    return change_threshold;
+  }
+
+  Result<std::vector<double>> ChangeScores(uint32_t clip, uint32_t window) override {
+    return TakeChangeScores(words_, clip, window, emd_);
+  }
+
+  Result<Eigen::MatrixXd> PieceDistances(
+      const std::vector<WordRange>& pieces,
+      const std::function<void(uint64_t, uint64_t)>& progress) override {
+    std::vector<std::vector<double>> signatures;
+    for (const WordRange& piece : pieces) {
+      MOTIF_ASSIGN_OR_RETURN(std::vector<double> signature,
+                             words_.RangeSignature(piece.clip, piece.first, piece.end));
+      signatures.push_back(std::move(signature));
+    }
+    const auto n = static_cast<Eigen::Index>(pieces.size());
+    Eigen::MatrixXd distances = Eigen::MatrixXd::Zero(n, n);
+    for (Eigen::Index a = 0; a < n; ++a) {
+      for (Eigen::Index b = a + 1; b < n; ++b) {
+        MOTIF_ASSIGN_OR_RETURN(const double distance,
+                               emd_.Distance(signatures[static_cast<size_t>(a)],
+                                             signatures[static_cast<size_t>(b)], words_.ground));
+        distances(a, b) = distance;
+        distances(b, a) = distance;
+      }
+      if (progress) progress(static_cast<uint64_t>(a + 1), pieces.size());
+    }
+    return distances;
+  }
+
+ private:
+  const LoadedWords& words_;
+  EarthMoversDistance emd_;
+};
+
+// Affinity profiles of the words (affinity_profiles.h): nothing trained, no seed.
+class ProfileSignatures : public UnsupervisedSignatures {
+ public:
+  static Result<std::unique_ptr<UnsupervisedSignatures>> Compute(
+      const FrameFileReader& reader, const LoadedWords& words, const std::vector<uint32_t>& takes,
+      const SegmentOptions& options) {
+    std::vector<float> weights = options.joint_weights;
+    if (weights.empty()) {
+      MOTIF_ASSIGN_OR_RETURN(weights, LoadDistanceWeights(reader.skeleton(), ""));
+    }
+    MOTIF_ASSIGN_OR_RETURN(const FrameResampler resampler,
+                           FrameResampler::Create(reader.layout(), weights));
+    const WordOptions& geometry = words.signatures.words;
+    const WordDistance distance(resampler.weights(), geometry.word_frames);
+    MOTIF_ASSIGN_OR_RETURN(const WordsOfClips bags,
+                           WordsOfClips::Read(reader, weights, geometry, distance, takes));
+    auto signatures = std::make_unique<ProfileSignatures>(words);
+    signatures->profiles_ = AffinityProfiles::Compute(
+        bags, takes, words.signatures.clip_words, distance, options.threads,
+        [&](uint64_t done, uint64_t total) {
+          if (options.progress) options.progress("profiles", done, total);
+        });
+    return std::unique_ptr<UnsupervisedSignatures>(std::move(signatures));
+  }
+
+  explicit ProfileSignatures(const LoadedWords& words) : words_(words) {}
+
+  // A boundary is a peak of the change score above the scores' mean; see GroupThreshold.
+  UnsupervisedRule rule() const override { return {0.0, Linkage::kAverage}; }
+  // Segments are one activity when they are as alike as the two halves of one segment are: the
+  // mean plus half a standard deviation of the distances between the halves of every segment of
+  // two words or more (the change threshold when there is none).
+  double GroupThreshold(const std::vector<WordRange>& pieces,
+                        double change_threshold) const override {
+    std::vector<double> halves;
+    for (const WordRange& piece : pieces) {
+      if (piece.end - piece.first < 2) continue;
+      const uint64_t middle = piece.first + (piece.end - piece.first) / 2;
+      halves.push_back(profiles_.Distance({piece.clip, piece.first, middle},
+                                          {piece.clip, middle, piece.end}));
+    }
+    return halves.empty() ? change_threshold : ChangeThreshold({halves}, 0.5);
+  }
+
+  Result<std::vector<double>> ChangeScores(uint32_t clip, uint32_t window) override {
+    return ProfileChangeScores(profiles_, clip, words_.signatures.clip_words[clip], window);
+  }
+
+  Result<Eigen::MatrixXd> PieceDistances(
+      const std::vector<WordRange>& pieces,
+      const std::function<void(uint64_t, uint64_t)>& progress) override {
+    Eigen::MatrixXd distances = ProfilePieceDistances(profiles_, pieces);
+    if (progress) progress(pieces.size(), pieces.size());
+    return distances;
+  }
+
+ private:
+  const LoadedWords& words_;
+  AffinityProfiles profiles_;
+};
+
 }  // namespace
 
 const char* WindowSignatureName(WindowSignature signature) {
@@ -291,22 +423,29 @@ Result<Segmentation> SegmentUnsupervised(const FrameFileReader& reader, const Lo
                                          const SegmentOptions& options) {
   MOTIF_RETURN_IF_ERROR(CheckOptions(reader, clips, options));
   Segmentation result;
-  result.distance = "emd";
-  result.signature = WindowSignatureName(WindowSignature::kMotifs);
+  result.distance = options.signature == WindowSignature::kWords ? "euclidean" : "emd";
+  result.signature = WindowSignatureName(options.signature);
   result.window = options.window;
   const std::vector<uint32_t> takes = TakesWithWords(words, clips, &result.skipped_clips);
-  EarthMoversDistance emd;
+  std::unique_ptr<UnsupervisedSignatures> signatures;
+  if (options.signature == WindowSignature::kWords) {
+    MOTIF_ASSIGN_OR_RETURN(signatures, ProfileSignatures::Compute(reader, words, takes, options));
+  } else {
+    signatures = std::make_unique<MotifSignatures>(words);
+  }
   std::vector<std::vector<double>> scores;
   for (uint32_t clip : takes) {
     MOTIF_ASSIGN_OR_RETURN(std::vector<double> take_scores,
-                           TakeChangeScores(words, clip, options.window, emd));
+                           signatures->ChangeScores(clip, options.window));
     scores.push_back(std::move(take_scores));
     if (options.progress) options.progress("windows", scores.size(), takes.size());
   }
-  result.threshold = ChangeThreshold(scores);
+  const UnsupervisedRule rule = signatures->rule();
+  result.linkage = rule.linkage == Linkage::kAverage ? "average" : "complete";
+  result.threshold = ChangeThreshold(scores, rule.deviations);
 
   // The segments between boundaries, then their signatures' distances.
-  std::vector<Window> pieces;
+  std::vector<WordRange> pieces;
   for (size_t take = 0; take < takes.size(); ++take) {
     uint64_t first = 0;
     for (uint64_t boundary : PickBoundaries(scores[take], result.threshold, options.window)) {
@@ -315,20 +454,13 @@ Result<Segmentation> SegmentUnsupervised(const FrameFileReader& reader, const Lo
     }
     pieces.push_back({takes[take], first, words.signatures.clip_words[takes[take]]});
   }
-  MOTIF_ASSIGN_OR_RETURN(const auto signatures, WindowSignatures(words, pieces));
-  const auto n = static_cast<Eigen::Index>(pieces.size());
-  Eigen::MatrixXd distances = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index a = 0; a < n; ++a) {
-    for (Eigen::Index b = a + 1; b < n; ++b) {
-      MOTIF_ASSIGN_OR_RETURN(const double distance,
-                             emd.Distance(signatures[static_cast<size_t>(a)],
-                                          signatures[static_cast<size_t>(b)], words.ground));
-      distances(a, b) = distance;
-      distances(b, a) = distance;
-    }
-    if (options.progress) options.progress("groups", static_cast<uint64_t>(a + 1), pieces.size());
-  }
-  const std::vector<uint32_t> groups = CompleteLinkageGroups(distances, result.threshold);
+  result.group_threshold = signatures->GroupThreshold(pieces, result.threshold);
+  MOTIF_ASSIGN_OR_RETURN(const Eigen::MatrixXd distances,
+                         signatures->PieceDistances(pieces, [&](uint64_t done, uint64_t total) {
+                           if (options.progress) options.progress("groups", done, total);
+                         }));
+  const std::vector<uint32_t> groups =
+      LinkageGroups(distances, result.group_threshold, options.groups, rule.linkage);
   uint32_t group_count = 0;
   std::vector<uint32_t> labels;
   for (size_t piece = 0; piece < pieces.size(); ++piece) {
@@ -344,6 +476,45 @@ Result<Segmentation> SegmentUnsupervised(const FrameFileReader& reader, const Lo
   }
   return result;
 }
+
+std::vector<std::vector<GroupMember>> GroupMembers(const Segmentation& result) {
+  std::vector<std::vector<GroupMember>> members(result.label_names.size());
+  for (const SegmentedTake& take : result.takes) {
+    for (const LabelledSegment& segment : take.segments) {
+      if (segment.label == kUnlabelled) continue;
+      members[segment.label].push_back({take.clip, segment.start, segment.end});
+    }
+  }
+  return members;
+}
+
+namespace {
+
+// Per label its segments, frames and member stretches.
+nlohmann::json GroupsJson(const Segmentation& result, const FrameFileReader& reader) {
+  nlohmann::json groups = nlohmann::json::array();
+  const std::vector<std::vector<GroupMember>> members = GroupMembers(result);
+  for (size_t label = 0; label < members.size(); ++label) {
+    nlohmann::json stretches = nlohmann::json::array();
+    uint64_t frames = 0;
+    std::set<uint32_t> clips;
+    for (const GroupMember& member : members[label]) {
+      stretches.push_back({{"clip", reader.clips()[member.clip].name},
+                           {"start", member.start},
+                           {"end", member.end}});
+      frames += member.end - member.start;
+      clips.insert(member.clip);
+    }
+    groups.push_back({{"label", result.label_names[label]},
+                      {"segments", members[label].size()},
+                      {"takes", clips.size()},
+                      {"frames", frames},
+                      {"members", stretches}});
+  }
+  return groups;
+}
+
+}  // namespace
 
 nlohmann::json SegmentsJson(const Segmentation& result, const FrameFileReader& reader,
                             const std::string& archive) {
@@ -361,6 +532,8 @@ nlohmann::json SegmentsJson(const Segmentation& result, const FrameFileReader& r
     json["reference_windows"] = result.reference_windows;
   } else {
     json["threshold"] = result.threshold;
+    json["group_threshold"] = result.group_threshold;
+    json["linkage"] = result.linkage;
   }
   json["labels"] = result.label_names;
   const auto label_of = [&](uint32_t label) {
@@ -384,6 +557,7 @@ nlohmann::json SegmentsJson(const Segmentation& result, const FrameFileReader& r
                      {"segments", take.segments.size()}});
   }
   json["segments"] = segments;
+  json["groups"] = GroupsJson(result, reader);
   json["takes"] = takes;
   nlohmann::json skipped = nlohmann::json::array();
   for (uint32_t clip : result.skipped_clips) skipped.push_back(reader.clips()[clip].name);

@@ -8,7 +8,8 @@
 //    histograms over the motifs (tf_idf.h, the archive's idf); or, for the baseline, DTW over the
 //    windows' frames (take_dtw.h, every `dtw_step`-th frame);
 //  * unsupervised: boundaries where the signatures before and after differ most, segments
-//    grouped by signature (signature_change.h);
+//    grouped by signature (signature_change.h); by default the words' affinity profiles
+//    (affinity_profiles.h, nothing trained, so no seed), or the motifs' TF-IDF;
 // then equal neighbouring labels merge into segments covering each take (MergeLabels).
 // Takes shorter than one word cannot be segmented and are listed as skipped.
 // Thread-safety: pure functions (the reader's and the features' const methods are thread-safe);
@@ -31,7 +32,7 @@
 
 namespace motif {
 
-// What a window's signature is made of (supervised, with the EMD).
+// What a window's signature is made of (with the EMD).
 enum class WindowSignature {
   kWords,   // every word its own bin, unit mass; ground: the DTW between words (word_bags.h)
   kMotifs,  // the paper's: TF-IDF over the motifs; ground: the centroids' distance (tf_idf.h)
@@ -45,7 +46,9 @@ struct SegmentOptions {
   uint32_t knn = 5;           // supervised: neighbours of the vote
   uint32_t dtw_step = 4;      // the DTW baseline: every n-th frame of a window
   bool one_per_take = false;  // supervised: vote with the k nearest takes (window_vote.h)
-  WindowSignature signature = WindowSignature::kWords;  // supervised, with the EMD
+  WindowSignature signature = WindowSignature::kWords;  // with the EMD
+  // Unsupervised: the number of groups (0: chosen by the change threshold, signature_change.h).
+  uint32_t groups = 0;
   // Word bags: the per-joint weights the words are cut with (LoadDistanceWeights, one per archive
   // joint); empty: the skeleton's defaults.
   std::vector<float> joint_weights;
@@ -64,14 +67,16 @@ struct SegmentedTake {
 
 struct Segmentation {
   bool supervised = false;
-  std::string distance;                  // "emd" or "dtw"
+  std::string distance;                  // "emd", "dtw" or (affinity profiles) "euclidean"
+  std::string linkage;                   // unsupervised: "complete" or "average"
   std::string signature;                 // with the EMD: "words" or "motifs"
   std::vector<std::string> label_names;  // supervised: the labels, sorted; else "group 1", ...
   std::vector<SegmentedTake> takes;      // in the order asked for
   std::vector<uint32_t> skipped_clips;   // asked for, but shorter than one word
   uint64_t reference_windows = 0;        // supervised: windows of the labelled takes
   uint64_t reference_takes = 0;
-  double threshold = 0;  // unsupervised: the change threshold
+  double threshold = 0;        // unsupervised: the change threshold
+  double group_threshold = 0;  // unsupervised: segments within it join a group
   uint32_t window = 9;
   uint32_t knn = 5;
   bool one_per_take = false;  // supervised: the neighbours are takes (window_vote.h)
@@ -99,6 +104,16 @@ Result<std::vector<double>> TakeChangeScores(const LoadedWords& words, uint32_t 
 // The clip frame at the centre of each word of `clip`.
 std::vector<double> WordCentres(const FrameFileReader& reader, const LoadedWords& words,
                                 uint32_t clip);
+
+// A segment of a group (a label): clip frames [start, end).
+struct GroupMember {
+  uint32_t clip = 0;
+  uint64_t start = 0;
+  uint64_t end = 0;
+};
+
+// Per label, the segments that carry it, take by take in the result's order.
+std::vector<std::vector<GroupMember>> GroupMembers(const Segmentation& result);
 
 // segments.json (docs/formats/segments_json.md).
 nlohmann::json SegmentsJson(const Segmentation& result, const FrameFileReader& reader,

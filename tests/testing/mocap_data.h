@@ -15,6 +15,10 @@ std::string MocapDir();
 // the folder holding bvh/; empty if it does not exist.
 std::string StudioRigDir();
 
+// The exercise routines (../shared/data/mocap6 beside the repository, or $MOTIF_MOCAP6_DIR): the
+// folder holding 13.asf and the 13_29 .. 13_31 .amc takes; empty if it does not exist.
+std::string ExerciseRoutinesDir();
+
 }  // namespace motif::testing
 
 #define MOTIF_REQUIRE_MOCAP_DATA()                                                          \
@@ -30,5 +34,13 @@ std::string StudioRigDir();
     if (::motif::testing::StudioRigDir().empty()) {                                     \
       GTEST_SKIP() << "studio rig takes not found (../shared/data/bandai2 or "          \
                       "$MOTIF_BANDAI2_DIR): skipping this test";                        \
+    }                                                                                   \
+  } while (0)
+
+#define MOTIF_REQUIRE_EXERCISE_ROUTINES()                                               \
+  do {                                                                                  \
+    if (::motif::testing::ExerciseRoutinesDir().empty()) {                              \
+      GTEST_SKIP() << "exercise routines not found (../shared/data/mocap6 or "          \
+                      "$MOTIF_MOCAP6_DIR): skipping this test";                         \
     }                                                                                   \
   } while (0)

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 
 #include "common/file_util.h"
 #include "tests/testing/byte_files.h"
+#include "tests/testing/mocap_data.h"
 #include "tests/testing/run_tool.h"
 #include "tests/testing/temp_dir.h"
 
@@ -418,7 +420,9 @@ TEST_F(WordsCliTest, SegmentRefusesBadOptionsByNameAndWritesNothing) {
   expect(" --window 0", 2, "--window");
   expect(" --neighbours frames", 13, "--neighbours must be");
   expect(" --signature frames", 13, "--signature must be words or motifs");
-  expect(" --signature words", 13, "--signature words needs --labels");
+  expect(" --labels x.tsv --distance dtw --signature words", 13,
+         "--signature needs --distance emd");
+  expect(" --labels x.tsv --groups 3", 13, "--groups is for segmenting without --labels");
   expect(" --labels " + dir_->File("no-labels.tsv"), 11, "no-labels.tsv");
   {
     std::ofstream labels(dir_->File("elsewhere.tsv"));
@@ -438,13 +442,15 @@ TEST(SegmentCli, BuildsTheWordsItNeedsWhenTheyAreMissing) {
   testing::TempDir dir;
   const std::string archive = dir.File("small.mfs");
   ASSERT_TRUE(WriteSmallArchive(archive));
-  RunResult result = RunTool("segment " + archive + " --out " + dir.File("out"));
+  RunResult result =
+      RunTool("segment " + archive + " --signature motifs --out " + dir.File("out"));
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("building them"), std::string::npos) << result.output;
   EXPECT_TRUE(testing::FileExists(dir.File("small.mws")));
   ExpectSegmentsCoverTheTakes(ReadJson(dir.File("out/segments.json")));
   // A second run reads them back instead.
-  RunResult again = RunTool("segment " + archive + " --out " + dir.File("out"));
+  RunResult again =
+      RunTool("segment " + archive + " --signature motifs --out " + dir.File("out"));
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(again.output.find("building them"), std::string::npos) << again.output;
 }
@@ -476,6 +482,84 @@ TEST(SegmentCli, WordSignaturesNeedNoWordsFiles) {
   ASSERT_EQ(with_files.exit_code, 0) << with_files.output;
   EXPECT_EQ(ReadJson(dir.File("grid/segments.json"))["segments"],
             ReadJson(dir.File("files/segments.json"))["segments"]);
+}
+
+// Unsupervised segmentation by affinity profiles (the default) reads no embedding: no words files
+// are built, and words files of any seed give the same segments and groups. Each group lists its
+// member stretches, which are the segments carrying its label; --groups K gives K groups.
+TEST(SegmentCli, UnsupervisedSegmentsDependOnNoSeedAndListEachGroupsMembers) {
+  testing::TempDir dir;
+  const std::string archive = dir.File("small.mfs");
+  ASSERT_TRUE(WriteSmallArchive(archive));
+  RunResult grid = RunTool("segment " + archive + " --out " + dir.File("grid"));
+  ASSERT_EQ(grid.exit_code, 0) << grid.output;
+  EXPECT_FALSE(testing::FileExists(dir.File("small.mws")));
+  const nlohmann::json plain = ReadJson(dir.File("grid/segments.json"));
+  EXPECT_EQ(plain["signature"], "words");
+  EXPECT_EQ(plain["linkage"], "average");
+  for (const char* seed : {"1", "2"}) {
+    const std::string prefix = dir.File(std::string("seed") + seed);
+    ASSERT_EQ(RunTool("words " + archive + " --epochs 1 --channels 16 --dims 8 --motifs 8 " +
+                      "--quiet --seed " + seed + " --prefix " + prefix)
+                  .exit_code,
+              0);
+    const std::string out = dir.File(std::string("out") + seed);
+    ASSERT_EQ(RunTool("segment " + archive + " --prefix " + prefix + " --out " + out).exit_code,
+              0);
+    const nlohmann::json again = ReadJson(out + "/segments.json");
+    EXPECT_EQ(again["segments"], plain["segments"]) << "seed " << seed;
+    EXPECT_EQ(again["groups"], plain["groups"]) << "seed " << seed;
+  }
+  ASSERT_EQ(plain["groups"].size(), plain["labels"].size());
+  size_t members = 0;
+  for (const nlohmann::json& group : plain["groups"]) {
+    for (const nlohmann::json& member : group["members"]) {
+      const bool listed = std::any_of(
+          plain["segments"].begin(), plain["segments"].end(), [&](const nlohmann::json& segment) {
+            return segment["clip"] == member["clip"] && segment["start"] == member["start"] &&
+                   segment["end"] == member["end"] && segment["label"] == group["label"];
+          });
+      EXPECT_TRUE(listed) << member.dump();
+      ++members;
+    }
+  }
+  EXPECT_EQ(members, plain["segments"].size());
+  ASSERT_EQ(RunTool("segment " + archive + " --groups 2 --out " + dir.File("two")).exit_code, 0);
+  const nlohmann::json two = ReadJson(dir.File("two/segments.json"));
+  EXPECT_EQ(two["labels"].size(), 2u);
+  // The cuts do not move; neighbouring segments that now share a group merge.
+  EXPECT_LE(two["segments"].size(), plain["segments"].size());
+}
+
+// On a real exercise routine (13_31 of ../shared/data/mocap6: Twist, KneeRaise, ToeTouchOneHand,
+// Twist again, Jog, ArmCircle, JumpJack), the two Twist stretches share a group and the five other
+// exercises each have a group of their own.
+TEST(SegmentCli, TheTwoTwistsOfARealRoutineShareAGroupAndNoOtherExerciseDoes) {
+  MOTIF_REQUIRE_EXERCISE_ROUTINES();
+  const std::string data = testing::ExerciseRoutinesDir();
+  testing::TempDir dir;
+  const std::string archive = dir.File("routine.mfs");
+  ASSERT_EQ(RunTool("import " + archive + " " + data + "/13_31.amc --asf " + data +
+                    "/13.asf --quiet")
+                .exit_code,
+            0);
+  ASSERT_EQ(RunTool("segment " + archive + " --quiet --out " + dir.File("out")).exit_code, 0);
+  const nlohmann::json doc = ReadJson(dir.File("out/segments.json"));
+  const auto label_at = [&](uint64_t frame) {
+    for (const nlohmann::json& segment : doc["segments"]) {
+      if (segment["start"].get<uint64_t>() <= frame && frame < segment["end"].get<uint64_t>()) {
+        return segment["label"].get<std::string>();
+      }
+    }
+    return std::string("none");
+  };
+  // A frame well inside each annotated stretch (mocap6's labels: Twist 0-396 and 1392-1608,
+  // KneeRaise 396-984, ToeTouchOneHand -1392, Jog -2052, ArmCircle -2724, JumpJack -3017).
+  EXPECT_EQ(label_at(100), label_at(1500));
+  std::set<std::string> labels{label_at(100)};
+  for (uint64_t frame : {700, 1200, 1850, 2400, 2900}) labels.insert(label_at(frame));
+  EXPECT_EQ(labels.size(), 6u) << doc["segments"].dump();
+  EXPECT_LE(doc["labels"].size(), 9u) << "at most 1.5 groups per exercise";
 }
 
 }  // namespace

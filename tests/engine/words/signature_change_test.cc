@@ -48,6 +48,9 @@ TEST(SignatureChange, TheThresholdIsTheMeanPlusOneStandardDeviation) {
   // Scores 1, 2, 3, 4 over two takes: mean 2.5, population sd sqrt(1.25).
   EXPECT_DOUBLE_EQ(ChangeThreshold({{1, nan, 2}, {3, 4}}), 2.5 + std::sqrt(1.25));
   EXPECT_TRUE(std::isinf(ChangeThreshold({{nan}, {}})));
+  // Other numbers of standard deviations, as the affinity profiles' rules use.
+  EXPECT_DOUBLE_EQ(ChangeThreshold({{1, nan, 2}, {3, 4}}, 0.5), 2.5 + 0.5 * std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(ChangeThreshold({{1, nan, 2}, {3, 4}}, 0.0), 2.5);
 }
 
 TEST(SignatureChange, CompleteLinkageNeverJoinsItemsFartherThanTheThreshold) {
@@ -64,6 +67,42 @@ TEST(SignatureChange, CompleteLinkageNeverJoinsItemsFartherThanTheThreshold) {
   EXPECT_EQ(CompleteLinkageGroups(d, 1.2), (std::vector<uint32_t>{0, 0, 1, 2, 2, 3}));
   EXPECT_EQ(CompleteLinkageGroups(d, 0.1), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(CompleteLinkageGroups(d, 100), (std::vector<uint32_t>(6, 0)));
+}
+
+// The distances of the test above.
+Eigen::MatrixXd ThreeTwoOne() {
+  Eigen::MatrixXd d(6, 6);
+  d << 0, 1, 1.5, 9, 9, 9,  //
+      1, 0, 1, 9, 9, 9,     //
+      1.5, 1, 0, 9, 9, 9,   //
+      9, 9, 9, 0, 0.5, 9,   //
+      9, 9, 9, 0.5, 0, 9,   //
+      9, 9, 9, 9, 9, 0;
+  return d;
+}
+
+TEST(SignatureChange, AverageLinkageJoinsAtTheMeanDistanceAcrossTheGroups) {
+  const Eigen::MatrixXd d = ThreeTwoOne();
+  // 3-4 (0.5), then 0-1 (1, before 1-2 on the tie); 2 is then (1.5 + 1) / 2 = 1.25 from {0, 1}.
+  EXPECT_EQ(LinkageGroups(d, 1.2, 0, Linkage::kAverage),
+            (std::vector<uint32_t>{0, 0, 1, 2, 2, 3}));
+  EXPECT_EQ(LinkageGroups(d, 1.3, 0, Linkage::kAverage),
+            (std::vector<uint32_t>{0, 0, 0, 1, 1, 2}));
+  // Complete linkage keeps 2 apart at 1.3: its largest distance to {0, 1} is 1.5.
+  EXPECT_EQ(LinkageGroups(d, 1.3, 0, Linkage::kComplete),
+            (std::vector<uint32_t>{0, 0, 1, 2, 2, 3}));
+  // {0, 1, 2} to {3, 4}: the mean of six 9s.
+  EXPECT_EQ(LinkageGroups(d, 8.9, 0, Linkage::kAverage),
+            (std::vector<uint32_t>{0, 0, 0, 1, 1, 2}));
+}
+
+TEST(SignatureChange, AGivenNumberOfGroupsIgnoresTheThreshold) {
+  const Eigen::MatrixXd d = ThreeTwoOne();
+  EXPECT_EQ(CompleteLinkageGroups(d, 0.0, 3), (std::vector<uint32_t>{0, 0, 0, 1, 1, 2}));
+  // The three groups are all 9 apart: the tie goes to the lower pair.
+  EXPECT_EQ(CompleteLinkageGroups(d, 0.0, 2), (std::vector<uint32_t>{0, 0, 0, 0, 0, 1}));
+  EXPECT_EQ(LinkageGroups(d, 100, 1, Linkage::kAverage), (std::vector<uint32_t>(6, 0)));
+  EXPECT_EQ(CompleteLinkageGroups(d, 100, 10), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
 }
 
 }  // namespace

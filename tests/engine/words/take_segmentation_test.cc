@@ -1,5 +1,7 @@
 #include "engine/words/take_segmentation.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "engine/signature/take_retrieval.h"
@@ -157,11 +159,9 @@ TEST_F(TakeSegmentationTest, LabelledTakesAreSegmentedWithoutVotingForThemselves
                   .IsInvalidArgument());
 }
 
-TEST_F(TakeSegmentationTest, UnsupervisedFindsTheJunctionsAndGroupsLikePiecesTogether) {
-  const JoinedArchive& a = *archive_;
-  std::vector<uint32_t> all;
-  for (uint32_t clip = 0; clip < a.reader->clips().size(); ++clip) all.push_back(clip);
-  auto result = SegmentUnsupervised(*a.reader, a.words, all, SegmentOptions{});
+// The unsupervised result on the joined archive: the junctions found, like pieces grouped.
+void ExpectJunctionsAndGroups(const JoinedArchive& a, const Result<Segmentation>& result,
+                              const std::vector<uint32_t>& all) {
   ASSERT_TRUE(result.ok()) << result.status().ToString();
   ASSERT_EQ(result->takes.size(), all.size());
   const SegmentedTake& joined = result->takes[a.joined];
@@ -174,6 +174,37 @@ TEST_F(TakeSegmentationTest, UnsupervisedFindsTheJunctionsAndGroupsLikePiecesTog
   }
   EXPECT_EQ(result->label_names.size(), 3u);
 }
+
+// With either signature (affinity profiles, the default, or the motifs' TF-IDF), and with any
+// thread count.
+TEST_F(TakeSegmentationTest, UnsupervisedFindsTheJunctionsAndGroupsLikePiecesTogether) {
+  const JoinedArchive& a = *archive_;
+  std::vector<uint32_t> all;
+  for (uint32_t clip = 0; clip < a.reader->clips().size(); ++clip) all.push_back(clip);
+  for (const WindowSignature signature : {WindowSignature::kWords, WindowSignature::kMotifs}) {
+    SCOPED_TRACE(WindowSignatureName(signature));
+    SegmentOptions options;
+    options.signature = signature;
+    ExpectJunctionsAndGroups(a, SegmentUnsupervised(*a.reader, a.words, all, options), all);
+    options.threads = 1;
+    auto one_thread = SegmentUnsupervised(*a.reader, a.words, all, options);
+    ASSERT_TRUE(one_thread.ok());
+    options.threads = 2;
+    auto two_threads = SegmentUnsupervised(*a.reader, a.words, all, options);
+    ASSERT_TRUE(two_threads.ok());
+    for (size_t take = 0; take < all.size(); ++take) {
+      EXPECT_EQ(one_thread->takes[take].word_labels, two_threads->takes[take].word_labels);
+      const std::vector<double>& one = one_thread->takes[take].change_scores;
+      const std::vector<double>& two = two_threads->takes[take].change_scores;
+      ASSERT_EQ(one.size(), two.size());
+      for (size_t b = 0; b < one.size(); ++b) {
+        // The same bits, NaN (not scored) included.
+        EXPECT_TRUE(one[b] == two[b] || (std::isnan(one[b]) && std::isnan(two[b]))) << b;
+      }
+    }
+  }
+}
+
 
 TEST_F(TakeSegmentationTest, SegmentsJsonListsEverySegmentWithItsClipAndLabel) {
   const JoinedArchive& a = *archive_;
