@@ -119,6 +119,7 @@ void AddSignatureRanges(std::vector<FlagRange>* table) {
   table->push_back(Range("segment", "window", 1, 10000));
   table->push_back(Range("segment", "knn", 1, 10000));
   table->push_back(Range("segment", "dtw-step", 1, 100000));
+  table->push_back(AutoOr("segment", "groups", 1, 1e6));  // unsupervised groups, as classify's
   // graph: a walk of up to a day; a transition's window of up to 5 s, a piece of up to an hour.
   table->push_back(Above("graph", "seconds", 0, 86400));
   table->push_back(Range("graph", "min-piece", 0, 3600));

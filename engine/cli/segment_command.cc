@@ -161,9 +161,9 @@ void AddSegmentOptions(CommandSpec& spec) {
       "labelled takes, each at its nearest window)")(
       "dtw-step", po::value<uint32_t>()->default_value(defaults.dtw_step),
       "dtw: compare every n-th frame")(
-      "groups", po::value<uint32_t>()->default_value(defaults.groups),
-      "without --labels: the number of groups (0, the default: chosen from the change scores; "
-      "docs/design/signatures.md)");
+      "groups", po::value<std::string>()->default_value("auto"),
+      "without --labels: the number of groups, or auto (chosen from the segments themselves; "
+      "docs/design/signatures.md, section 11)");
   AddTableFlags(spec, {"weights", "seed"});
   AddWordsReaderOptions(spec, "PREFIX.mwm and PREFIX.mws", "segments");
   AddProgressOptions(spec);
@@ -203,9 +203,12 @@ Result<SegmentCommandOptions> ReadSegmentOptions(const po::variables_map& vm) {
   segment.window = vm["window"].as<uint32_t>();
   segment.knn = vm["knn"].as<uint32_t>();
   segment.dtw_step = vm["dtw-step"].as<uint32_t>();
-  segment.groups = vm["groups"].as<uint32_t>();
-  if (!vm["groups"].defaulted() && !options.labels_path.empty()) {
-    return Status::InvalidArgument("--groups is for segmenting without --labels");
+  const std::string groups = vm["groups"].as<std::string>();
+  if (groups != "auto") {
+    if (!options.labels_path.empty()) {
+      return Status::InvalidArgument("--groups is for segmenting without --labels");
+    }
+    MOTIF_RETURN_IF_ERROR(ParseGroups(groups, &segment.groups));
   }
   const std::string neighbours = vm["neighbours"].as<std::string>();
   if (neighbours != "windows" && neighbours != "takes") {
