@@ -423,7 +423,7 @@ TEST_F(WordsCliTest, SegmentRefusesBadOptionsByNameAndWritesNothing) {
   expect(" --labels x.tsv --distance dtw --signature words", 13,
          "--signature needs --distance emd");
   expect(" --labels x.tsv --groups 3", 13, "--groups is for segmenting without --labels");
-  expect(" --groups 0", 13, "--groups must be auto or a positive number");
+  expect(" --groups 0", 2, "--groups must be auto or a whole number");
   expect(" --labels " + dir_->File("no-labels.tsv"), 11, "no-labels.tsv");
   {
     std::ofstream labels(dir_->File("elsewhere.tsv"));
