@@ -52,19 +52,15 @@ AffinityProfiles AffinityProfiles::Compute(
     const WordsOfClips& words, const std::vector<uint32_t>& clips,
     const std::vector<uint64_t>& clip_words, const WordDistance& distance, int threads,
     const std::function<void(uint64_t, uint64_t)>& progress) {
-  // Every word in clip order (its index in `words` and its row in sums_), and the column words.
+  // Every word in clip order (its index in `words`, which is its row), and the column words.
   std::vector<uint64_t> index;
-  std::vector<uint64_t> row_of;
   AffinityProfiles profiles;
   profiles.first_row_.assign(clip_words.size(), UINT64_MAX);
-  uint64_t rows = 0;
   for (uint32_t clip : clips) {
-    profiles.first_row_[clip] = rows;
+    profiles.first_row_[clip] = index.size();
     for (uint64_t word = 0; word < clip_words[clip]; ++word) {
       index.push_back(words.index(clip, word));
-      row_of.push_back(rows + 1 + word);
     }
-    rows += clip_words[clip] + 1;
   }
   const uint64_t n = index.size();
   const std::vector<uint64_t> column_words = ColumnWords(n);
@@ -96,8 +92,8 @@ AffinityProfiles AffinityProfiles::Compute(
     column_scale[c] = LocalScale(others_of(&between(static_cast<Eigen::Index>(c), 0),
                                            static_cast<int64_t>(c)));
   }
-  // Each word's profile in the row after its own, then the rows summed along each clip.
-  profiles.sums_.setZero(static_cast<Eigen::Index>(rows), columns);
+  // Each word's profile.
+  profiles.rows_.resize(static_cast<Eigen::Index>(n), columns);
   ParallelRows(n, threads, [&](uint64_t word) {
     std::vector<float> own;
     const float* dtw = nullptr;
@@ -113,15 +109,8 @@ AffinityProfiles AffinityProfiles::Compute(
     }
     const float scale = LocalScale(others_of(dtw, column_of[word]));
     for (Eigen::Index c = 0; c < columns; ++c) {
-      profiles.sums_(static_cast<Eigen::Index>(row_of[word]), c) =
-          Affinity(dtw[c], scale, column_scale[static_cast<size_t>(c)]);
-    }
-  });
-  ParallelRows(clips.size(), threads, [&](uint64_t c) {
-    const auto first = static_cast<Eigen::Index>(profiles.first_row_[clips[c]]);
-    for (uint64_t word = 0; word < clip_words[clips[c]]; ++word) {
-      const Eigen::Index at = first + 1 + static_cast<Eigen::Index>(word);
-      profiles.sums_.row(at) += profiles.sums_.row(at - 1);
+      profiles.rows_(static_cast<Eigen::Index>(word), c) =
+          static_cast<float>(Affinity(dtw[c], scale, column_scale[static_cast<size_t>(c)]));
     }
   });
   if (progress) progress(n, n);
@@ -131,11 +120,14 @@ AffinityProfiles AffinityProfiles::Compute(
 Eigen::VectorXd AffinityProfiles::Mean(const WordRange& range) const {
   MOTIF_CHECK(range.clip < first_row_.size() && first_row_[range.clip] != UINT64_MAX &&
               range.first < range.end);
-  const auto base = static_cast<Eigen::Index>(first_row_[range.clip]);
-  return (sums_.row(base + static_cast<Eigen::Index>(range.end)) -
-          sums_.row(base + static_cast<Eigen::Index>(range.first)))
-             .transpose() /
-         static_cast<double>(range.end - range.first);
+  const auto first = static_cast<Eigen::Index>(first_row_[range.clip] + range.first);
+  const auto count = static_cast<Eigen::Index>(range.end - range.first);
+  // Summed in double, row by row, so a long stretch keeps the floats' precision.
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(rows_.cols());
+  for (Eigen::Index row = first; row < first + count; ++row) {
+    sum += rows_.row(row).transpose().cast<double>();
+  }
+  return sum / static_cast<double>(count);
 }
 
 double AffinityProfiles::Distance(const WordRange& a, const WordRange& b) const {

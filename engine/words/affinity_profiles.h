@@ -12,7 +12,8 @@
 // words they all resemble, whatever the phase of the movement each starts at.
 //
 // Cost for N words and C = min(N, kMaxProfileColumns) columns (every word, or C words spread
-// evenly): N x C DTWs, and 8 N C bytes of running sums, so both stay linear in N beyond C words.
+// evenly): N x C DTWs, and 4 N C bytes of profiles (floats; their means are summed in double),
+// so both stay linear in N beyond C words.
 // Thread-safety: immutable once built; built in parallel, each value computed alone, so the
 // result does not depend on the thread count.
 #pragma once
@@ -31,8 +32,8 @@ namespace motif {
 
 // The neighbour whose distance sets a word's scale.
 constexpr uint32_t kProfileScaleNeighbour = 20;
-// Columns of the profiles at most: the profiles' running sums hold 8 bytes per word and column
-// (32 KB a word at 4096 columns), the DTWs between the column words 64 MB.
+// Columns of the profiles at most: the profiles hold 4 bytes per word and column (16 KB a word
+// at 4096 columns), the DTWs between the column words 64 MB.
 constexpr uint64_t kMaxProfileColumns = 4096;
 
 // Words [first, end) of one clip.
@@ -50,17 +51,16 @@ class AffinityProfiles {
                                   const WordDistance& distance, int threads,
                                   const std::function<void(uint64_t, uint64_t)>& progress);
 
-  uint64_t columns() const { return static_cast<uint64_t>(sums_.cols()); }
+  uint64_t columns() const { return static_cast<uint64_t>(rows_.cols()); }
   // The mean profile of a stretch. Precondition: a clip given, first < end <= its words.
   Eigen::VectorXd Mean(const WordRange& range) const;
   // || Mean(a) - Mean(b) ||.
   double Distance(const WordRange& a, const WordRange& b) const;
 
  private:
-  // Per clip, the row of its first word in sums_; sums_ row r + 1 holds the profiles of the
-  // clip's words before word r summed (a clip of m words has m + 1 rows, the first zero).
+  // Per clip, the row of its first word in rows_ (one row per word, clips in the order given).
   std::vector<uint64_t> first_row_;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sums_;
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows_;
 };
 
 // The change scores of one clip (ChangeScores of signature_change.h): the distance between the
