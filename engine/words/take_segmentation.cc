@@ -120,6 +120,25 @@ WindowDistanceMaker DtwMaker(const PoseFeatures& features, const std::vector<Tak
   };
 }
 
+// How words are compared: the joint weights they are cut with (options.joint_weights, else the
+// skeleton's defaults) and the DTW between words on those joints.
+struct WordComparison {
+  std::vector<float> weights;
+  WordDistance distance;
+};
+
+Result<WordComparison> CompareWordsBy(const FrameFileReader& reader, const LoadedWords& words,
+                                      const SegmentOptions& options) {
+  std::vector<float> weights = options.joint_weights;
+  if (weights.empty()) {
+    MOTIF_ASSIGN_OR_RETURN(weights, LoadDistanceWeights(reader.skeleton(), ""));
+  }
+  MOTIF_ASSIGN_OR_RETURN(const FrameResampler resampler,
+                         FrameResampler::Create(reader.layout(), weights));
+  WordDistance distance(resampler.weights(), words.signatures.words.word_frames);
+  return WordComparison{std::move(weights), std::move(distance)};
+}
+
 // Query windows per block of the word-bag vote: the block's words against every reference word
 // are held as floats, (kBagQueries + window) x reference words.
 constexpr size_t kBagQueries = 256;
@@ -131,14 +150,10 @@ Result<std::vector<uint32_t>> VoteWithWordBags(
     const std::vector<Window>& references, const std::vector<uint32_t>& query_clips,
     const std::vector<uint32_t>& reference_clips, const WindowVoteInput& input,
     const SegmentOptions& options, const std::function<void(uint64_t, uint64_t)>& progress) {
-  std::vector<float> weights = options.joint_weights;
-  if (weights.empty()) {
-    MOTIF_ASSIGN_OR_RETURN(weights, LoadDistanceWeights(reader.skeleton(), ""));
-  }
-  MOTIF_ASSIGN_OR_RETURN(const FrameResampler resampler,
-                         FrameResampler::Create(reader.layout(), weights));
+  MOTIF_ASSIGN_OR_RETURN(const WordComparison comparison, CompareWordsBy(reader, words, options));
+  const std::vector<float>& weights = comparison.weights;
+  const WordDistance& distance = comparison.distance;
   const WordOptions& geometry = words.signatures.words;
-  const WordDistance distance(resampler.weights(), geometry.word_frames);
   MOTIF_ASSIGN_OR_RETURN(const WordsOfClips reference_words,
                          WordsOfClips::Read(reader, weights, geometry, distance, reference_clips));
   // A labelled take being segmented is read once, as a reference.
@@ -259,16 +274,12 @@ class ProfileSignatures : public UnsupervisedSignatures {
   static Result<std::unique_ptr<UnsupervisedSignatures>> Compute(
       const FrameFileReader& reader, const LoadedWords& words, const std::vector<uint32_t>& takes,
       const SegmentOptions& options) {
-    std::vector<float> weights = options.joint_weights;
-    if (weights.empty()) {
-      MOTIF_ASSIGN_OR_RETURN(weights, LoadDistanceWeights(reader.skeleton(), ""));
-    }
-    MOTIF_ASSIGN_OR_RETURN(const FrameResampler resampler,
-                           FrameResampler::Create(reader.layout(), weights));
-    const WordOptions& geometry = words.signatures.words;
-    const WordDistance distance(resampler.weights(), geometry.word_frames);
+    MOTIF_ASSIGN_OR_RETURN(const WordComparison comparison,
+                           CompareWordsBy(reader, words, options));
+    const WordDistance& distance = comparison.distance;
     MOTIF_ASSIGN_OR_RETURN(const WordsOfClips bags,
-                           WordsOfClips::Read(reader, weights, geometry, distance, takes));
+                           WordsOfClips::Read(reader, comparison.weights, words.signatures.words,
+                                              distance, takes));
     auto signatures = std::make_unique<ProfileSignatures>(words);
     signatures->profiles_ = AffinityProfiles::Compute(
         bags, takes, words.signatures.clip_words, distance, options.threads,

@@ -53,23 +53,7 @@ TEST(SignatureChange, TheThresholdIsTheMeanPlusOneStandardDeviation) {
   EXPECT_DOUBLE_EQ(ChangeThreshold({{1, nan, 2}, {3, 4}}, 0.0), 2.5);
 }
 
-TEST(SignatureChange, CompleteLinkageNeverJoinsItemsFartherThanTheThreshold) {
-  // 0, 1, 2 close together (but 0-2 at 1.5); 3, 4 close; 5 far from all.
-  Eigen::MatrixXd d(6, 6);
-  d << 0, 1, 1.5, 9, 9, 9,  //
-      1, 0, 1, 9, 9, 9,     //
-      1.5, 1, 0, 9, 9, 9,   //
-      9, 9, 9, 0, 0.5, 9,   //
-      9, 9, 9, 0.5, 0, 9,   //
-      9, 9, 9, 9, 9, 0;
-  EXPECT_EQ(CompleteLinkageGroups(d, 2.0), (std::vector<uint32_t>{0, 0, 0, 1, 1, 2}));
-  // At 1.2, 0-1 join first (ties go to the lower pair), then 2 cannot join them (1.5 from 0).
-  EXPECT_EQ(CompleteLinkageGroups(d, 1.2), (std::vector<uint32_t>{0, 0, 1, 2, 2, 3}));
-  EXPECT_EQ(CompleteLinkageGroups(d, 0.1), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
-  EXPECT_EQ(CompleteLinkageGroups(d, 100), (std::vector<uint32_t>(6, 0)));
-}
-
-// The distances of the test above.
+// 0, 1, 2 close together (but 0-2 at 1.5); 3, 4 close; 5 far from all.
 Eigen::MatrixXd ThreeTwoOne() {
   Eigen::MatrixXd d(6, 6);
   d << 0, 1, 1.5, 9, 9, 9,  //
@@ -80,6 +64,16 @@ Eigen::MatrixXd ThreeTwoOne() {
       9, 9, 9, 9, 9, 0;
   return d;
 }
+
+TEST(SignatureChange, CompleteLinkageNeverJoinsItemsFartherThanTheThreshold) {
+  const Eigen::MatrixXd d = ThreeTwoOne();
+  EXPECT_EQ(CompleteLinkageGroups(d, 2.0), (std::vector<uint32_t>{0, 0, 0, 1, 1, 2}));
+  // At 1.2, 0-1 join first (ties go to the lower pair), then 2 cannot join them (1.5 from 0).
+  EXPECT_EQ(CompleteLinkageGroups(d, 1.2), (std::vector<uint32_t>{0, 0, 1, 2, 2, 3}));
+  EXPECT_EQ(CompleteLinkageGroups(d, 0.1), (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(CompleteLinkageGroups(d, 100), (std::vector<uint32_t>(6, 0)));
+}
+
 
 TEST(SignatureChange, AverageLinkageJoinsAtTheMeanDistanceAcrossTheGroups) {
   const Eigen::MatrixXd d = ThreeTwoOne();
