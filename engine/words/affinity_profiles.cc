@@ -32,12 +32,35 @@ std::vector<uint64_t> ColumnWords(uint64_t words) {
   return chosen;
 }
 
-// The DTW to the k-th nearest of `others` (the farthest when there are fewer); 0 when empty.
-float LocalScale(std::vector<float> others) {
+// The DTW to the k-th nearest of the `columns` DTWs in `dtw` other than column `self` (-1:
+// none is itself); the farthest when there are fewer; 0 when there is no other.
+float LocalScale(const float* dtw, Eigen::Index columns, int64_t self) {
+  std::vector<float> others;
+  for (Eigen::Index c = 0; c < columns; ++c) {
+    if (c != self) others.push_back(dtw[c]);
+  }
   if (others.empty()) return 0;
   const size_t k = std::min<size_t>(kProfileScaleNeighbour, others.size()) - 1;
   std::nth_element(others.begin(), others.begin() + static_cast<std::ptrdiff_t>(k), others.end());
   return others[k];
+}
+
+// The DTWs between every two column words (`column_words` index `index`, itself into `words`).
+FloatRows BetweenColumns(const WordsOfClips& words, const std::vector<uint64_t>& index,
+                         const std::vector<uint64_t>& column_words, const WordDistance& distance,
+                         int threads) {
+  const auto columns = static_cast<Eigen::Index>(column_words.size());
+  FloatRows between(columns, columns);
+  ParallelRows(column_words.size(), threads, [&](uint64_t c) {
+    for (Eigen::Index d = 0; d < columns; ++d) {
+      between(static_cast<Eigen::Index>(c), d) =
+          c == static_cast<uint64_t>(d)
+              ? 0.0f
+              : static_cast<float>(distance.Dtw(words.at(index[column_words[c]]),
+                                                words.at(index[column_words[d]])));
+    }
+  });
+  return between;
 }
 
 double Affinity(float dtw, float scale_a, float scale_b) {
@@ -70,31 +93,15 @@ AffinityProfiles AffinityProfiles::Compute(
     column_of[column_words[c]] = static_cast<int64_t>(c);
   }
   // The DTWs between column words, kept (every word's, when all words are columns).
-  FloatRows between(columns, columns);
-  ParallelRows(column_words.size(), threads, [&](uint64_t c) {
-    for (Eigen::Index d = 0; d < columns; ++d) {
-      between(static_cast<Eigen::Index>(c), d) =
-          c == static_cast<uint64_t>(d)
-              ? 0.0f
-              : static_cast<float>(distance.Dtw(words.at(index[column_words[c]]),
-                                                words.at(index[column_words[d]])));
-    }
-  });
-  const auto others_of = [&](const float* dtw, int64_t self) {
-    std::vector<float> others;
-    for (Eigen::Index c = 0; c < columns; ++c) {
-      if (c != self) others.push_back(dtw[c]);
-    }
-    return others;
-  };
+  const FloatRows between = BetweenColumns(words, index, column_words, distance, threads);
   std::vector<float> column_scale(column_words.size());
   for (size_t c = 0; c < column_words.size(); ++c) {
-    column_scale[c] = LocalScale(others_of(&between(static_cast<Eigen::Index>(c), 0),
-                                           static_cast<int64_t>(c)));
+    column_scale[c] =
+        LocalScale(&between(static_cast<Eigen::Index>(c), 0), columns, static_cast<int64_t>(c));
   }
   // Each word's profile.
   profiles.rows_.resize(static_cast<Eigen::Index>(n), columns);
-  ParallelRows(n, threads, [&](uint64_t word) {
+  const auto profile_row = [&](uint64_t word) {
     std::vector<float> own;
     const float* dtw = nullptr;
     if (column_of[word] >= 0) {
@@ -107,13 +114,21 @@ AffinityProfiles AffinityProfiles::Compute(
       }
       dtw = own.data();
     }
-    const float scale = LocalScale(others_of(dtw, column_of[word]));
+    const float scale = LocalScale(dtw, columns, column_of[word]);
     for (Eigen::Index c = 0; c < columns; ++c) {
       profiles.rows_(static_cast<Eigen::Index>(word), c) =
           static_cast<float>(Affinity(dtw[c], scale, column_scale[static_cast<size_t>(c)]));
     }
-  });
-  if (progress) progress(n, n);
+  };
+  // In blocks, so progress is reported from this thread between them.
+  constexpr uint64_t kProgressBlock = 512;
+  for (uint64_t block = 0; block < n; block += kProgressBlock) {
+    const uint64_t block_end = std::min(n, block + kProgressBlock);
+    ParallelRows(block_end - block, threads, [&](uint64_t offset) {
+      profile_row(block + offset);
+    });
+    if (progress) progress(block_end, n);
+  }
   return profiles;
 }
 
