@@ -75,7 +75,7 @@ AffinityProfiles AffinityProfiles::Compute(
     const WordsOfClips& words, const std::vector<uint32_t>& clips,
     const std::vector<uint64_t>& clip_words, const WordDistance& distance, int threads,
     const std::function<void(uint64_t, uint64_t)>& progress) {
-  // Every word in clip order (its index in `words`, which is its row), and the column words.
+  // Every word in clip order: row r of the profiles is word index[r] of `words`.
   std::vector<uint64_t> index;
   AffinityProfiles profiles;
   profiles.first_row_.assign(clip_words.size(), UINT64_MAX);

@@ -51,7 +51,6 @@ class AffinityProfiles {
                                   const WordDistance& distance, int threads,
                                   const std::function<void(uint64_t, uint64_t)>& progress);
 
-  uint64_t columns() const { return static_cast<uint64_t>(rows_.cols()); }
   // The mean profile of a stretch. Precondition: a clip given, first < end <= its words.
   Eigen::VectorXd Mean(const WordRange& range) const;
   // || Mean(a) - Mean(b) ||.

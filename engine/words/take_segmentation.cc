@@ -17,11 +17,7 @@ namespace motif {
 namespace {
 
 // A window of words of one clip: [first, end).
-struct Window {
-  uint32_t clip = 0;
-  uint64_t first = 0;
-  uint64_t end = 0;
-};
+using Window = WordRange;
 
 Status CheckOptions(const FrameFileReader& reader, const std::vector<uint32_t>& clips,
                     const SegmentOptions& options) {
@@ -242,12 +238,7 @@ class MotifSignatures : public UnsupervisedSignatures {
   Result<Eigen::MatrixXd> PieceDistances(
       const std::vector<WordRange>& pieces,
       const std::function<void(uint64_t, uint64_t)>& progress) override {
-    std::vector<std::vector<double>> signatures;
-    for (const WordRange& piece : pieces) {
-      MOTIF_ASSIGN_OR_RETURN(std::vector<double> signature,
-                             words_.RangeSignature(piece.clip, piece.first, piece.end));
-      signatures.push_back(std::move(signature));
-    }
+    MOTIF_ASSIGN_OR_RETURN(const auto signatures, WindowSignatures(words_, pieces));
     const auto n = static_cast<Eigen::Index>(pieces.size());
     Eigen::MatrixXd distances = Eigen::MatrixXd::Zero(n, n);
     for (Eigen::Index a = 0; a < n; ++a) {

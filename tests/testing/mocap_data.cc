@@ -13,24 +13,25 @@ std::string MocapDir() {
   return std::filesystem::weakly_canonical(dir, error).string();
 }
 
-std::string StudioRigDir() {
-  const char* from_env = std::getenv("MOTIF_BANDAI2_DIR");
+namespace {
+
+// Folder `name` beside the CMU takes' folder, or $`variable`, when it holds `marker`; else "".
+std::string DataBesideMocap(const char* variable, const char* name, const char* marker) {
+  const char* from_env = std::getenv(variable);
   const std::string dir = from_env && *from_env
                               ? std::string(from_env)
-                              : (std::filesystem::path(MOTIF_MOCAP_DIR) / ".." / "bandai2").string();
+                              : (std::filesystem::path(MOTIF_MOCAP_DIR) / ".." / name).string();
   std::error_code error;
-  if (!std::filesystem::is_directory(dir + "/bvh", error)) return "";
+  if (!std::filesystem::exists(dir + "/" + marker, error)) return "";
   return std::filesystem::weakly_canonical(dir, error).string();
 }
 
+}  // namespace
+
+std::string StudioRigDir() { return DataBesideMocap("MOTIF_BANDAI2_DIR", "bandai2", "bvh"); }
+
 std::string ExerciseRoutinesDir() {
-  const char* from_env = std::getenv("MOTIF_MOCAP6_DIR");
-  const std::string dir = from_env && *from_env
-                              ? std::string(from_env)
-                              : (std::filesystem::path(MOTIF_MOCAP_DIR) / ".." / "mocap6").string();
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(dir + "/13.asf", error)) return "";
-  return std::filesystem::weakly_canonical(dir, error).string();
+  return DataBesideMocap("MOTIF_MOCAP6_DIR", "mocap6", "13.asf");
 }
 
 }  // namespace motif::testing

@@ -21,26 +21,24 @@ std::string ExerciseRoutinesDir();
 
 }  // namespace motif::testing
 
-#define MOTIF_REQUIRE_MOCAP_DATA()                                                          \
-  do {                                                                                      \
-    if (::motif::testing::MocapDir().empty()) {                                             \
-      GTEST_SKIP() << "real CMU takes not found (../shared/data/mocap or $MOTIF_MOCAP_DIR)" \
-                      ": skipping this test";                                               \
-    }                                                                                       \
+// Skips the test with "WHAT not found (WHERE): skipping this test" when `dir` is empty.
+#define MOTIF_SKIP_WITHOUT_DATA(dir, what_and_where)             \
+  do {                                                           \
+    if ((dir).empty()) {                                         \
+      GTEST_SKIP() << what_and_where << ": skipping this test"; \
+    }                                                            \
   } while (0)
 
-#define MOTIF_REQUIRE_STUDIO_RIG_DATA()                                                 \
-  do {                                                                                  \
-    if (::motif::testing::StudioRigDir().empty()) {                                     \
-      GTEST_SKIP() << "studio rig takes not found (../shared/data/bandai2 or "          \
-                      "$MOTIF_BANDAI2_DIR): skipping this test";                        \
-    }                                                                                   \
-  } while (0)
+#define MOTIF_REQUIRE_MOCAP_DATA()                                     \
+  MOTIF_SKIP_WITHOUT_DATA(::motif::testing::MocapDir(),                \
+                          "real CMU takes not found (../shared/data/mocap or $MOTIF_MOCAP_DIR)")
 
-#define MOTIF_REQUIRE_EXERCISE_ROUTINES()                                               \
-  do {                                                                                  \
-    if (::motif::testing::ExerciseRoutinesDir().empty()) {                              \
-      GTEST_SKIP() << "exercise routines not found (../shared/data/mocap6 or "          \
-                      "$MOTIF_MOCAP6_DIR): skipping this test";                         \
-    }                                                                                   \
-  } while (0)
+#define MOTIF_REQUIRE_STUDIO_RIG_DATA()                           \
+  MOTIF_SKIP_WITHOUT_DATA(::motif::testing::StudioRigDir(),       \
+                          "studio rig takes not found (../shared/data/bandai2 or " \
+                          "$MOTIF_BANDAI2_DIR)")
+
+#define MOTIF_REQUIRE_EXERCISE_ROUTINES()                                \
+  MOTIF_SKIP_WITHOUT_DATA(::motif::testing::ExerciseRoutinesDir(),       \
+                          "exercise routines not found (../shared/data/mocap6 or " \
+                          "$MOTIF_MOCAP6_DIR)")
