@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Whole-take retrieval and classification of the real CMU takes (docs/benchmarks.md, "Motion
-# signatures on the real takes"): signatures with the EMD, against signatures without TF-IDF and
-# DTW over the frames, with labels derived from INDEX.tsv (scripts/mocap_labels.py).
+# signatures on the real takes"): signatures with the EMD, against signatures without TF-IDF, DTW
+# over the frames and the movement distance, with labels derived from INDEX.tsv
+# (scripts/mocap_labels.py).
 #
 # usage: scripts/eval_signatures.sh [MOCAP_DIR] [OUT_DIR] [SEED...]
 #   MOCAP_DIR  default ../shared/data/mocap
@@ -9,8 +10,8 @@
 #   SEED...    default 1 2 3 4 5: one embedding, motifs and signatures per seed
 #   WORDS_ARGS (environment) extra options for `motifmine words` (e.g. "--epochs 60")
 # The archive holds bvh/ (31-joint MotionBuilder BVH) and the AMC takes that are not also in
-# bvh/ (05_01 and the other takes in both formats are imported once). DTW does not depend on the
-# seed and runs once. Needs build/motifmine (scripts/build.sh) and python3.
+# bvh/ (05_01 and the other takes in both formats are imported once). DTW and movement do not
+# depend on the seed and run once. Needs build/motifmine (scripts/build.sh) and python3.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 MOCAP=${1:-../shared/data/mocap}
@@ -25,6 +26,8 @@ scripts/import_cmu_takes.sh "$OUT/real.mfs" "$MOCAP"
 if [ ! -f "$OUT/dtw/classify.json" ]; then
   "$TOOL" classify "$OUT/real.mfs" --labels "$OUT/labels.tsv" --distance dtw --quiet --out "$OUT/dtw"
 fi
+"$TOOL" classify "$OUT/real.mfs" --labels "$OUT/labels.tsv" --distance movement --quiet \
+  --out "$OUT/movement" > /dev/null
 for seed in $SEEDS; do
   # shellcheck disable=SC2086 # WORDS_ARGS is a list of options
   "$TOOL" words "$OUT/real.mfs" --seed "$seed" --prefix "$OUT/seed$seed" --quiet \
@@ -57,6 +60,7 @@ print("|---|---|---|---|---|")
 line("signatures + EMD", [scores(f"{out}/seed{s}-emd/classify.json") for s in seeds])
 line("signatures without TF-IDF + EMD", [scores(f"{out}/seed{s}-emd-tf/classify.json") for s in seeds])
 line("DTW over the frames", [scores(f"{out}/dtw/classify.json")])
+line("movement (what moves and how)", [scores(f"{out}/movement/classify.json")])
 print()
 print("| seed | EMD 1-NN | EMD p@5 | no TF-IDF 1-NN | no TF-IDF p@5 | held-out triplet accuracy: trained / untrained / raw | training s |")
 print("|---|---|---|---|---|---|---|")

@@ -13,6 +13,7 @@
 #include "engine/report/words_report_html.h"
 #include "engine/signature/signature_matrix.h"
 #include "engine/signature/take_dtw.h"
+#include "engine/signature/take_movement.h"
 #include "engine/signature/word_stream.h"
 #include "engine/words/take_classification.h"
 #include "engine/words/word_model.h"
@@ -26,7 +27,7 @@ namespace {
 // The command line of `classify`, read back and checked.
 struct ClassifyCommandOptions {
   std::string archive;
-  std::string distance_name;  // emd, emd-tf or dtw
+  std::string distance_name;  // emd, emd-tf, dtw or movement
   std::string labels_path;    // empty: no labels
   std::string weights_path;   // dtw's per-joint weights ("": the skeleton's)
   uint32_t dtw_step = 1;
@@ -35,12 +36,14 @@ struct ClassifyCommandOptions {
   ProgressMode progress_mode = ProgressMode::kAuto;
 
   bool dtw() const { return distance_name == "dtw"; }
+  bool movement() const { return distance_name == "movement"; }
+  bool needs_words() const { return !dtw() && !movement(); }
 };
 
 void AddClassifyOptions(CommandSpec& spec) {
   spec.name = "classify";
   spec.usage =
-      "motifmine classify ARCHIVE [--labels FILE.tsv] [--distance emd|emd-tf|dtw] "
+      "motifmine classify ARCHIVE [--labels FILE.tsv] [--distance emd|emd-tf|dtw|movement] "
       "[--groups G] [--knn K] [--top T] [--out DIR]";
   spec.summary =
       "Classifies the takes of ARCHIVE (those with at least one motion word) by the Earth\n"
@@ -48,13 +51,16 @@ void AddClassifyOptions(CommandSpec& spec) {
       "Unsupervised: classical MDS of the distance matrix, then k-means into G groups.\n"
       "Supervised (--labels, a TSV of clip and label): leave-one-out k-nearest-neighbour\n"
       "accuracy, and whole-take retrieval precision at T. --distance emd-tf compares the\n"
-      "signatures without TF-IDF, dtw the takes' frames by dynamic time warping (baselines).\n"
+      "signatures without TF-IDF, dtw the takes' frames by dynamic time warping (baselines);\n"
+      "movement compares what moves, how, and where the body goes, blind to the posture,\n"
+      "amplitude and tempo a style changes (no words files needed).\n"
       "Writes DIR/classify.json and DIR/classify.html.";
   ClassifyOptions defaults;
   spec.options.add_options()("labels", po::value<std::string>()->default_value(""),
                              "labels of takes: a TSV file of clip<TAB>label lines")(
       "distance", po::value<std::string>()->default_value("emd"),
-      "emd (TF-IDF signatures), emd-tf (term frequencies only) or dtw (frames)")(
+      "emd (TF-IDF signatures), emd-tf (term frequencies only), dtw (frames) or movement "
+      "(what moves and how, style-blind)")(
       "groups", po::value<std::string>()->default_value("auto"),
       "unsupervised groups, or auto (the number of labels, else 8)")(
       "dims", po::value<uint32_t>()->default_value(defaults.dims), "MDS dimensions")(
@@ -75,9 +81,10 @@ Result<ClassifyCommandOptions> ReadClassifyOptions(const po::variables_map& vm) 
   options.archive = vm["archive"].as<std::string>();
   options.distance_name = vm["distance"].as<std::string>();
   const std::string& distance_name = options.distance_name;
-  if (distance_name != "emd" && distance_name != "emd-tf" && distance_name != "dtw") {
-    return Status::InvalidArgument("--distance must be emd, emd-tf or dtw, not '" + distance_name +
-                                   "'");
+  if (distance_name != "emd" && distance_name != "emd-tf" && distance_name != "dtw" &&
+      distance_name != "movement") {
+    return Status::InvalidArgument("--distance must be emd, emd-tf, dtw or movement, not '" +
+                                   distance_name + "'");
   }
   ClassifyOptions& classify = options.classify;
   const std::string groups = vm["groups"].as<std::string>();
@@ -132,7 +139,9 @@ Result<Eigen::MatrixXd> ClassifyDistances(const ClassifyCommandOptions& options,
                                           ProgressReporter& progress) {
   bool began = false;
   auto on_progress = [&](uint64_t done, uint64_t total) {
-    if (!began) progress.BeginStage(options.dtw() ? "dtw" : "emd", total, "takes");
+    if (!began) {
+      progress.BeginStage(options.needs_words() ? "emd" : options.distance_name, total, "takes");
+    }
     began = true;
     progress.Update(done);
   };
@@ -148,6 +157,8 @@ Result<Eigen::MatrixXd> ClassifyDistances(const ClassifyCommandOptions& options,
       takes.push_back({clips[clip].first_frame, clips[clip].first_frame + clips[clip].frame_count});
     }
     distances = TakeDtwMatrix(features, takes, options.dtw_step, threads, on_progress);
+  } else if (options.movement()) {
+    distances = TakeMovementMatrix(reader, take_clips, threads, on_progress);
   } else {
     std::vector<std::vector<double>> signatures;
     for (uint32_t clip : take_clips) {
@@ -174,11 +185,14 @@ Result<ClassifyOutcome> ClassifyArchiveTakes(const ClassifyCommandOptions& optio
   if (!options.labels_path.empty()) {
     MOTIF_ASSIGN_OR_RETURN(labels, ReadTakeLabels(options.labels_path));
   }
-  // The takes: clips with at least one word. DTW needs no words file: without one, the takes are
-  // those long enough for one word of the default geometry, the takes signatures would see.
+  // The takes: clips with at least one word. DTW and movement need no words file: without one,
+  // the takes are those long enough for one word of the default geometry, the takes signatures
+  // would see.
   const WordsPaths paths = DefaultWordsPaths(options.output.prefix_archive);
   Result<LoadedWords> words = LoadWords(*reader, paths, /*with_embedding=*/false);
-  if (!words.ok() && !(options.dtw() && words.status().IsNotFound())) return words.status();
+  if (!words.ok() && !(!options.needs_words() && words.status().IsNotFound())) {
+    return words.status();
+  }
   const WordOptions geometry = words.ok() ? words->signatures.words : WordOptions{};
   ClassifiedTakes takes = SelectClassifiedTakes(*reader, geometry, labels);
 
@@ -234,7 +248,7 @@ void PrintClassifySummary(const ClassifyCommandOptions& options, const ClassifyO
   std::printf(
       "motifmine classify: %s (%zu takes, distance %s%s)\n", options.archive.c_str(),
       r.names.size(), options.distance_name.c_str(),
-      options.dtw() ? "" : (" over " + std::to_string(outcome.motif_count) + " motifs").c_str());
+      !options.needs_words() ? "" : (" over " + std::to_string(outcome.motif_count) + " motifs").c_str());
   std::printf("  unsupervised MDS into %lld dimensions, k-means into %u groups",
               static_cast<long long>(r.mds.coordinates.cols()), r.group_count);
   if (!r.label_names.empty()) {

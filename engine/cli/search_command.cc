@@ -13,6 +13,7 @@
 #include "engine/report/words_report_html.h"
 #include "engine/signature/clip_words.h"
 #include "engine/signature/word_grid.h"
+#include "engine/words/movement_search.h"
 #include "engine/words/range_query.h"
 #include "engine/words/window_search.h"
 #include "engine/words/word_embedder.h"
@@ -174,6 +175,7 @@ nlohmann::json SearchJson(const SearchRun& run, const FrameFileReader& reader,
     query["file"] = query_file;
   }
   json["query"] = query;
+  json["distance"] = result.distance;
   json["motifs"] = info.motifs;
   json["windows"] = result.windows;
   json["overlap"] = "shared source frame";
@@ -183,7 +185,9 @@ nlohmann::json SearchJson(const SearchRun& run, const FrameFileReader& reader,
   for (uint32_t clip : result.wordless_clips) {
     if (info.query_in_archive && clip == info.query_clip) continue;
     left_out.push_back({{"clip", reader.clips()[clip].name},
-                        {"reason", "no motion word (shorter than one word)"}});
+                        {"reason", result.distance == "movement"
+                                       ? "too short to compare by movement (under two 0.1 s steps)"
+                                       : "no motion word (shorter than one word)"}});
   }
   json["left_out"] = left_out;
   json["notes"] = run.info.notes;
@@ -207,21 +211,25 @@ struct SearchCommandOptions {
   std::string weights_path;
   uint32_t top = 10;
   int threads = 0;
+  std::string distance = "emd";  // or "movement": whole takes only, no words files
   WordsReaderOutput output;
+  bool movement() const { return distance == "movement"; }
 };
 
 void AddSearchOptions(CommandSpec& spec) {
   spec.name = "search";
   spec.usage =
       "motifmine search ARCHIVE (--clip NAME [--start S --end E] | --query FILE.bvh) "
-      "[--top K] [--out DIR]";
+      "[--top K] [--distance emd|movement] [--out DIR]";
   spec.summary =
       "Finds the motions of ARCHIVE most like a query, by the Earth Mover's Distance between\n"
       "motion signatures (run `motifmine words` first). With a frame range of a clip, or a\n"
       "BVH/AMC file, a window of as many words as the query slides along every take; a take\n"
       "gives several windows, none sharing a frame with another (or with the query), ranked\n"
       "together. A query shorter than one word is padded to one, a take shorter than the query\n"
-      "compared whole. With a whole clip (no range), the other takes are ranked whole.\n"
+      "compared whole. With a whole clip (no range), the other takes are ranked whole;\n"
+      "--distance movement ranks them by their movement instead, the same action in another\n"
+      "style before another action (docs/guide.md, \"search\").\n"
       "Writes DIR/search.json and DIR/search.html.";
   spec.options.add_options()("clip", po::value<std::string>()->default_value(""),
                              "query: a clip of the archive")(
@@ -229,7 +237,10 @@ void AddSearchOptions(CommandSpec& spec) {
       "end", po::value<uint64_t>(), "end of the query range (exclusive)")(
       "query", po::value<std::string>()->default_value(""),
       "query: a BVH (or ASF/AMC) file, embedded with the archive's embedding")(
-      "top", po::value<uint32_t>()->default_value(10), "matches (windows) to keep, in all");
+      "top", po::value<uint32_t>()->default_value(10), "matches (windows) to keep, in all")(
+      "distance", po::value<std::string>()->default_value("emd"),
+      "emd (motion signatures) or movement (a whole clip: what moves and how, style-blind; "
+      "no words files needed)");
   AddTableFlags(spec, {"weights"});
   AddWordsReaderOptions(spec, "PREFIX.mwe, .mwm, .mws", "search");
   AddProgressOptions(spec);
@@ -257,6 +268,18 @@ int ReadSearchOptions(const CommandSpec& spec, const po::variables_map& vm,
     std::fprintf(stderr,
                  "motifmine search: --start and --end go together, with --clip\n"
                  "usage: %s\n",
+                 spec.usage.c_str());
+    return kExitUsage;
+  }
+  options->distance = vm["distance"].as<std::string>();
+  if (options->distance != "emd" && !options->movement()) {
+    return fail(Status::InvalidOption("distance", "must be emd or movement, not '" +
+                                                      options->distance + "'"));
+  }
+  if (options->movement() && (vm.count("start") || !options->query_file.empty())) {
+    std::fprintf(stderr,
+                 "motifmine search: --distance movement compares whole takes: give --clip NAME "
+                 "without --start and --end\nusage: %s\n",
                  spec.usage.c_str());
     return kExitUsage;
   }
@@ -341,6 +364,19 @@ Result<SearchResult> SearchQueryTake(const SearchCommandOptions& options,
   return WholeTakeSearch(frames, words, clip, options.top, options.threads);
 }
 
+// A whole clip by movement: the other takes ranked whole, no words read.
+Result<SearchResult> SearchMovementTake(const SearchCommandOptions& options,
+                                        const FrameFileReader& frames, uint32_t clip,
+                                        SearchRun* run) {
+  SearchPageInfo& info = run->info;
+  info.query_start = 0;
+  info.query_end = frames.clips()[clip].frame_count;
+  info.query_text = "the whole of clip " + options.clip_name;
+  run->info.notes.push_back("clip " + options.clip_name + " itself is left out");
+  run->query_kind = "take";
+  return WholeTakeMovementSearch(frames, clip, options.top, options.threads);
+}
+
 // A motion file, embedded with the archive's embedding: its words slide along every take.
 Result<SearchResult> SearchQueryFile(const SearchCommandOptions& options,
                                      const FrameFileReader& frames, const LoadedWords& words,
@@ -372,8 +408,12 @@ Status SearchArchive(const SearchCommandOptions& options, const FrameFileReader&
     MOTIF_ASSIGN_OR_RETURN(const uint32_t clip, FindQueryClip(frames, options));
     run->info.query_in_archive = true;
     run->info.query_clip = clip;
-    result = options.has_range ? SearchQueryRange(options, frames, words, clip, run)
-                               : SearchQueryTake(options, frames, words, clip, run);
+    if (options.movement()) {
+      result = SearchMovementTake(options, frames, clip, run);
+    } else {
+      result = options.has_range ? SearchQueryRange(options, frames, words, clip, run)
+                                 : SearchQueryTake(options, frames, words, clip, run);
+    }
   } else {
     result = SearchQueryFile(options, frames, words, run);
   }
@@ -425,8 +465,10 @@ void PrintSearchShorter(const FrameFileReader& frames, const SearchRun& run) {
 void PrintSearchSummary(const SearchCommandOptions& options, const FrameFileReader& frames,
                         const SearchRun& run) {
   const SearchResult& result = run.result;
+  const bool movement = result.distance == "movement";
   std::printf("motifmine search: %s, query %s (%s)\n", options.archive.c_str(),
-              run.info.query_text.c_str(), CountOf(run.info.query_words, "word").c_str());
+              run.info.query_text.c_str(),
+              movement ? "by movement" : CountOf(run.info.query_words, "word").c_str());
   for (const std::string& note : run.info.notes) std::printf("  note         %s\n", note.c_str());
   const double fps = frames.fps();
   for (size_t rank = 0; rank < result.matches.size(); ++rank) {
@@ -435,14 +477,16 @@ void PrintSearchSummary(const SearchCommandOptions& options, const FrameFileRead
                                 : match.whole_take
                                     ? "  (the whole take)"
                                     : "  (its take's #" + std::to_string(match.rank_in_take) + ")";
-    std::printf("  %2zu. %-20s frames %7llu-%-7llu (%.2f-%.2f s)  EMD %.4f%s\n", rank + 1,
+    std::printf("  %2zu. %-20s frames %7llu-%-7llu (%.2f-%.2f s)  %s %.4f%s\n", rank + 1,
                 frames.clips()[match.clip].name.c_str(),
                 static_cast<unsigned long long>(match.start_frame),
                 static_cast<unsigned long long>(match.end_frame), match.start_frame / fps,
-                match.end_frame / fps, match.distance, in_take.c_str());
+                match.end_frame / fps, movement ? "distance" : "EMD", match.distance,
+                in_take.c_str());
   }
-  std::printf("  compared     %s windows in %.2fs%s\n", WithCommas(result.windows).c_str(),
-              run.info.seconds, result.whole_take ? "" : "; a take's matches share no frame");
+  std::printf("  compared     %s %s in %.2fs%s\n", WithCommas(result.windows).c_str(),
+              movement ? "takes" : "windows", run.info.seconds,
+              result.whole_take ? "" : "; a take's matches share no frame");
   PrintSearchShorter(frames, run);
   std::printf("  wrote        %s, %s\n", options.output.json_path.c_str(),
               options.output.html_path.c_str());
@@ -462,8 +506,10 @@ int RunSearch(const std::vector<std::string>& args) {
   Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(options.archive);
   if (!reader.ok()) return fail(reader.status());
   const FrameFileReader& frames = **reader;
+  // The movement distance reads no words: an archive without them is searched with none.
   Result<LoadedWords> words = LoadWords(frames, DefaultWordsPaths(options.output.prefix_archive),
                                         /*with_embedding=*/!options.query_file.empty());
+  if (!words.ok() && options.movement() && words.status().IsNotFound()) words = LoadedWords();
   if (!words.ok()) return fail(words.status());
   SearchRun run;
   if (Status status = SearchArchive(options, frames, *words, &run); !status.ok()) {

@@ -39,9 +39,15 @@ Status AppendSearchQuery(const SearchResult& result, const FrameFileReader& read
   *html += "<h1>motifmine search</h1>\n<section id=\"overview\"><h2>Query</h2><table class=\"kv\">";
   *html += HtmlRow("archive", "<code>" + HtmlEscape(info.archive) + "</code> (" +
                                   WithCommas(reader.clips().size()) + " clips)");
-  *html += HtmlRow("query", HtmlEscape(info.query_text) + ", " + WithCommas(info.query_words) +
-                                (info.query_words == 1 ? " word" : " words"));
-  *html += HtmlRow("search", result.whole_take
+  const bool movement = result.distance == "movement";
+  *html += HtmlRow("query", movement ? HtmlEscape(info.query_text)
+                                     : HtmlEscape(info.query_text) + ", " +
+                                           WithCommas(info.query_words) +
+                                           (info.query_words == 1 ? " word" : " words"));
+  *html += HtmlRow("search", movement ? "whole takes: the movement distance (what moves, how, and "
+                                        "where the body goes; blind to posture, amplitude and "
+                                        "tempo)"
+                             : result.whole_take
                                  ? "whole takes: the EMD between take signatures over " +
                                        std::to_string(info.motifs) + " motifs"
                                  : "a window of " + WithCommas(info.query_words) +
@@ -90,13 +96,16 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
   KeyframeFigures figures(reader, FigureView::kSide, 5);
   std::string html = HtmlPageStart("motifmine search: " + info.archive, kWordsCss);
   MOTIF_RETURN_IF_ERROR(AppendSearchQuery(result, reader, info, &figures, &html));
-  html +=
-      "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">Best first, "
-      "ranked across takes. A take may give several windows, none sharing a frame: its best, "
-      "then its best not overlapping that one, and so on (#2, #3 ...); a take of fewer words "
-      "than the query is compared whole. The strip under each match shows the EMD of every "
-      "window along its take, darker where closer; the box marks the match. Frames are "
-      "0-based within the clip, the end excluded.</p>\n";
+  html += "</section>\n<section id=\"matches\"><h2>Matches</h2><p class=\"note\">";
+  html += result.whole_take
+              ? "Best first: every other take compared whole, one match each. Frames are 0-based "
+                "within the clip, the end excluded.</p>\n"
+              : "Best first, ranked across takes. A take may give several windows, none sharing "
+                "a frame: its best, then its best not overlapping that one, and so on (#2, #3 "
+                "...); a take of fewer words than the query is compared whole. The strip under "
+                "each match shows the EMD of every window along its take, darker where closer; "
+                "the box marks the match. Frames are 0-based within the clip, the end "
+                "excluded.</p>\n";
   if (result.matches.empty())
     html += "<p>No window to show: every take is the query's own or holds no motion word.</p>\n";
   // One shade scale for every profile on the page.
@@ -116,7 +125,9 @@ Result<std::string> SearchHtmlText(const SearchResult& result, const FrameFileRe
     html += "<div class=\"match\"><h3>" + std::to_string(rank + 1) + ". " + HtmlEscape(clip.name) +
             " <span class=\"note\">frames " + std::to_string(match.start_frame) + "\u2013" +
             std::to_string(match.end_frame) + " (" + HtmlSeconds(match.start_frame, fps) + " to " +
-            HtmlSeconds(match.end_frame, fps) + "), EMD " + HtmlNumber("%.4f", match.distance) +
+            HtmlSeconds(match.end_frame, fps) + "), " +
+            (result.distance == "movement" ? "distance " : "EMD ") +
+            HtmlNumber("%.4f", match.distance) +
             (result.whole_take  ? std::string()
              : match.whole_take ? std::string(", the whole take")
                                 : ", its take's #" + std::to_string(match.rank_in_take)) +

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -58,6 +59,7 @@ struct WindowQuery {
 };
 
 struct SearchResult {
+  std::string distance = "emd";  // or "movement" (movement_search.h)
   bool whole_take = false;
   std::vector<WindowMatch> matches;          // the top windows, best first
   std::vector<std::vector<float>> profiles;  // per match: the EMD of every window of its take

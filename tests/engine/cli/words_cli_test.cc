@@ -277,7 +277,7 @@ TEST_F(WordsCliTest, ClassifyWritesItsDocumentWithAndWithoutLabels) {
     }
     labels << "not_a_clip\teven\n";
   }
-  for (const char* distance : {"emd", "emd-tf", "dtw"}) {
+  for (const char* distance : {"emd", "emd-tf", "dtw", "movement"}) {
     RunResult labelled = RunTool("classify " + archive_ + " --labels " + dir_->File("labels.tsv") +
                                  " --distance " + distance + " --out " + dir_->File(distance));
     ASSERT_EQ(labelled.exit_code, 0) << labelled.output;
@@ -288,6 +288,40 @@ TEST_F(WordsCliTest, ClassifyWritesItsDocumentWithAndWithoutLabels) {
     EXPECT_EQ(doc["supervised"]["labelled"], takes);
     EXPECT_EQ(doc["takes"].size(), takes);
   }
+}
+
+// The movement distance reads the frames alone: no words files are needed (the prefix names
+// none) or written, and the thread count changes nothing in the document.
+TEST_F(WordsCliTest, ClassifyByMovementNeedsNoWordsFiles) {
+  std::string documents[2];
+  for (int threads : {1, 2}) {
+    const std::string out = dir_->File("movement" + std::to_string(threads));
+    RunResult run = RunTool("classify " + archive_ + " --distance movement --prefix " +
+                            dir_->File("none") + " --threads " + std::to_string(threads) +
+                            " --out " + out);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("distance movement)"), std::string::npos) << run.output;
+    nlohmann::json json = ReadJson(out + "/classify.json");
+    EXPECT_EQ(json["distance"], "movement");
+    EXPECT_GT(json["takes"].size(), 5u);
+    json.erase("seconds_distances");
+    documents[threads - 1] = json.dump();
+  }
+  EXPECT_EQ(documents[0], documents[1]);
+  // search ranks the other takes whole by the same distance, the query left out.
+  const std::string out = dir_->File("movement-search");
+  RunResult search = RunTool("search " + archive_ + " --clip synth_000002 --distance movement " +
+                             "--top 3 --prefix " + dir_->File("none") + " --out " + out);
+  ASSERT_EQ(search.exit_code, 0) << search.output;
+  const nlohmann::json found = ReadJson(out + "/search.json");
+  EXPECT_EQ(found["distance"], "movement");
+  ASSERT_EQ(found["matches"].size(), 3u);
+  for (const auto& match : found["matches"]) {
+    EXPECT_NE(match["clip"], "synth_000002");
+    EXPECT_TRUE(match["whole_take"].get<bool>());
+  }
+  EXPECT_LE(found["matches"][0]["distance"], found["matches"][1]["distance"]);
+  EXPECT_FALSE(testing::FileExists(dir_->File("none.mws")));
 }
 
 TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
@@ -317,6 +351,10 @@ TEST_F(WordsCliTest, BadInputGivesAClearErrorAndChangesNothing) {
   expect("search " + archive_ + " --clip synth_000001 --start 5", 2,
          "--start and --end go together");
   expect("search " + archive_ + " --clip nope", 11, "no clip named 'nope'");
+  expect("search " + archive_ + " --clip synth_000001 --start 0 --end 500 --distance movement", 2,
+         "--distance movement compares whole takes");
+  expect("search " + archive_ + " --clip synth_000001 --distance cosine", 13,
+         "--distance must be emd or movement");
   // A range shorter than one word is no longer refused: padded to one (its own test above).
   expect(
       "search " + archive_ + " --clip synth_000001 --start 10 --end 50 --out " + dir_->File("tiny"),
