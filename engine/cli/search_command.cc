@@ -127,6 +127,12 @@ nlohmann::json ClipNames(const FrameFileReader& reader, const std::vector<uint32
   return names;
 }
 
+// Why the takes of result.wordless_clips were not compared.
+const char* LeftOutReason(const SearchResult& result) {
+  return result.distance == "movement" ? "too short to compare by movement (under two 0.1 s steps)"
+                                       : "no motion word (shorter than one word)";
+}
+
 nlohmann::json MatchJson(const SearchResult& result, const FrameFileReader& reader, size_t rank) {
   const WindowMatch& match = result.matches[rank];
   const double fps = reader.fps();
@@ -184,10 +190,7 @@ nlohmann::json SearchJson(const SearchRun& run, const FrameFileReader& reader,
   nlohmann::json left_out = nlohmann::json::array();
   for (uint32_t clip : result.wordless_clips) {
     if (info.query_in_archive && clip == info.query_clip) continue;
-    left_out.push_back({{"clip", reader.clips()[clip].name},
-                        {"reason", result.distance == "movement"
-                                       ? "too short to compare by movement (under two 0.1 s steps)"
-                                       : "no motion word (shorter than one word)"}});
+    left_out.push_back({{"clip", reader.clips()[clip].name}, {"reason", LeftOutReason(result)}});
   }
   json["left_out"] = left_out;
   json["notes"] = run.info.notes;
@@ -457,8 +460,8 @@ void PrintSearchShorter(const FrameFileReader& frames, const SearchRun& run) {
     if (!run.info.query_in_archive || clip != run.info.query_clip) wordless.push_back(clip);
   }
   if (!wordless.empty()) {
-    std::printf("  left out     %s of no motion word (shorter than one word)%s\n",
-                CountOf(wordless.size(), "take").c_str(), ClipList(frames, wordless).c_str());
+    std::printf("  left out     %s: %s%s\n", CountOf(wordless.size(), "take").c_str(),
+                LeftOutReason(result), ClipList(frames, wordless).c_str());
   }
 }
 
@@ -506,10 +509,12 @@ int RunSearch(const std::vector<std::string>& args) {
   Result<std::unique_ptr<FrameFileReader>> reader = FrameFileReader::Open(options.archive);
   if (!reader.ok()) return fail(reader.status());
   const FrameFileReader& frames = **reader;
-  // The movement distance reads no words: an archive without them is searched with none.
-  Result<LoadedWords> words = LoadWords(frames, DefaultWordsPaths(options.output.prefix_archive),
-                                        /*with_embedding=*/!options.query_file.empty());
-  if (!words.ok() && options.movement() && words.status().IsNotFound()) words = LoadedWords();
+  // The movement distance reads no words, so none are loaded for it.
+  Result<LoadedWords> words =
+      options.movement()
+          ? Result<LoadedWords>(LoadedWords())
+          : LoadWords(frames, DefaultWordsPaths(options.output.prefix_archive),
+                      /*with_embedding=*/!options.query_file.empty());
   if (!words.ok()) return fail(words.status());
   SearchRun run;
   if (Status status = SearchArchive(options, frames, *words, &run); !status.ok()) {

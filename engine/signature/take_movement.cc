@@ -184,6 +184,20 @@ double StepsDtw(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return previous[m - 1] / static_cast<double>(a.rows() + m);
 }
 
+// One pair's two terms before scaling: the summaries' distance and the steps' DTW.
+struct PairTerms {
+  double summary = 0;
+  double steps = 0;
+};
+
+PairTerms TermsBetween(const std::vector<TakeMovement>& takes, const Eigen::MatrixXd& summaries,
+                       size_t a, size_t b) {
+  return {(summaries.row(static_cast<Eigen::Index>(a)) -
+           summaries.row(static_cast<Eigen::Index>(b)))
+              .norm(),
+          StepsDtw(takes[a].steps, takes[b].steps)};
+}
+
 // The summaries as rows, every column z-scored over the takes and each block weighed by one
 // over the square root of its size.
 Eigen::MatrixXd WeighedSummaries(const std::vector<TakeMovement>& takes) {
@@ -237,7 +251,7 @@ Result<TakeMovement> ReadTakeMovement(const FrameFileReader& reader, uint32_t cl
   const ClipInfo& info = reader.clips().at(clip);
   MOTIF_ASSIGN_OR_RETURN(BodyTrack track, ReadBodyTrack(reader, info, landmarks));
   const std::vector<size_t> at = StepFrames(track);
-  if (track.landmarks.front().empty() || at.size() < 2) {
+  if (at.size() < 2 || track.landmarks.front().empty()) {
     return Status::InvalidArgument(
         "clip " + info.name + ": too short to compare by movement (" +
         std::to_string(info.frame_count) + " frames; it needs two steps of 0.1 s)");
@@ -262,8 +276,10 @@ Eigen::MatrixXd MovementDistanceMatrix(const std::vector<TakeMovement>& takes, i
     tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, n, 1), [&](const auto& range) {
       for (Eigen::Index row = range.begin(); row != range.end(); ++row) {
         for (Eigen::Index col = row + 1; col < n; ++col) {
-          summary(row, col) = summary(col, row) = (rows.row(row) - rows.row(col)).norm();
-          steps(row, col) = steps(col, row) = StepsDtw(takes[row].steps, takes[col].steps);
+          const PairTerms terms = TermsBetween(takes, rows, static_cast<size_t>(row),
+                                               static_cast<size_t>(col));
+          summary(row, col) = summary(col, row) = terms.summary;
+          steps(row, col) = steps(col, row) = terms.steps;
         }
         if (progress) progress(++done, static_cast<uint64_t>(n));
       }
@@ -284,10 +300,9 @@ std::vector<double> MovementDistancesFrom(const std::vector<TakeMovement>& takes
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1), [&](const auto& range) {
       for (size_t other = range.begin(); other != range.end(); ++other) {
         if (other == query) continue;
-        const auto a = static_cast<Eigen::Index>(query);
-        const auto b = static_cast<Eigen::Index>(other);
-        summary[other] = (rows.row(a) - rows.row(b)).norm();
-        steps[other] = StepsDtw(takes[query].steps, takes[other].steps);
+        const PairTerms terms = TermsBetween(takes, rows, query, other);
+        summary[other] = terms.summary;
+        steps[other] = terms.steps;
       }
     });
   });
