@@ -155,9 +155,9 @@ void PrintClusterReport(const std::string& out_path, const ClusterResult& result
       WithCommas(similarity.linked_pairs).c_str(),
       WithCommas(report.warped_stats.dropped_edges).c_str(), options.warped.max_scales);
   std::printf(
-      "  time         instances %.2fs, similarity %.2fs (%s blocks), warped distance %.2fs, cut "
-      "%.2fs (%s eigenvectors), representatives %.2fs\n",
-      report.instance_seconds, similarity.seconds, WithCommas(similarity.blocks_decoded).c_str(),
+      "  time         instances %.2fs, samples %.2fs, similarity %.2fs (%s blocks), warped distance "
+      "%.2fs, cut %.2fs (%s eigenvectors), representatives %.2fs\n",
+      report.instance_seconds, report.sample_seconds, similarity.seconds, WithCommas(similarity.blocks_decoded).c_str(),
       report.warped_stats.seconds, report.cut_seconds,
       WithCommas(report.cut_stats.eigen_solves).c_str(), report.representative_seconds);
   for (size_t rank = 0; rank < std::min<size_t>(5, document.motifs.size()); ++rank) {

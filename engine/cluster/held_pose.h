@@ -4,20 +4,18 @@
 // when every one of its frames lies within eps of its middle frame (the pose distance D with the
 // skeleton's default weights): the matching radius says which poses count as the same, so a held
 // pose is one pose for the whole instance. Such instances are never motif instances.
-// Thread-safety: pure function; the reader may be shared.
+// The cluster stage flags its instances while it reads their samples (instance_samples.h).
+// Thread-safety: pure function.
 #pragma once
 
-#include <vector>
+#include <cstdint>
 
-#include "common/status.h"
-#include "engine/cluster/motif_instance.h"
-#include "formats/frame_file/frame_file_reader.h"
+#include "engine/distance/pose_features.h"
 
 namespace motif {
 
-// One flag per instance (global frame ranges of `archive`). InvalidArgument if an instance lies
-// outside the archive; Corruption from reading it.
-Result<std::vector<bool>> FindHeldPoses(const FrameFileReader& archive,
-                                        const std::vector<MotifInstance>& instances, float eps);
+// True if every one of the `length` frames of `features` (an instance's frames, length >= 1)
+// lies within eps of the middle one, frame length / 2.
+bool IsHeldPose(const PoseFeatures& features, uint64_t length, float eps);
 
 }  // namespace motif

@@ -20,11 +20,14 @@ namespace motif {
 inline constexpr uint64_t kJoinGapFrames = 2048;
 inline constexpr uint64_t kMaxSpanFrames = 16384;
 
-// Calls visit(instance index, its rows: length() * layout().stride() floats) once per instance,
-// in order of start (ties by index). InvalidArgument naming the instance if one lies outside the
-// archive or is empty; errors of the reader and of `visit` pass through.
+// Calls visit(instance index, its rows: length() * layout().stride() floats) once per instance.
+// With threads 1, in order of start (ties by index); otherwise the spans are decoded in parallel
+// (threads 0: all cores) and `visit` runs concurrently for instances of different spans.
+// InvalidArgument naming the instance if one lies outside the archive or is empty; errors of the
+// reader and of `visit` pass through (the first in span order).
 Status ForEachInstanceRows(const FrameFileReader& archive,
                            const std::vector<MotifInstance>& instances,
-                           const std::function<Status(size_t, const float*)>& visit);
+                           const std::function<Status(size_t, const float*)>& visit,
+                           int threads = 1);
 
 }  // namespace motif

@@ -4,10 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <optional>
 
 #include "common/seconds_since.h"
-#include "engine/cluster/held_pose.h"
 #include "engine/cluster/instance_interval_index.h"
+#include "engine/cluster/instance_samples.h"
 #include "engine/cluster/motif_representatives.h"
 
 namespace motif {
@@ -217,7 +218,7 @@ Status CheckCandidatesInTrellis(const std::vector<PathCandidate>& candidates, ui
 // The pauses of the archive near the candidates' non-empty segments.
 Result<std::vector<MotifInstance>> PausesNearCandidates(
     const FrameFileReader& archive, const PauseOptions& pauses,
-    const std::vector<PathCandidate>& candidates) {
+    const std::vector<PathCandidate>& candidates, int threads) {
   std::vector<MotifInstance> segments;
   segments.reserve(2 * candidates.size());
   for (const PathCandidate& candidate : candidates) {
@@ -228,7 +229,7 @@ Result<std::vector<MotifInstance>> PausesNearCandidates(
       segments.push_back({candidate.match_start, candidate.match_end});
     }
   }
-  return FindPausesNear(archive, pauses, std::move(segments));
+  return FindPausesNear(archive, pauses, std::move(segments), threads);
 }
 
 // Frames of the archive in some instance of a motif (overlaps counted once).
@@ -251,8 +252,9 @@ uint64_t CoveredByMotifs(const std::vector<Motif>& motifs,
 }
 
 // The instance graph: shared similar frames from the trellis, reweighted by the instances'
-// time-warped distance when the archive is given.
+// time-warped distance when their samples are given.
 Result<SimilarityGraph> InstanceGraph(const TrellisFileReader& trellis, const InstanceSet& set,
+                                      const InstanceSamples* samples,
                                       const ClusterOptions& options, ClusterReport* report) {
   SimilarityOptions similarity = options.similarity;
   similarity.threads = options.threads;
@@ -264,12 +266,12 @@ Result<SimilarityGraph> InstanceGraph(const TrellisFileReader& trellis, const In
   MOTIF_ASSIGN_OR_RETURN(SimilarityGraph graph,
                          BuildSimilarityGraph(trellis, set.instances, set.links, similarity,
                                               &report->similarity_stats));
-  if (options.archive != nullptr) {
+  if (samples != nullptr) {
     WarpedSimilarityOptions warped = options.warped;
     warped.threads = options.threads;
     MOTIF_ASSIGN_OR_RETURN(
-        graph, ReweightByWarpedDistance(*options.archive, set.instances, graph,
-                                        trellis.params().eps, warped, &report->warped_stats));
+        graph, ReweightByWarpedDistance(*samples, set.instances, graph, trellis.params().eps,
+                                        warped, &report->warped_stats));
   }
   return graph;
 }
@@ -285,14 +287,25 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
   InstanceOptions instance_options = options.instances;
   if (options.archive != nullptr) {
     MOTIF_ASSIGN_OR_RETURN(instance_options.pauses,
-                           PausesNearCandidates(*options.archive, options.pauses, candidates));
+                           PausesNearCandidates(*options.archive, options.pauses, candidates,
+                                                options.threads));
   }
   result.report.pauses = instance_options.pauses.size();
   InstanceSet set = BuildInstances(candidates, instance_options);
   result.report.instance_stats = set.stats;
   result.report.instance_seconds = SecondsSince(started);
+  // What the warped distances, the held poses and the representatives read of the instances.
+  std::optional<InstanceSamples> samples;
+  if (options.archive != nullptr) {
+    started = std::chrono::steady_clock::now();
+    MOTIF_ASSIGN_OR_RETURN(samples, ReadInstanceSamples(*options.archive, set.instances,
+                                                        std::max(options.warped.samples, 2u),
+                                                        trellis.params().eps, options.threads));
+    result.report.sample_seconds = SecondsSince(started);
+  }
   MOTIF_ASSIGN_OR_RETURN(SimilarityGraph graph,
-                         InstanceGraph(trellis, set, options, &result.report));
+                         InstanceGraph(trellis, set, samples ? &*samples : nullptr, options,
+                                       &result.report));
 
   started = std::chrono::steady_clock::now();
   NormalizedCutOptions cut = options.cut;
@@ -301,14 +314,12 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
   std::vector<std::vector<uint32_t>> groups =
       ClusterByNormalizedCut(graph, cut, &result.report.cut_stats);
   result.report.cut_seconds = SecondsSince(started);
-  if (options.archive != nullptr) {
+  if (samples) {
     // Held poses (the body does not move for the whole instance) are never motif instances.
-    MOTIF_ASSIGN_OR_RETURN(const std::vector<bool> held,
-                           FindHeldPoses(*options.archive, set.instances, trellis.params().eps));
     for (std::vector<uint32_t>& group : groups) {
-      std::erase_if(group, [&](uint32_t id) { return held[id]; });
+      std::erase_if(group, [&](uint32_t id) { return samples->held[id] != 0; });
     }
-    result.report.held_poses = std::count(held.begin(), held.end(), true);
+    result.report.held_poses = std::count(samples->held.begin(), samples->held.end(), 1);
   }
 
   result.motifs = RankMotifs(groups, set.instances, set.links, options.max_length_ratio,
@@ -317,10 +328,9 @@ Result<ClusterResult> ClusterMotifs(const std::vector<PathCandidate>& candidates
     result.report.clustered_instances += motif.instances.size();
   }
   result.report.covered_frames = CoveredByMotifs(result.motifs, set.instances);
-  if (options.archive != nullptr) {
+  if (samples) {
     started = std::chrono::steady_clock::now();
-    MOTIF_RETURN_IF_ERROR(FindRepresentatives(
-        *options.archive, set.instances, options.warped.samples, options.threads, &result.motifs));
+    MOTIF_RETURN_IF_ERROR(FindRepresentatives(*samples, options.threads, &result.motifs));
     result.report.representative_seconds = SecondsSince(started);
   }
   result.instances = std::move(set.instances);

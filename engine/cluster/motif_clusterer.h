@@ -95,6 +95,7 @@ struct ClusterReport {
   WarpedSimilarityStats warped_stats;
   uint64_t covered_frames = 0;  // distinct frames inside some motif instance
   double instance_seconds = 0;
+  double sample_seconds = 0;  // the instances' samples and held poses read (instance_samples.h)
   double cut_seconds = 0;
   double representative_seconds = 0;  // motif_representatives.h
 };

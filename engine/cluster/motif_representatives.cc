@@ -21,21 +21,24 @@ uint32_t MedoidIndex(const std::vector<double>& distances, size_t count) {
   return best;
 }
 
-Status FindRepresentatives(const FrameFileReader& archive,
-                           const std::vector<MotifInstance>& instances, uint32_t samples,
-                           int threads, std::vector<Motif>* motifs) {
-  // Every pair within each motif, measured in one parallel batch.
+namespace {
+
+// Every pair within each motif, the one that starts first (the lower id: ids ascend by start
+// within a motif) first, as in the graph.
+std::vector<std::pair<uint32_t, uint32_t>> PairsWithinMotifs(const std::vector<Motif>& motifs) {
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (const Motif& motif : *motifs) {
+  for (const Motif& motif : motifs) {
     for (size_t a = 0; a < motif.instances.size(); ++a) {
       for (size_t b = a + 1; b < motif.instances.size(); ++b) {
-        // Ids ascend within a motif (by start): the first to start comes first, as in the graph.
         pairs.emplace_back(motif.instances[a], motif.instances[b]);
       }
     }
   }
-  MOTIF_ASSIGN_OR_RETURN(const std::vector<double> measured,
-                         WarpedDistances(archive, instances, pairs, samples, threads));
+  return pairs;
+}
+
+// Each motif's medoid and distances from `measured`, the pairs of PairsWithinMotifs in order.
+void SetRepresentatives(const std::vector<double>& measured, std::vector<Motif>* motifs) {
   size_t next = 0;
   for (Motif& motif : *motifs) {
     const size_t count = motif.instances.size();
@@ -50,6 +53,25 @@ Status FindRepresentatives(const FrameFileReader& archive,
     motif.distances.assign(matrix.begin() + motif.representative * count,
                            matrix.begin() + (motif.representative + 1) * count);
   }
+}
+
+}  // namespace
+
+Status FindRepresentatives(const FrameFileReader& archive,
+                           const std::vector<MotifInstance>& instances, uint32_t samples,
+                           int threads, std::vector<Motif>* motifs) {
+  MOTIF_ASSIGN_OR_RETURN(
+      const std::vector<double> measured,
+      WarpedDistances(archive, instances, PairsWithinMotifs(*motifs), samples, threads));
+  SetRepresentatives(measured, motifs);
+  return Status::Ok();
+}
+
+Status FindRepresentatives(const InstanceSamples& samples, int threads,
+                           std::vector<Motif>* motifs) {
+  MOTIF_ASSIGN_OR_RETURN(const std::vector<double> measured,
+                         WarpedDistances(samples, PairsWithinMotifs(*motifs), threads));
+  SetRepresentatives(measured, motifs);
   return Status::Ok();
 }
 

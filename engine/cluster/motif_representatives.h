@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "engine/cluster/instance_samples.h"
 #include "engine/cluster/motif_clusterer.h"
 #include "engine/cluster/motif_instance.h"
 #include "formats/frame_file/frame_file_reader.h"
@@ -30,5 +31,10 @@ uint32_t MedoidIndex(const std::vector<double>& distances, size_t count);
 Status FindRepresentatives(const FrameFileReader& archive,
                            const std::vector<MotifInstance>& instances, uint32_t samples,
                            int threads, std::vector<Motif>* motifs);
+
+// The same on the instances' samples already read (ReadInstanceSamples over all of `instances`),
+// which the clustering's warped distances measured too.
+Status FindRepresentatives(const InstanceSamples& samples, int threads,
+                           std::vector<Motif>* motifs);
 
 }  // namespace motif

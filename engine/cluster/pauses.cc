@@ -1,5 +1,9 @@
 #include "engine/cluster/pauses.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -104,9 +108,49 @@ Result<std::vector<MotifInstance>> FindPauses(const FrameFileReader& archive,
   return FindPausesNear(archive, options, std::move(clips));
 }
 
+namespace {
+
+// What FindPausesNear needs to scan one neighbourhood.
+struct PauseScan {
+  const FrameFileReader& archive;
+  const PauseOptions& options;
+  std::vector<float> weights;
+  uint64_t h = 0;           // the speed's half window, frames
+  uint64_t min_frames = 0;  // the shortest pause, frames
+};
+
+// The pauses of `range` (inside one clip), ascending, into *pauses.
+Status PausesInRange(const PauseScan& scan, const MotifInstance& range, std::vector<float>* rows,
+                     std::vector<MotifInstance>* pauses) {
+  const FrameFileReader& archive = scan.archive;
+  const ClipInfo& clip = archive.clips()[archive.ClipOfFrame(range.start)];
+  const uint64_t clip_end = clip.first_frame + clip.frame_count;
+  uint64_t run_start = 0;
+  bool in_run = false;
+  for (uint64_t from = range.start; from < range.end; from += kChunkFrames) {
+    const uint64_t count = std::min(kChunkFrames, range.end - from);
+    // Read h frames either side (within the clip) so the chunk's speeds equal the clip's.
+    const uint64_t read_from = from - std::min(scan.h, from - clip.first_frame);
+    const uint64_t read_end = std::min(clip_end, from + count + scan.h);
+    MOTIF_RETURN_IF_ERROR(archive.ReadFrames(read_from, read_end - read_from, rows));
+    const std::vector<double> speeds = FrameSpeeds(rows->data(), read_end - read_from,
+                                                   archive.layout().joint_count, scan.weights,
+                                                   archive.fps());
+    const std::vector<double> own(
+        speeds.begin() + static_cast<ptrdiff_t>(from - read_from),
+        speeds.begin() + static_cast<ptrdiff_t>(from - read_from + count));
+    CollectRuns(own, from, count, scan.options.max_speed, scan.min_frames, &run_start, &in_run,
+                pauses);
+  }
+  if (in_run && range.end - run_start >= scan.min_frames) pauses->push_back({run_start, range.end});
+  return Status::Ok();
+}
+
+}  // namespace
+
 Result<std::vector<MotifInstance>> FindPausesNear(const FrameFileReader& archive,
                                                   const PauseOptions& options,
-                                                  std::vector<MotifInstance> near) {
+                                                  std::vector<MotifInstance> near, int threads) {
   MOTIF_RETURN_IF_ERROR(ValidatePauseOptions(options));
   std::vector<MotifInstance> pauses;
   if (options.max_speed == 0 || near.empty()) return pauses;
@@ -117,32 +161,36 @@ Result<std::vector<MotifInstance>> FindPausesNear(const FrameFileReader& archive
                                      ") is not a frame range of the archive");
     }
   }
-  MOTIF_ASSIGN_OR_RETURN(const std::vector<float> weights,
-                         LoadDistanceWeights(archive.skeleton(), ""));
-  const uint32_t joint_count = archive.layout().joint_count;
-  const uint64_t h = HalfWindow(archive.fps());
-  const uint64_t min_frames = std::max<uint64_t>(
+  PauseScan scan{archive, options, {}, HalfWindow(archive.fps()), 1};
+  MOTIF_ASSIGN_OR_RETURN(scan.weights, LoadDistanceWeights(archive.skeleton(), ""));
+  scan.min_frames = std::max<uint64_t>(
       1, static_cast<uint64_t>(std::lround(options.min_seconds * archive.fps())));
-  std::vector<float> rows;
-  for (const MotifInstance& range : Neighbourhoods(archive, std::move(near), min_frames)) {
-    const ClipInfo& clip = archive.clips()[archive.ClipOfFrame(range.start)];
-    const uint64_t clip_end = clip.first_frame + clip.frame_count;
-    uint64_t run_start = 0;
-    bool in_run = false;
-    for (uint64_t from = range.start; from < range.end; from += kChunkFrames) {
-      const uint64_t count = std::min(kChunkFrames, range.end - from);
-      // Read h frames either side (within the clip) so the chunk's speeds equal the clip's.
-      const uint64_t read_from = from - std::min(h, from - clip.first_frame);
-      const uint64_t read_end = std::min(clip_end, from + count + h);
-      MOTIF_RETURN_IF_ERROR(archive.ReadFrames(read_from, read_end - read_from, &rows));
-      const std::vector<double> speeds =
-          FrameSpeeds(rows.data(), read_end - read_from, joint_count, weights, archive.fps());
-      const std::vector<double> own(
-          speeds.begin() + static_cast<ptrdiff_t>(from - read_from),
-          speeds.begin() + static_cast<ptrdiff_t>(from - read_from + count));
-      CollectRuns(own, from, count, options.max_speed, min_frames, &run_start, &in_run, &pauses);
+  const std::vector<MotifInstance> ranges =
+      Neighbourhoods(archive, std::move(near), scan.min_frames);
+  // Each neighbourhood scanned on its own (in parallel unless threads is 1), then joined in order.
+  std::vector<std::vector<MotifInstance>> found(ranges.size());
+  std::vector<Status> statuses(ranges.size());
+  auto scan_all = [&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ranges.size()), [&](const auto& block) {
+      std::vector<float> rows;
+      for (size_t idx = block.begin(); idx != block.end(); ++idx) {
+        statuses[idx] = PausesInRange(scan, ranges[idx], &rows, &found[idx]);
+      }
+    });
+  };
+  if (threads == 1) {
+    std::vector<float> rows;
+    for (size_t idx = 0; idx < ranges.size(); ++idx) {
+      MOTIF_RETURN_IF_ERROR(PausesInRange(scan, ranges[idx], &rows, &found[idx]));
     }
-    if (in_run && range.end - run_start >= min_frames) pauses.push_back({run_start, range.end});
+  } else if (threads > 0) {
+    tbb::task_arena(threads).execute(scan_all);
+  } else {
+    scan_all();
+  }
+  for (size_t idx = 0; idx < ranges.size(); ++idx) {
+    MOTIF_RETURN_IF_ERROR(statuses[idx]);
+    pauses.insert(pauses.end(), found[idx].begin(), found[idx].end());
   }
   return pauses;
 }

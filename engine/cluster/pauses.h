@@ -41,10 +41,12 @@ Result<std::vector<MotifInstance>> FindPauses(const FrameFileReader& archive,
 // cent of the archive, and reading all of it cost 3.7 s). Trimming an instance of `near` at
 // these gives what the whole archive's pauses give: a pause at least min_seconds long that
 // overlaps the instance shows at least min_seconds of itself within that margin.
-// InvalidArgument for a range outside the archive.
+// The stretches are scanned in parallel unless threads is 1 (0: all cores); the result does not
+// depend on it. InvalidArgument for a range outside the archive.
 Result<std::vector<MotifInstance>> FindPausesNear(const FrameFileReader& archive,
                                                   const PauseOptions& options,
-                                                  std::vector<MotifInstance> near);
+                                                  std::vector<MotifInstance> near,
+                                                  int threads = 1);
 
 // The speed of each of `frame_count` frames in `rows` (one clip's consecutive frames in
 // FrameLayout order; tests): degrees per second at `fps`, as above.

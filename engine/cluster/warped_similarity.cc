@@ -10,49 +10,14 @@
 #include <limits>
 
 #include "common/seconds_since.h"
-#include "engine/cluster/instance_rows.h"
 #include "engine/distance/pose_features.h"
 
 namespace motif {
 
 namespace {
 
-// The sampled frames of every instance, one after another, as pose features; first[i] is the
-// first sample of instance i (first.back() the total).
-struct SampledInstances {
-  PoseFeatures features;
-  std::vector<uint64_t> first;
-};
-
-Result<SampledInstances> SampleInstances(const FrameFileReader& archive,
-                                         const std::vector<MotifInstance>& instances,
-                                         uint32_t samples) {
-  MOTIF_ASSIGN_OR_RETURN(const std::vector<float> weights,
-                         LoadDistanceWeights(archive.skeleton(), ""));
-  const uint64_t stride = archive.layout().stride();
-  std::vector<uint64_t> first = {0};
-  for (const MotifInstance& instance : instances) {
-    first.push_back(first.back() + std::min<uint64_t>(samples, instance.length()));
-  }
-  std::vector<float> sampled(first.back() * stride);
-  MOTIF_RETURN_IF_ERROR(ForEachInstanceRows(archive, instances, [&](size_t idx, const float* rows) {
-    const uint64_t length = instances[idx].length();
-    const uint64_t count = first[idx + 1] - first[idx];
-    for (uint64_t sample = 0; sample < count; ++sample) {
-      // Evenly spaced, first and last frame included.
-      const uint64_t frame = count == 1 ? 0 : sample * (length - 1) / (count - 1);
-      std::copy(rows + frame * stride, rows + (frame + 1) * stride,
-                sampled.begin() + static_cast<std::ptrdiff_t>((first[idx] + sample) * stride));
-    }
-    return Status::Ok();
-  }));
-  PoseFeatures features = PoseFeatures::FromRows(sampled.data(), first.back(),
-                                                 archive.layout().joint_count, weights, {0});
-  return SampledInstances{std::move(features), std::move(first)};
-}
-
 // d(a, b) of every edge, in parallel.
-std::vector<double> EdgeDistances(const SampledInstances& sampled,
+std::vector<double> EdgeDistances(const InstanceSamples& sampled,
                                   const std::vector<WeightedEdge>& edges, int threads) {
   std::vector<double> distances(edges.size());
   auto measure = [&] {
@@ -141,15 +106,45 @@ Result<std::vector<double>> WarpedDistances(const FrameFileReader& archive,
     sampled_idx[id] = static_cast<uint32_t>(used.size());
     used.push_back(instances[id]);
   }
-  MOTIF_ASSIGN_OR_RETURN(const SampledInstances sampled,
-                         SampleInstances(archive, used, std::max(samples, 2u)));
+  MOTIF_ASSIGN_OR_RETURN(const InstanceSamples sampled,
+                         ReadInstanceSamples(archive, used, std::max(samples, 2u), 0, threads));
+  std::vector<std::pair<uint32_t, uint32_t>> renumbered;
+  renumbered.reserve(pairs.size());
+  for (const auto& [a, b] : pairs) renumbered.emplace_back(sampled_idx[a], sampled_idx[b]);
+  return WarpedDistances(sampled, renumbered, threads);
+}
+
+Result<std::vector<double>> WarpedDistances(const InstanceSamples& samples,
+                                            const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                                            int threads) {
   std::vector<WeightedEdge> edges;
   edges.reserve(pairs.size());
-  for (const auto& [a, b] : pairs) edges.push_back({sampled_idx[a], sampled_idx[b], 0.0});
-  return EdgeDistances(sampled, edges, threads);
+  for (const auto& [a, b] : pairs) {
+    if (a + 1 >= samples.first.size() || b + 1 >= samples.first.size()) {
+      return Status::InvalidArgument("warped distance: a pair names no instance");
+    }
+    edges.push_back({a, b, 0.0});
+  }
+  return EdgeDistances(samples, edges, threads);
 }
 
 Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
+                                                 const std::vector<MotifInstance>& instances,
+                                                 const SimilarityGraph& graph, float eps,
+                                                 const WarpedSimilarityOptions& options,
+                                                 WarpedSimilarityStats* stats) {
+  if (!options.enabled || graph.edge_count() == 0) return graph;  // nothing to read
+  const auto started = std::chrono::steady_clock::now();
+  MOTIF_ASSIGN_OR_RETURN(
+      const InstanceSamples samples,
+      ReadInstanceSamples(archive, instances, std::max(options.samples, 2u), eps, options.threads));
+  MOTIF_ASSIGN_OR_RETURN(SimilarityGraph reweighted,
+                         ReweightByWarpedDistance(samples, instances, graph, eps, options, stats));
+  if (stats != nullptr) stats->seconds = SecondsSince(started);  // the reading included
+  return reweighted;
+}
+
+Result<SimilarityGraph> ReweightByWarpedDistance(const InstanceSamples& samples,
                                                  const std::vector<MotifInstance>& instances,
                                                  const SimilarityGraph& graph, float eps,
                                                  const WarpedSimilarityOptions& options,
@@ -159,11 +154,9 @@ Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
   if (options.neighbours == 0) {
     return Status::InvalidArgument("warped similarity: the local scale needs neighbours >= 1");
   }
-  if (graph.node_count() != instances.size()) {
+  if (graph.node_count() != instances.size() || samples.first.size() != instances.size() + 1) {
     return Status::InvalidArgument("warped similarity: the graph's nodes are not the instances");
   }
-  MOTIF_ASSIGN_OR_RETURN(const SampledInstances sampled,
-                         SampleInstances(archive, instances, std::max(options.samples, 2u)));
   std::vector<WeightedEdge> edges;
   edges.reserve(graph.edge_count());
   for (uint32_t a = 0; a < graph.node_count(); ++a) {
@@ -171,7 +164,7 @@ Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
       if (b > a) edges.push_back({a, b, 0.0});
     }
   }
-  const std::vector<double> distances = EdgeDistances(sampled, edges, options.threads);
+  const std::vector<double> distances = EdgeDistances(samples, edges, options.threads);
   std::vector<double> scales =
       LocalScales(instances, edges, distances, options.neighbours, options.fallback_scale * eps);
   for (double& scale : scales) scale = std::max(scale, options.floor_scale * eps);  // noise

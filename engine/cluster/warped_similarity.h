@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "common/status.h"
+#include "engine/cluster/instance_samples.h"
 #include "engine/cluster/motif_instance.h"
 #include "engine/cluster/similarity_graph.h"
 #include "engine/distance/pose_features.h"
@@ -71,10 +72,24 @@ Result<std::vector<double>> WarpedDistances(const FrameFileReader& archive,
                                             const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
                                             uint32_t samples, int threads);
 
+// The same on samples already read (ReadInstanceSamples with `samples` as above): pairs of
+// instance ids into them. InvalidArgument for a pair naming no instance.
+Result<std::vector<double>> WarpedDistances(const InstanceSamples& samples,
+                                            const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                                            int threads);
+
 // `graph`'s nodes are `instances` (global frame ranges of `archive`); distances with the
 // skeleton's default joint weights. InvalidArgument for an instance outside the archive or
 // neighbours == 0; reader errors pass through.
 Result<SimilarityGraph> ReweightByWarpedDistance(const FrameFileReader& archive,
+                                                 const std::vector<MotifInstance>& instances,
+                                                 const SimilarityGraph& graph, float eps,
+                                                 const WarpedSimilarityOptions& options,
+                                                 WarpedSimilarityStats* stats = nullptr);
+
+// The same on `instances`' samples already read (ReadInstanceSamples with options.samples); the
+// stats' seconds then exclude the reading.
+Result<SimilarityGraph> ReweightByWarpedDistance(const InstanceSamples& samples,
                                                  const std::vector<MotifInstance>& instances,
                                                  const SimilarityGraph& graph, float eps,
                                                  const WarpedSimilarityOptions& options,

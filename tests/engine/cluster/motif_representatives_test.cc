@@ -4,6 +4,8 @@
 // d(a, b) = W · 2 sin(|angle_a - angle_b| / 4) (W the sum of the joint weights) along any warp.
 #include "engine/cluster/motif_representatives.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -11,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/cluster/instance_samples.h"
 #include "engine/distance/pose_features.h"
 #include "engine/synth/motion_synthesizer.h"
 #include "formats/frame_file/frame_file_writer.h"
@@ -117,6 +120,51 @@ TEST(FindRepresentativesTest, TheMedoidByWarpedDistanceAndEachInstancesDistanceT
   // An instance outside the archive is named as such.
   instances[5] = {230, 400};
   EXPECT_TRUE(FindRepresentatives(*archive.reader, instances, 32, 1, &motifs).IsInvalidArgument());
+}
+
+
+// The samples the cluster stage reads once: each instance's frames sampled as WarpedDistances
+// samples them, its held-pose flag, and the representatives measured on them, bit for bit
+// those read alone, for one and two threads.
+TEST(InstanceSamplesTest, HeldPosesAndRepresentativesAreThoseOfTheInstancesReadAlone) {
+  testing::TempDir dir;
+  const HeldArchive archive = MakeHeldArchive(dir);
+  std::vector<MotifInstance> instances;
+  for (uint64_t idx = 0; idx < std::size(kAngles); ++idx) {
+    instances.push_back({idx * kSpan + 5, idx * kSpan + 35});
+  }
+  instances.push_back({kSpan - 10, kSpan + 10});  // 0 then 10 degrees: no held pose
+  const float eps = 0.01f;                          // within it: the same pose to quantisation
+  Result<InstanceSamples> one = ReadInstanceSamples(*archive.reader, instances, 32, eps, 1);
+  Result<InstanceSamples> two = ReadInstanceSamples(*archive.reader, instances, 32, eps, 2);
+  ASSERT_TRUE(one.ok()) << one.status().ToString();
+  ASSERT_TRUE(two.ok()) << two.status().ToString();
+  EXPECT_EQ(one->held, (std::vector<uint8_t>{1, 1, 1, 1, 1, 1, 0}));
+  EXPECT_EQ(two->held, one->held);
+  // 30 and 20 frames, fewer than 32: every frame is a sample.
+  EXPECT_EQ(one->first, (std::vector<uint64_t>{0, 30, 60, 90, 120, 150, 180, 200}));
+  EXPECT_EQ(two->first, one->first);
+  ASSERT_EQ(one->features.frame_count(), 200u);
+  const size_t per_frame = 4 * one->features.weighted_joint_count();
+  EXPECT_TRUE(std::equal(one->features.frame(0), one->features.frame(0) + 200 * per_frame,
+                         two->features.frame(0)));
+  // Sample 0 of instance 6 is frame 30 (angle 0), its last frame 49 (angle 10).
+  EXPECT_EQ(PoseDistance(one->features, 180, 0), 0.0f);
+  EXPECT_EQ(PoseDistance(one->features, 199, 30), 0.0f);
+
+  std::vector<Motif> alone = {{{0, 1, 2}, 90}, {{3, 4, 5, 6}, 110}};
+  std::vector<Motif> shared = alone;
+  ASSERT_TRUE(FindRepresentatives(*archive.reader, instances, 32, 2, &alone).ok());
+  ASSERT_TRUE(FindRepresentatives(*two, 2, &shared).ok());
+  for (size_t motif = 0; motif < alone.size(); ++motif) {
+    EXPECT_EQ(shared[motif].representative, alone[motif].representative);
+    EXPECT_EQ(shared[motif].distances, alone[motif].distances);
+  }
+  std::vector<Motif> beyond = {{{0, 7}, 60}};  // no instance 7
+  EXPECT_TRUE(FindRepresentatives(*one, 1, &beyond).IsInvalidArgument());
+  EXPECT_TRUE(ReadInstanceSamples(*archive.reader, instances, 1, eps, 1).status().IsInvalidArgument());
+  instances.push_back({230, 400});  // outside the archive
+  EXPECT_TRUE(ReadInstanceSamples(*archive.reader, instances, 32, eps, 2).status().IsInvalidArgument());
 }
 
 }  // namespace

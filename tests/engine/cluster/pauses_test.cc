@@ -137,6 +137,10 @@ TEST(FindPausesTest, StillStretchesOfAtLeastTheShortestPauseInEachClip) {
         << instance.start << ".." << instance.end;
   }
   EXPECT_TRUE(FindPausesNear(*archive, options, {{9300, 9500}}).status().IsInvalidArgument());
+  // The stretches scanned in parallel give the same pauses, in the same order.
+  const std::vector<MotifInstance> near = {{8700, 8710}, {90, 150}, {8560, 8600}, {290, 400}};
+  EXPECT_EQ(*FindPausesNear(*archive, options, near, 2), *FindPausesNear(*archive, options, near, 1));
+  EXPECT_EQ(FindPausesNear(*archive, options, near, 2)->size(), 3u);
 
   options.max_speed = 0;
   EXPECT_TRUE(FindPauses(*archive, options)->empty());

@@ -4,6 +4,7 @@
 #include "engine/cluster/warped_similarity.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -262,6 +263,29 @@ TEST(InstanceRowsTest, EveryInstanceGetsItsOwnRowsWhateverTheOrderAndOverlap) {
   ASSERT_TRUE(status.ok()) << status.ToString();
   EXPECT_EQ(visits, std::vector<int>(instances.size(), 1));
   EXPECT_EQ(order, (std::vector<size_t>{1, 3, 2, 5, 0, 4}));  // by start, ties by index
+
+  // With two threads the spans are read in parallel: the same rows, each instance once.
+  std::vector<std::atomic<int>> parallel_visits(instances.size());
+  const Status parallel = ForEachInstanceRows(
+      *archive.reader, instances,
+      [&](size_t idx, const float* rows) {
+        std::vector<float> alone;
+        EXPECT_TRUE(
+            archive.reader->ReadFrames(instances[idx].start, instances[idx].length(), &alone).ok());
+        EXPECT_TRUE(std::equal(alone.begin(), alone.end(), rows)) << "instance " << idx;
+        ++parallel_visits[idx];
+        return Status::Ok();
+      },
+      2);
+  ASSERT_TRUE(parallel.ok()) << parallel.ToString();
+  for (size_t idx = 0; idx < instances.size(); ++idx) EXPECT_EQ(parallel_visits[idx], 1) << idx;
+  EXPECT_TRUE(ForEachInstanceRows(
+                  *archive.reader, instances,
+                  [](size_t idx, const float*) {
+                    return idx == 5 ? Status::Corruption("stop") : Status::Ok();
+                  },
+                  2)
+                  .IsCorruption());
 
   EXPECT_TRUE(
       ForEachInstanceRows(*archive.reader, {{frames - 10, frames + 1}}, [](size_t, const float*) {
