@@ -14,7 +14,8 @@ shift
 from=()
 tag="$frames"
 if [ "${1:-}" = --from ]; then
-  from=(--from "${2:?--from needs a folder of takes}")
+  # Resolved before the cd below, so a path relative to the caller's folder works.
+  from=(--from "$(realpath -e "${2:?--from needs a folder of takes}")")
   tag="$frames-resequenced"
   shift 2
 fi
