@@ -10,24 +10,66 @@
 #include <limits>
 
 #include "common/seconds_since.h"
+#include "engine/distance/distance_kernel.h"
 #include "engine/distance/pose_features.h"
 
 namespace motif {
 
 namespace {
 
-// d(a, b) of every edge, in parallel.
+// The cheapest warping path's mean cost over the n x m matrix `distance` (row-major, row i the
+// distances of a's frame i; steps (1,0), (0,1), (1,1); ties keep the shorter path). Two rows of
+// the cost and step tables at a time: the same sums in the same order as the full tables.
+double MeanWarpedCost(const float* distance, uint64_t n, uint64_t m) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> cost_above(m + 1, kInf);
+  std::vector<double> cost_here(m + 1, kInf);
+  std::vector<uint32_t> steps_above(m + 1, 0);
+  std::vector<uint32_t> steps_here(m + 1, 0);
+  cost_above[0] = 0;
+  for (uint64_t i = 1; i <= n; ++i) {
+    cost_here[0] = kInf;
+    for (uint64_t j = 1; j <= m; ++j) {
+      double best_cost = cost_above[j - 1];
+      uint32_t best_steps = steps_above[j - 1];
+      if (cost_above[j] < best_cost) {
+        best_cost = cost_above[j];
+        best_steps = steps_above[j];
+      }
+      if (cost_here[j - 1] < best_cost) {
+        best_cost = cost_here[j - 1];
+        best_steps = steps_here[j - 1];
+      }
+      cost_here[j] = best_cost + distance[(i - 1) * m + (j - 1)];
+      steps_here[j] = best_steps + 1;
+    }
+    std::swap(cost_above, cost_here);
+    std::swap(steps_above, steps_here);
+  }
+  return cost_above[m] / steps_above[m];
+}
+
+// d(a, b) of every edge, in parallel. The pose distances of a pair come from the SIMD kernel,
+// which gives PoseDistance's bits (distance_kernel.h), so d is MeanWarpedDistance's.
 std::vector<double> EdgeDistances(const InstanceSamples& sampled,
                                   const std::vector<WeightedEdge>& edges, int threads) {
   std::vector<double> distances(edges.size());
+  const DistanceKernel kernel(sampled.features);
   auto measure = [&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 16), [&](const auto& range) {
+      FrameBlock block_a;
+      FrameBlock block_b;
+      std::vector<float> matrix;
       for (size_t idx = range.begin(); idx != range.end(); ++idx) {
-        const uint32_t a = edges[idx].a;
-        const uint32_t b = edges[idx].b;
-        distances[idx] =
-            MeanWarpedDistance(sampled.features, sampled.first[a], sampled.first[a + 1],
-                               sampled.first[b], sampled.first[b + 1]);
+        const uint64_t a0 = sampled.first[edges[idx].a];
+        const uint64_t a1 = sampled.first[edges[idx].a + 1];
+        const uint64_t b0 = sampled.first[edges[idx].b];
+        const uint64_t b1 = sampled.first[edges[idx].b + 1];
+        block_a.LoadRange(sampled.features, a0, static_cast<uint32_t>(a1 - a0));
+        block_b.LoadRange(sampled.features, b0, static_cast<uint32_t>(b1 - b0));
+        matrix.resize((a1 - a0) * (b1 - b0));
+        kernel.Compute(block_a, block_b, matrix.data(), b1 - b0);
+        distances[idx] = MeanWarpedCost(matrix.data(), a1 - a0, b1 - b0);
       }
     });
   };
@@ -67,23 +109,12 @@ std::vector<double> LocalScales(const std::vector<MotifInstance>& instances,
 
 double MeanWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1, uint64_t b0,
                           uint64_t b1) {
-  const uint64_t n = a1 - a0;
   const uint64_t m = b1 - b0;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  std::vector<double> cost((n + 1) * (m + 1), kInf);
-  std::vector<uint32_t> steps((n + 1) * (m + 1), 0);
-  auto at = [m](uint64_t i, uint64_t j) { return i * (m + 1) + j; };
-  cost[at(0, 0)] = 0;
-  for (uint64_t i = 1; i <= n; ++i) {
-    for (uint64_t j = 1; j <= m; ++j) {
-      uint64_t best = at(i - 1, j - 1);
-      if (cost[at(i - 1, j)] < cost[best]) best = at(i - 1, j);
-      if (cost[at(i, j - 1)] < cost[best]) best = at(i, j - 1);
-      cost[at(i, j)] = cost[best] + PoseDistance(features, a0 + i - 1, b0 + j - 1);
-      steps[at(i, j)] = steps[best] + 1;
-    }
+  std::vector<float> matrix((a1 - a0) * m);
+  for (uint64_t i = 0; i < a1 - a0; ++i) {
+    for (uint64_t j = 0; j < m; ++j) matrix[i * m + j] = PoseDistance(features, a0 + i, b0 + j);
   }
-  return cost[at(n, m)] / steps[at(n, m)];
+  return MeanWarpedCost(matrix.data(), a1 - a0, m);
 }
 
 Result<std::vector<double>> WarpedDistances(const FrameFileReader& archive,

@@ -19,8 +19,8 @@
 // e^-(max_scales^2)) loses its edge: by the rule's own measure it is not one movement, and on real
 // archives these edges are most of the graph and keep the normalized cut peeling one large
 // component (docs/design/motif_quality.md, section 6). Cost: O(edges · samples^2) pose distances,
-// in parallel; O(instances · samples) features. Thread-safety: pure function (the reader is safe
-// to share).
+// from the SIMD kernel, in parallel; O(instances · samples) features. Thread-safety: pure
+// function (the reader is safe to share).
 #pragma once
 
 #include <cstdint>

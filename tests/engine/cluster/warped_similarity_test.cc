@@ -214,6 +214,58 @@ TEST(WarpedSimilarityTest, SameWeightsForAnyThreadCount) {
   }
 }
 
+// The warp of MeanWarpedDistance written out with full cost and step tables, one scalar pose
+// distance a cell: the reference the engine's two-row, SIMD-kernel form must match bit for bit.
+double FullTableWarpedDistance(const PoseFeatures& features, uint64_t a0, uint64_t a1, uint64_t b0,
+                               uint64_t b1) {
+  const uint64_t n = a1 - a0;
+  const uint64_t m = b1 - b0;
+  std::vector<double> cost((n + 1) * (m + 1), std::numeric_limits<double>::infinity());
+  std::vector<uint32_t> steps((n + 1) * (m + 1), 0);
+  auto at = [m](uint64_t i, uint64_t j) { return i * (m + 1) + j; };
+  cost[at(0, 0)] = 0;
+  for (uint64_t i = 1; i <= n; ++i) {
+    for (uint64_t j = 1; j <= m; ++j) {
+      uint64_t best = at(i - 1, j - 1);
+      if (cost[at(i - 1, j)] < cost[best]) best = at(i - 1, j);
+      if (cost[at(i, j - 1)] < cost[best]) best = at(i, j - 1);
+      cost[at(i, j)] = cost[best] + PoseDistance(features, a0 + i - 1, b0 + j - 1);
+      steps[at(i, j)] = steps[best] + 1;
+    }
+  }
+  return cost[at(n, m)] / steps[at(n, m)];
+}
+
+TEST(WarpedSimilarityTest, EveryPairsDistanceIsTheFullTableWarpsBitForBit) {
+  testing::TempDir dir;
+  const PlantedArchive archive = MakePlantedArchive(dir);
+  // 17 samples: a second, one-frame tile in the kernel's blocks.
+  auto samples = ReadInstanceSamples(*archive.reader, archive.instances, 17, kEps, 2);
+  ASSERT_TRUE(samples.ok());
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  const uint32_t nodes = static_cast<uint32_t>(archive.instances.size());
+  for (uint32_t a = 0; a < nodes; ++a) {
+    for (uint32_t b = 0; b < nodes; ++b) pairs.emplace_back(a, b);
+  }
+  auto distances = WarpedDistances(*samples, pairs, 2);
+  ASSERT_TRUE(distances.ok());
+  ASSERT_EQ(distances->size(), pairs.size());
+  const std::vector<uint64_t>& first = samples->first;
+  for (size_t idx = 0; idx < pairs.size(); ++idx) {
+    const auto [a, b] = pairs[idx];
+    const double reference = FullTableWarpedDistance(samples->features, first[a], first[a + 1],
+                                                     first[b], first[b + 1]);
+    ASSERT_EQ((*distances)[idx], reference) << a << " " << b;
+    ASSERT_EQ(MeanWarpedDistance(samples->features, first[a], first[a + 1], first[b],
+                                 first[b + 1]),
+              reference)
+        << a << " " << b;
+    if (a == b) {
+      EXPECT_EQ(reference, 0.0);
+    }
+  }
+}
+
 TEST(WarpedSimilarityTest, DisabledKeepsTheWeightsAndBadInputIsRefused) {
   testing::TempDir dir;
   const PlantedArchive archive = MakePlantedArchive(dir);
