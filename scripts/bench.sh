@@ -58,6 +58,7 @@ fi
 # that the machine cannot finish keeps the rows that matter most). A job named <stage>_<data>
 # is selected by JOBS naming either.
 jobs_table="
+bandwidth     | bench_memory_bandwidth    | ^MemoryBandwidth/          | 0      | 0
 import        | bench_format_import       | ^ImportScale/              | 131072 | 16777216
 decode        | bench_format_frame_file   | ^DecodeScale/              | 131072 | 16777216
 distance      | bench_kern_distance       | ^DistanceScale/            | 131072 | 16777216
@@ -108,7 +109,7 @@ cat "$out/machine.json"
 
 (while true; do echo "$(date +%s) $(load_now)" >> "$out/load.tsv"; sleep 30; done) &
 sampler=$!
-trap 'kill $sampler 2>/dev/null' EXIT
+trap 'kill $sampler 2>/dev/null || true' EXIT
 
 echo "$jobs_table" | awk -F'|' 'NF==5' |
 while IFS='|' read -r job program filter quick_max full_max; do
@@ -142,4 +143,9 @@ machine["load_at_end"] = sys.argv[2]
 json.dump(machine, open(path, "w"), indent=2)
 PY
 /usr/bin/python3 "$root/scripts/bench_report.py" "$root" "$out"
+# The floor of each stage of the mine rows and measured/floor (docs/benchmarks.md, "The floor").
+if [ -s "$out/bandwidth.json" ]; then
+  echo "== measured against the floor (scripts/stage_floor.py $out)"
+  /usr/bin/python3 "$root/scripts/stage_floor.py" "$out" || echo "  stage_floor.py failed" >&2
+fi
 echo "raw JSON: $out"

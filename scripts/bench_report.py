@@ -15,6 +15,7 @@ Plots: matplotlib (Debian's python3-matplotlib, a bench-only dependency), SVG wi
 text, a fixed hash salt and no date, so that a rerun with the same figures gives the same file.
 """
 import glob
+import importlib.util
 import json
 import math
 import os
@@ -479,6 +480,29 @@ def run_lines(run_dir, jobs):
         f"end; {load_summary(run_dir)}"]
 
 
+def floor_markdown(run_dirs):
+    """The mine rows against their floor (scripts/stage_floor.py); nothing when no run measured
+    the bandwidth."""
+    if not any(os.path.exists(os.path.join(d, "bandwidth.json")) for d in run_dirs):
+        return []
+    spec = importlib.util.spec_from_file_location(
+        "stage_floor", os.path.join(os.path.dirname(os.path.abspath(__file__)), "stage_floor.py"))
+    stage_floor = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(stage_floor)
+    rates = stage_floor.Rates(run_dirs)
+    header, lines = stage_floor.table(rates, stage_floor.suite_runs(rates))
+    if not lines:
+        return []
+    return (["#### The mine rows against their floor", "",
+             "`scripts/stage_floor.py "
+             + " ".join(os.path.basename(os.path.normpath(d)) for d in run_dirs) + "`: "
+             "the least time of each stage from this run's kernel rate and memory bandwidth "
+             "(docs/benchmarks.md, \"The floor\"). The small mine rows use the exact search; the "
+             "LSH's evaluations are those of TrellisBuild at that N.", "",
+             "| " + " | ".join(header) + " |", "| " + " | ".join("---" for _ in header) + " |"]
+            + ["| " + " | ".join(line) + " |" for line in lines] + [""])
+
+
 def main():
     root, run_dirs = sys.argv[1], sys.argv[2:]
     mode = json.load(open(os.path.join(run_dirs[-1], "machine.json"))).get("mode", "quick")
@@ -513,6 +537,7 @@ def main():
         image = f"{mode}-{stage.key}.svg"
         plot_stage(stage, per_series, os.path.join(image_dir, image), largest)
         body += stage_markdown(stage, per_series, fits, f"benchmarks/{image}")
+    body += floor_markdown(run_dirs)
     body.append(f"<!-- bench.sh {mode} end -->")
 
     doc_path = os.path.join(root, "docs", "benchmarks.md")
