@@ -496,7 +496,7 @@ def floor_markdown(run_dirs):
     return (["#### The mine rows against their floor", "",
              "`scripts/stage_floor.py "
              + " ".join(os.path.basename(os.path.normpath(d)) for d in run_dirs) + "`: "
-             "the least time of each stage from this run's kernel rate and memory bandwidth "
+             "the least time of each stage from these runs' kernel rate and memory bandwidth "
              "(docs/benchmarks.md, \"The floor\"). The small mine rows use the exact search; the "
              "LSH's evaluations are those of TrellisBuild at that N.", "",
              "| " + " | ".join(header) + " |", "| " + " | ".join("---" for _ in header) + " |"]
