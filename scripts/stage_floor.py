@@ -5,7 +5,8 @@
       every MineScale row of scripts/bench.sh runs (bench-results/scale-*/; each job's rows from
       the last RUN_DIR that has it, as scripts/bench.sh report does)
   scripts/stage_floor.py RUN_DIR... --data synth|resequenced --frames N --mean-k K
-                         [--trellis-bytes-per-frame B] [--warped-pairs P --warped-samples S]
+                         [--trellis-bytes-per-frame B] [--evaluations-per-column E]
+                         [--warped-pairs P --warped-samples S]
                          --measured trellis=S,grow=S,...
       one end-to-end run outside the suite (scripts/bench_mine_e2e.sh), with the rates of RUN_DIR
 
@@ -168,6 +169,8 @@ def main():
     parser.add_argument("--frames", type=float)
     parser.add_argument("--mean-k", type=float)
     parser.add_argument("--trellis-bytes-per-frame", type=float)
+    parser.add_argument("--evaluations-per-column", type=float,
+                        help="the run's own (`motifmine trellis` prints it); default: the suite's")
     parser.add_argument("--warped-pairs", type=float)
     parser.add_argument("--warped-samples", type=float, default=32)
     parser.add_argument("--measured", default="", help="stage=seconds,... (trellis, grow, ...)")
@@ -188,6 +191,8 @@ def main():
             stage, _, seconds = item.partition("=")
             measured[stage] = float(seconds)
         evaluations = (lsh["evaluations_per_column"], frames_of(lsh)) if lsh else None
+        if args.evaluations_per_column:
+            evaluations = (args.evaluations_per_column, frames)
         warped = args.warped_pairs * args.warped_samples ** 2 if args.warped_pairs else None
         runs = [(f"{args.data} {frames:,}", args.data, frames, args.mean_k, trellis_bytes,
                  evaluations, measured, warped)]
