@@ -79,8 +79,14 @@ class PathGrower::Impl {
   uint64_t frame_count = 0;
   GrowOptions options;
   std::vector<uint32_t> cells;  // the auxiliary array, N cells
-  std::vector<Leaf> leaves;     // column next_column - 1, in frame order
-  std::vector<Leaf> next;       // column next_column, being filled
+  // LeavesInClaimOrder: the leaves of a column are appended in the order the oldest path
+  // claims first needs (root column ascending, then frame), without a sort. Leaves are taken
+  // in that order, and each appends its children in frame order; a leaf's children all lie
+  // above its predecessor's in the same tree age, since that predecessor claimed every marked
+  // cell of its own window (of B cells from a lower frame). Children inherit their root column;
+  // the new trees, rooted in this column (the youngest), follow in frame order.
+  std::vector<Leaf> leaves;     // column next_column - 1, in claim order
+  std::vector<Leaf> next;       // column next_column, being filled in claim order
   std::vector<Tree> trees;      // slots of trees with live leaves (at most two columns' worth)
   std::vector<uint32_t> free_trees;
   uint64_t next_column = 0;
@@ -133,13 +139,14 @@ class PathGrower::Impl {
 
   void Step(const Neighbour* nodes, size_t count) {
     const uint64_t column = next_column;
-    next.resize(count);
+    next.clear();
+    next.reserve(count);
     // Column `column` starts a clip (or the trellis): no path crosses into it.
     if (column == 0 || (cells[column] & kClipStartBit) != 0) {
       for (const Leaf& leaf : leaves) Die(leaf, column - 1);
       for (size_t slot = 0; slot < count; ++slot) {
-        next[slot] = {nodes[slot].frame, nodes[slot].frame, static_cast<uint32_t>(column),
-                      NewTree()};
+        next.push_back({nodes[slot].frame, nodes[slot].frame, static_cast<uint32_t>(column),
+                        NewTree()});
       }
       return;
     }
@@ -148,10 +155,8 @@ class PathGrower::Impl {
     }
     const uint64_t branch = options.branch;
     // The oldest paths claim first (root column ascending, then frame): a long match keeps its
-    // continuation instead of losing it to a tree that started a few frames above it.
-    std::sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) {
-      return a.root_column != b.root_column ? a.root_column < b.root_column : a.frame < b.frame;
-    });
+    // continuation instead of losing it to a tree that started a few frames above it. The
+    // leaves are in that order already (LeavesInClaimOrder), so no sort is needed.
     for (const Leaf& leaf : leaves) {
       const uint64_t first = leaf.frame;
       const uint64_t end = std::min<uint64_t>(first + branch, frame_count);
@@ -167,8 +172,8 @@ class PathGrower::Impl {
           if (frame != first && (cell & kClipStartBit) != 0) break;
           const uint32_t slot = cell & kSlotMask;
           if (slot == 0) continue;
-          next[slot - 1] = {static_cast<uint32_t>(frame), leaf.root_frame, leaf.root_column,
-                            leaf.tree};
+          next.push_back({static_cast<uint32_t>(frame), leaf.root_frame, leaf.root_column,
+                          leaf.tree});
           cells[frame] = cell & kClipStartBit;  // claimed: one ancestor per node
           ++children;
         }
@@ -183,8 +188,8 @@ class PathGrower::Impl {
     for (size_t slot = 0; slot < count; ++slot) {
       uint32_t& cell = cells[nodes[slot].frame];
       if ((cell & kSlotMask) != 0) {
-        next[slot] = {nodes[slot].frame, nodes[slot].frame, static_cast<uint32_t>(column),
-                      NewTree()};
+        next.push_back({nodes[slot].frame, nodes[slot].frame, static_cast<uint32_t>(column),
+                        NewTree()});
       }
       cell &= kClipStartBit;
     }
